@@ -1,0 +1,26 @@
+//! Geometry: vectors (from `glam`), rays, bounds, transforms, frames and the ray
+//! intersections of every primitive.
+//!
+//! Intersection runs in two stages (seed 002 §4.5.1): a cheap first stage that finds only the
+//! ray parameter `t` (plus a few numbers to finish the job), and a second stage that describes
+//! the hit (point, normals, surface parameters, tangents) only for the closest hit. Analytic
+//! shapes are intersected in their object space, with the world ray carried there by the
+//! inverse transform.
+
+mod bounds;
+pub mod cuboid;
+mod frame;
+pub mod frustum;
+mod local_hit;
+pub mod plane;
+mod ray;
+pub mod sphere;
+mod transform;
+mod triangle;
+
+pub use bounds::Aabb;
+pub use frame::Frame;
+pub use local_hit::LocalHit;
+pub use ray::{Ray, offset_origin, spawn_ray, spawn_ray_to, surface_offset};
+pub use transform::Transform;
+pub use triangle::Triangle;

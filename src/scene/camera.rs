@@ -1,0 +1,102 @@
+//! The pinhole camera.
+
+use crate::geometry::Ray;
+use glam::Vec3;
+
+/// A pinhole camera: position, look-at point, up vector, vertical field of view and the
+/// image resolution it is set up for.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position (scene units).
+    pub position: Vec3,
+    /// Point the camera looks at.
+    pub look_at: Vec3,
+    /// Approximate up direction.
+    pub up: Vec3,
+    /// Vertical field of view in degrees.
+    pub fov_degrees: f32,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+impl Camera {
+    /// The same camera rendering at another resolution (field of view kept vertical).
+    pub fn with_resolution(&self, width: u32, height: u32) -> Camera {
+        Camera {
+            width,
+            height,
+            ..self.clone()
+        }
+    }
+
+    /// Precomputed ray generator for this camera; `None` when the view is degenerate (look-at
+    /// equals position, up parallel to the view direction, or field of view outside (0, 180)).
+    pub fn rays(&self) -> Option<CameraRays> {
+        let forward = (self.look_at - self.position).try_normalize()?;
+        let right = forward.cross(self.up).try_normalize()?;
+        let up = right.cross(forward);
+        if !(self.fov_degrees > 0.0 && self.fov_degrees < 180.0) || self.width == 0 || self.height == 0
+        {
+            return None;
+        }
+        let half_h = (self.fov_degrees.to_radians() * 0.5).tan();
+        let half_w = half_h * self.width as f32 / self.height as f32;
+        Some(CameraRays {
+            origin: self.position,
+            forward,
+            right: right * half_w,
+            up: up * half_h,
+            width: self.width as f32,
+            height: self.height as f32,
+        })
+    }
+}
+
+/// Turns image positions into world rays for one camera.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraRays {
+    origin: Vec3,
+    forward: Vec3,
+    right: Vec3,
+    up: Vec3,
+    width: f32,
+    height: f32,
+}
+
+impl CameraRays {
+    /// The unit-direction ray through image position `(x, y)` in pixels, `x` to the right and
+    /// `y` down, `(0, 0)` the top-left corner of the image (pixel centres at `+0.5`).
+    pub fn ray(&self, x: f32, y: f32) -> Ray {
+        let sx = 2.0 * x / self.width - 1.0;
+        let sy = 1.0 - 2.0 * y / self.height;
+        let dir = (self.forward + self.right * sx + self.up * sy).normalize();
+        Ray::new(self.origin, dir)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn centre_ray_looks_at_target_and_corners_span_fov() {
+        let cam = Camera {
+            position: Vec3::ZERO,
+            look_at: Vec3::new(0.0, 0.0, 5.0),
+            up: Vec3::Y,
+            fov_degrees: 90.0,
+            width: 100,
+            height: 100,
+        };
+        let rays = cam.rays().unwrap();
+        assert!((rays.ray(50.0, 50.0).dir - Vec3::Z).length() < 1e-6);
+        let top = rays.ray(50.0, 0.0).dir;
+        assert!((top.angle_between(Vec3::Z).to_degrees() - 45.0).abs() < 1e-3);
+        assert!(top.y > 0.0);
+        // Right-handed, y up, looking along +z: image right is world -x.
+        assert!(rays.ray(100.0, 50.0).dir.x < 0.0);
+        assert!(Camera { look_at: Vec3::ZERO, ..cam.clone() }.rays().is_none());
+    }
+}

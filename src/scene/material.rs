@@ -1,0 +1,96 @@
+//! Named, shared surface materials.
+
+use super::TextureId;
+use crate::color::Rgb;
+
+/// Index of a material in [`super::Scene::materials`].
+pub type MaterialId = u32;
+
+/// A surface material. Its parts add up: diffuse (Lambert) reflectance, Phong glossy
+/// reflection, ideal mirror reflection and ideal refraction; every part is an RGB weight in
+/// `[0, 1]` and their sum per channel must not exceed 1 (energy conservation, checked when a
+/// scene is loaded).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Unique name.
+    pub name: String,
+    /// Diffuse reflectance ρ (Lambertian, BRDF ρ/π).
+    pub diffuse: Rgb,
+    /// Texture multiplied into `diffuse`.
+    pub diffuse_texture: Option<TextureId>,
+    /// Emitted radiance L in W·sr⁻¹·m⁻² (a Lambertian emitter's radiosity is π·L).
+    pub emission: Rgb,
+    /// Texture multiplied into `emission`.
+    pub emission_texture: Option<TextureId>,
+    /// Emit from both sides; otherwise only from the front face (counter-clockwise side).
+    pub two_sided: bool,
+    /// Phong specular weight (normalised lobe, reflects this fraction at normal incidence).
+    pub specular: Rgb,
+    /// Phong exponent.
+    pub shininess: f32,
+    /// Ideal mirror reflectance.
+    pub mirror: Rgb,
+    /// Ideal refraction weight (glass-like when non-zero, with Fresnel).
+    pub transmission: Rgb,
+    /// Index of refraction of the material behind the front face.
+    pub ior: f32,
+    /// Alpha texture: texels with alpha below ½ cut the surface away, for camera rays and
+    /// shadows alike.
+    pub alpha_texture: Option<TextureId>,
+    /// Reflect only from the front face; the back face absorbs everything.
+    pub one_sided: bool,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Material {
+            name: "default".to_string(),
+            diffuse: Rgb::splat(0.8),
+            diffuse_texture: None,
+            emission: Rgb::BLACK,
+            emission_texture: None,
+            two_sided: false,
+            specular: Rgb::BLACK,
+            shininess: 50.0,
+            mirror: Rgb::BLACK,
+            transmission: Rgb::BLACK,
+            ior: 1.5,
+            alpha_texture: None,
+            one_sided: false,
+        }
+    }
+}
+
+impl Material {
+    /// A plain Lambertian material.
+    pub fn diffuse(name: &str, rho: Rgb) -> Self {
+        Material {
+            name: name.to_string(),
+            diffuse: rho,
+            ..Material::default()
+        }
+    }
+
+    /// A Lambertian emitter with reflectance `rho` and radiance `emission`.
+    pub fn emitter(name: &str, rho: Rgb, emission: Rgb) -> Self {
+        Material {
+            emission,
+            ..Material::diffuse(name, rho)
+        }
+    }
+
+    /// True when the material emits light (or could, through an emission texture).
+    pub fn is_emissive(&self) -> bool {
+        !self.emission.is_black()
+    }
+
+    /// Largest per-channel sum of the reflected and transmitted fractions (must be ≤ 1).
+    pub fn albedo_bound(&self) -> f32 {
+        (self.diffuse + self.specular + self.mirror + self.transmission).max_channel()
+    }
+
+    /// True when the surface only scatters diffusely (what radiosity can represent exactly).
+    pub fn is_purely_diffuse(&self) -> bool {
+        self.specular.is_black() && self.mirror.is_black() && self.transmission.is_black()
+    }
+}

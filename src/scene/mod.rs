@@ -1,0 +1,103 @@
+//! The scene model: objects with shapes, transforms and materials; textures; lights; the
+//! camera. Scenes come from TOML files ([`load`]) or are built in ([`builtin`]).
+
+mod camera;
+mod light;
+mod material;
+mod mesh;
+mod object;
+mod texture;
+
+pub use camera::{Camera, CameraRays};
+pub use light::{Light, LightKind};
+pub use material::{Material, MaterialId};
+pub use mesh::PolygonMesh;
+pub use object::{AnalyticKind, Object, Shape};
+pub use texture::{ColorSpace, Texture, TextureError, TextureId, srgb_to_linear};
+
+use glam::Vec3;
+
+/// A complete scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Display name (file name or built-in name).
+    pub name: String,
+    /// The camera.
+    pub camera: Camera,
+    /// All materials, referenced by [`MaterialId`].
+    pub materials: Vec<Material>,
+    /// All textures, referenced by [`TextureId`].
+    pub textures: Vec<Texture>,
+    /// All objects.
+    pub objects: Vec<Object>,
+    /// Point, spot, directional and sky lights (emissive surfaces are lights too).
+    pub lights: Vec<Light>,
+}
+
+impl Scene {
+    /// An empty scene with a default camera looking down −z from `(0, 0, 5)`.
+    pub fn empty(name: &str) -> Self {
+        Scene {
+            name: name.to_string(),
+            camera: Camera {
+                position: Vec3::new(0.0, 0.0, 5.0),
+                look_at: Vec3::ZERO,
+                up: Vec3::Y,
+                fov_degrees: 45.0,
+                width: 512,
+                height: 512,
+            },
+            materials: Vec::new(),
+            textures: Vec::new(),
+            objects: Vec::new(),
+            lights: Vec::new(),
+        }
+    }
+
+    /// Adds a material and returns its id.
+    pub fn add_material(&mut self, m: Material) -> MaterialId {
+        self.materials.push(m);
+        (self.materials.len() - 1) as MaterialId
+    }
+
+    /// Adds a texture and returns its id.
+    pub fn add_texture(&mut self, t: Texture) -> TextureId {
+        self.textures.push(t);
+        (self.textures.len() - 1) as TextureId
+    }
+
+    /// Id of the material called `name`.
+    pub fn material_id(&self, name: &str) -> Option<MaterialId> {
+        self.materials
+            .iter()
+            .position(|m| m.name == name)
+            .map(|i| i as MaterialId)
+    }
+
+    /// Adds an object with the identity transform.
+    pub fn add_object(&mut self, name: &str, shape: Shape, material: MaterialId) {
+        self.objects.push(Object {
+            name: Some(name.to_string()),
+            shape,
+            transform: Default::default(),
+            material,
+            per_face: false,
+        });
+    }
+
+    /// The report name of object `index`: its name, or `object-<index>`.
+    pub fn object_name(&self, index: usize) -> String {
+        self.objects[index]
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("object-{index}"))
+    }
+
+    /// The report name of light `index`: its name, or `light-<index>`.
+    pub fn light_name(&self, index: usize) -> String {
+        self.lights[index]
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("light-{index}"))
+    }
+}

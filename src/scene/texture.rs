@@ -1,0 +1,199 @@
+//! Image textures: any size, PPM/PGM (the seeds' formats), PNG and JPEG, stored as linear RGBA.
+
+use crate::color::Rgb;
+use glam::Vec2;
+use std::path::Path;
+
+/// Index of a texture in [`super::Scene::textures`].
+pub type TextureId = u32;
+
+/// How 8-bit texel values map to linear values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColorSpace {
+    /// Texel / 255, no decoding (the seeds' convention for reflectance maps).
+    Linear,
+    /// sRGB transfer curve decoded to linear.
+    Srgb,
+}
+
+impl ColorSpace {
+    /// The conventional colour space for a file: sRGB for PNG and JPEG, linear otherwise.
+    pub fn default_for(path: &Path) -> ColorSpace {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase())
+            .as_deref()
+        {
+            Some("png" | "jpg" | "jpeg") => ColorSpace::Srgb,
+            _ => ColorSpace::Linear,
+        }
+    }
+}
+
+/// A texture: linear RGBA texels, row 0 at the top of the image. Texture coordinate
+/// `(0, 0)` is the bottom-left corner and `(1, 1)` the top-right (the OBJ convention); lookups
+/// repeat outside `[0, 1]²`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    /// Name (file path or a generated name).
+    pub name: String,
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// Row-major texels, `[r, g, b, a]`, linear.
+    pub texels: Vec<[f32; 4]>,
+}
+
+/// Error while reading a texture file.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot read texture '{path}': {reason}")]
+pub struct TextureError {
+    /// The file.
+    pub path: String,
+    /// What went wrong.
+    pub reason: String,
+}
+
+impl Texture {
+    /// A texture computed per texel by `f(x, y) -> [r, g, b, a]` (row 0 on top).
+    pub fn from_fn(name: &str, width: u32, height: u32, f: impl Fn(u32, u32) -> [f32; 4]) -> Self {
+        let texels = (0..height)
+            .flat_map(|y| (0..width).map(move |x| (x, y)))
+            .map(|(x, y)| f(x, y))
+            .collect();
+        Texture {
+            name: name.to_string(),
+            width,
+            height,
+            texels,
+        }
+    }
+
+    /// Reads an image file (PNG, JPEG, PPM, PGM, PAM) into linear RGBA. Grey images fill all
+    /// three colour channels; images without alpha get alpha 1.
+    pub fn load(path: &Path, space: ColorSpace) -> Result<Texture, TextureError> {
+        let err = |reason: String| TextureError {
+            path: path.display().to_string(),
+            reason,
+        };
+        let img = image::ImageReader::open(path)
+            .map_err(|e| err(e.to_string()))?
+            .with_guessed_format()
+            .map_err(|e| err(e.to_string()))?
+            .decode()
+            .map_err(|e| err(e.to_string()))?;
+        if img.width() == 0 || img.height() == 0 {
+            return Err(err("image is empty".into()));
+        }
+        let rgba = img.to_rgba32f();
+        let decode = |v: f32| match space {
+            ColorSpace::Linear => v,
+            ColorSpace::Srgb => srgb_to_linear(v),
+        };
+        let texels = rgba
+            .pixels()
+            .map(|p| [decode(p[0]), decode(p[1]), decode(p[2]), p[3]])
+            .collect();
+        Ok(Texture {
+            name: path.display().to_string(),
+            width: img.width(),
+            height: img.height(),
+            texels,
+        })
+    }
+
+    /// The texel at column `x`, row `y` (row 0 on top), wrapped into range.
+    pub fn texel(&self, x: i64, y: i64) -> [f32; 4] {
+        let xi = x.rem_euclid(self.width as i64) as usize;
+        let yi = y.rem_euclid(self.height as i64) as usize;
+        self.texels[yi * self.width as usize + xi]
+    }
+
+    /// Bilinearly filtered RGBA at texture coordinate `uv`.
+    pub fn sample(&self, uv: Vec2) -> [f32; 4] {
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = (1.0 - uv.y) * self.height as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let mut out = [0.0; 4];
+        for (dx, dy, w) in [
+            (0, 0, (1.0 - fx) * (1.0 - fy)),
+            (1, 0, fx * (1.0 - fy)),
+            (0, 1, (1.0 - fx) * fy),
+            (1, 1, fx * fy),
+        ] {
+            let t = self.texel(x0 + dx, y0 + dy);
+            for c in 0..4 {
+                out[c] += w * t[c];
+            }
+        }
+        out
+    }
+
+    /// Filtered colour at `uv`.
+    pub fn color(&self, uv: Vec2) -> Rgb {
+        let t = self.sample(uv);
+        Rgb::new(t[0], t[1], t[2])
+    }
+
+    /// Nearest-texel alpha at `uv` (cut-outs stay sharp).
+    pub fn alpha(&self, uv: Vec2) -> f32 {
+        let x = (uv.x * self.width as f32).floor() as i64;
+        let y = ((1.0 - uv.y) * self.height as f32).floor() as i64;
+        self.texel(x, y)[3]
+    }
+
+    /// Mean colour over all texels.
+    pub fn mean_color(&self) -> Rgb {
+        let sum = self
+            .texels
+            .iter()
+            .fold(Rgb::BLACK, |s, t| s + Rgb::new(t[0], t[1], t[2]));
+        sum / self.texels.len() as f32
+    }
+}
+
+/// The sRGB electro-optical transfer function: encoded value in `[0, 1]` to linear.
+pub fn srgb_to_linear(v: f32) -> f32 {
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_by_one() -> Texture {
+        Texture::from_fn("t", 2, 1, |x, _| {
+            if x == 0 {
+                [0.0, 0.0, 0.0, 0.0]
+            } else {
+                [1.0, 1.0, 1.0, 1.0]
+            }
+        })
+    }
+
+    #[test]
+    fn bilinear_blends_between_texel_centres_and_wraps() {
+        let t = two_by_one();
+        assert!((t.color(Vec2::new(0.25, 0.5)).r - 0.0).abs() < 1e-6);
+        assert!((t.color(Vec2::new(0.75, 0.5)).r - 1.0).abs() < 1e-6);
+        assert!((t.color(Vec2::new(0.5, 0.5)).r - 0.5).abs() < 1e-6);
+        assert!((t.color(Vec2::new(1.75, 0.5)).r - 1.0).abs() < 1e-6);
+        assert_eq!(t.alpha(Vec2::new(0.1, 0.5)), 0.0);
+        assert_eq!(t.alpha(Vec2::new(0.9, 0.5)), 1.0);
+    }
+
+    #[test]
+    fn srgb_decoding_matches_reference_points() {
+        assert_eq!(srgb_to_linear(0.0), 0.0);
+        assert!((srgb_to_linear(1.0) - 1.0).abs() < 1e-6);
+        assert!((srgb_to_linear(0.5) - 0.214_041).abs() < 1e-5);
+    }
+}
