@@ -37,8 +37,8 @@ impl Camera {
         let forward = (self.look_at - self.position).try_normalize()?;
         let right = forward.cross(self.up).try_normalize()?;
         let up = right.cross(forward);
-        if !(self.fov_degrees > 0.0 && self.fov_degrees < 180.0) || self.width == 0 || self.height == 0
-        {
+        let fov_ok = self.fov_degrees > 0.0 && self.fov_degrees < 180.0;
+        if !fov_ok || self.width == 0 || self.height == 0 {
             return None;
         }
         let half_h = (self.fov_degrees.to_radians() * 0.5).tan();

@@ -1,18 +1,24 @@
 //! The scene model: objects with shapes, transforms and materials; textures; lights; the
 //! camera. Scenes come from TOML files ([`load`]) or are built in ([`builtin`]).
 
+pub mod builtin;
 mod camera;
+mod file;
+pub mod import;
 mod light;
 mod material;
 mod mesh;
 mod object;
+mod tessellate;
 mod texture;
 
 pub use camera::{Camera, CameraRays};
+pub use file::{SceneError, load, load_str};
 pub use light::{Light, LightKind};
 pub use material::{Material, MaterialId};
 pub use mesh::PolygonMesh;
 pub use object::{AnalyticKind, Object, Shape};
+pub use tessellate::{polygon_area, polygon_normal};
 pub use texture::{ColorSpace, Texture, TextureError, TextureId, srgb_to_linear};
 
 use glam::Vec3;

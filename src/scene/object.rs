@@ -152,6 +152,14 @@ impl Shape {
         }
     }
 
+    /// True for shapes intersected analytically (sphere, box, cylinder, cone, frustum, plane).
+    pub fn is_analytic(&self) -> bool {
+        !matches!(
+            self,
+            Shape::Triangle { .. } | Shape::Polygon { .. } | Shape::Parallelogram { .. } | Shape::Mesh(_)
+        )
+    }
+
     /// True for the shapes that enclose a volume (solids).
     pub fn is_solid(&self) -> bool {
         match self {
@@ -190,7 +198,7 @@ fn frustum(
 ) -> Option<(AnalyticKind, Transform)> {
     let axis = top - base;
     let w = axis.try_normalize()?;
-    if !(r0 > 0.0) || !(r1 >= 0.0) {
+    if r0.is_nan() || r0 <= 0.0 || r1.is_nan() || r1 < 0.0 {
         return None;
     }
     let (u, v) = w.any_orthonormal_pair();

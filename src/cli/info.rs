@@ -1,0 +1,74 @@
+//! `strahl info`: validate a scene and print its statistics.
+
+use super::source;
+use crate::accel::AccelKind;
+use crate::scene::LightKind;
+use crate::trace::World;
+use anyhow::{Context, Result};
+use clap::Args;
+use std::collections::BTreeMap;
+
+/// Arguments of `strahl info`.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// Scene: a built-in name, a .toml scene file or a mesh file.
+    pub scene: String,
+    /// Accelerator whose statistics to show.
+    #[arg(long, value_enum, default_value_t = AccelKind::Bvh)]
+    pub accel: AccelKind,
+}
+
+/// Runs `strahl info`.
+pub fn run(args: &InfoArgs) -> Result<()> {
+    let scene = source::load(&args.scene)?;
+    let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
+    let scene = &world.scene;
+    let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+    for o in &scene.objects {
+        *kinds.entry(o.shape.kind_name()).or_default() += 1;
+    }
+    let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+    let c = &scene.camera;
+    println!("scene       {}", scene.name);
+    println!(
+        "camera      at {:?} looking at {:?}, fov {}°, {}×{}",
+        c.position.to_array(),
+        c.look_at.to_array(),
+        c.fov_degrees,
+        c.width,
+        c.height
+    );
+    println!("objects     {} ({})", scene.objects.len(), kinds.join(", "));
+    println!(
+        "primitives  {} triangles, {} analytic shapes",
+        world.geometry.triangle_count(),
+        world.geometry.analytic_count()
+    );
+    println!("materials   {}, textures {}", scene.materials.len(), scene.textures.len());
+    let mut lights: BTreeMap<&str, usize> = BTreeMap::new();
+    for l in &scene.lights {
+        let k = match l.kind {
+            LightKind::Point { .. } => "point",
+            LightKind::Spot { .. } => "spot",
+            LightKind::Directional { .. } => "directional",
+            LightKind::Sky { .. } => "sky",
+        };
+        *lights.entry(k).or_default() += 1;
+    }
+    let mut light_list: Vec<String> = lights.iter().map(|(k, n)| format!("{n} {k}")).collect();
+    let area: f32 = world.lights.area.iter().map(|l| l.area).sum();
+    light_list.push(format!(
+        "{} area (emissive objects, {} triangles, {area:.6} units²)",
+        world.lights.area.len(),
+        world.lights.area.iter().map(|l| l.prims.len()).sum::<usize>()
+    ));
+    println!("lights      {}", light_list.join(", "));
+    let b = world.geometry.bounds();
+    println!("bounds      {:?} .. {:?}", b.min.to_array(), b.max.to_array());
+    let s = world.accel.stats();
+    println!(
+        "{:<11} built in {:.3} s: {} nodes, {} leaves, depth {}, {} primitive references",
+        s.kind, world.build_seconds, s.nodes, s.leaves, s.max_depth, s.references
+    );
+    Ok(())
+}

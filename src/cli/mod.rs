@@ -1,0 +1,63 @@
+//! The `strahl` command line: `render`, `scenes`, `info` and `bench`.
+
+mod bench;
+mod info;
+mod progress;
+mod render;
+mod source;
+
+use clap::{Parser, Subcommand};
+
+/// strahl — global illumination by radiosity and ray tracing.
+#[derive(Debug, Parser)]
+#[command(name = "strahl", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render an image of a scene.
+    Render(render::RenderArgs),
+    /// List the built-in scenes.
+    Scenes,
+    /// Validate a scene and print its statistics.
+    Info(info::InfoArgs),
+    /// Measure ray-query speed of an accelerator (prints one JSON line).
+    Bench(bench::BenchArgs),
+}
+
+/// Runs the command line with the process arguments; returns the process exit code.
+pub fn main() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(args) => render::run(&args),
+        Command::Scenes => {
+            for (name, description) in crate::scene::builtin::names() {
+                println!("{name:18} {description}");
+            }
+            Ok(())
+        }
+        Command::Info(args) => info::run(&args),
+        Command::Bench(args) => bench::run(&args),
+    };
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs `f` on a rayon pool of `threads` threads (0 = one per core).
+fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> anyhow::Result<T> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| anyhow::anyhow!("cannot start {threads} threads: {e}"))?;
+    Ok(pool.install(f))
+}

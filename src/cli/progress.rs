@@ -1,0 +1,63 @@
+//! Progress bars on the terminal and Ctrl-C handling.
+
+use crate::trace::render::ProgressListener;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, OnceLock};
+
+/// A progress bar on standard error (hidden with `--quiet`).
+pub struct Bar {
+    bar: ProgressBar,
+}
+
+impl Bar {
+    /// A bar labelled `label`; hidden when `quiet`.
+    pub fn new(label: &str, quiet: bool) -> Self {
+        let bar = if quiet {
+            ProgressBar::hidden()
+        } else {
+            ProgressBar::new(0)
+        };
+        bar.set_style(
+            ProgressStyle::with_template("{msg:12} [{bar:40}] {percent:>3}% {elapsed_precise} (eta {eta})")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .progress_chars("=> "),
+        );
+        bar.set_message(label.to_string());
+        Bar { bar }
+    }
+}
+
+impl ProgressListener for Bar {
+    fn start(&self, total: u64) {
+        self.bar.set_length(total);
+        self.bar.set_position(0);
+    }
+    fn advance(&self, units: u64) {
+        self.bar.inc(units);
+    }
+    fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+/// The flag set by Ctrl-C. The first Ctrl-C asks running work to stop and keep what it has;
+/// a second one ends the process at once.
+pub fn cancel_flag() -> Arc<AtomicBool> {
+    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+    FLAG.get_or_init(|| {
+        let flag = Arc::new(AtomicBool::new(false));
+        let handler_flag = flag.clone();
+        let installed = ctrlc::set_handler(move || {
+            if handler_flag.swap(true, Ordering::SeqCst) {
+                std::process::exit(130);
+            }
+            eprintln!("\ninterrupted: finishing the current tiles and keeping what is done");
+        });
+        if let Err(e) = installed {
+            eprintln!("warning: Ctrl-C will not stop cleanly: {e}");
+        }
+        flag
+    })
+    .clone()
+}

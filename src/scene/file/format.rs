@@ -1,0 +1,268 @@
+//! The TOML scene format as serde structures (documented in `docs/scene-format.md`).
+//!
+//! Every field that is checked after parsing is [`Spanned`] so its error can name a line.
+//! Objects and lights are flat tables: each `type` uses a subset of the fields, and
+//! [`ObjectEntry::shape_fields`] / [`LightEntry::kind_fields`] list which ones were given so
+//! fields that do not belong to the type are reported.
+
+use super::value::{TextureEntry, Triple};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::ops::Range;
+use toml::Spanned;
+
+/// A whole scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SceneFile {
+    pub camera: Option<Spanned<CameraEntry>>,
+    #[serde(default)]
+    pub materials: BTreeMap<Spanned<String>, Spanned<MaterialEntry>>,
+    #[serde(default)]
+    pub objects: Vec<Spanned<ObjectEntry>>,
+    #[serde(default)]
+    pub lights: Vec<Spanned<LightEntry>>,
+}
+
+/// `[camera]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct CameraEntry {
+    pub position: Option<Spanned<[f32; 3]>>,
+    pub look_at: Option<Spanned<[f32; 3]>>,
+    pub up: Option<Spanned<[f32; 3]>>,
+    pub fov: Option<Spanned<f32>>,
+    pub width: Option<Spanned<u32>>,
+    pub height: Option<Spanned<u32>>,
+}
+
+/// `[materials.NAME]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct MaterialEntry {
+    pub diffuse: Option<Spanned<Triple>>,
+    pub diffuse_texture: Option<Spanned<TextureEntry>>,
+    pub emission: Option<Spanned<Triple>>,
+    pub emission_texture: Option<Spanned<TextureEntry>>,
+    pub two_sided: Option<bool>,
+    pub specular: Option<Spanned<Triple>>,
+    pub shininess: Option<Spanned<f32>>,
+    pub mirror: Option<Spanned<Triple>>,
+    pub transmission: Option<Spanned<Triple>>,
+    pub ior: Option<Spanned<f32>>,
+    pub alpha_texture: Option<Spanned<TextureEntry>>,
+    pub one_sided: Option<bool>,
+}
+
+/// The `type` of an object.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum ObjectType {
+    Triangle,
+    Polygon,
+    Quad,
+    Parallelogram,
+    Mesh,
+    Sphere,
+    Box,
+    Cylinder,
+    Cone,
+    Frustum,
+    Plane,
+}
+
+impl ObjectType {
+    /// The name as written in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ObjectType::Triangle => "triangle",
+            ObjectType::Polygon => "polygon",
+            ObjectType::Quad => "quad",
+            ObjectType::Parallelogram => "parallelogram",
+            ObjectType::Mesh => "mesh",
+            ObjectType::Sphere => "sphere",
+            ObjectType::Box => "box",
+            ObjectType::Cylinder => "cylinder",
+            ObjectType::Cone => "cone",
+            ObjectType::Frustum => "frustum",
+            ObjectType::Plane => "plane",
+        }
+    }
+
+    /// The shape fields this type accepts.
+    pub fn fields(self) -> &'static [&'static str] {
+        match self {
+            ObjectType::Triangle | ObjectType::Polygon | ObjectType::Quad => &["vertices", "uvs"],
+            ObjectType::Parallelogram => &["origin", "edge_u", "edge_v"],
+            ObjectType::Mesh => &["file"],
+            ObjectType::Sphere => &["center", "radius"],
+            ObjectType::Box => &["min", "max"],
+            ObjectType::Cylinder => &["base", "top", "radius", "caps"],
+            ObjectType::Cone => &["base", "apex", "radius", "cap"],
+            ObjectType::Frustum => &["base", "top", "base_radius", "top_radius", "caps"],
+            ObjectType::Plane => &["point", "normal"],
+        }
+    }
+}
+
+/// One step of an object's `transform` list.
+#[derive(Debug, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum TransformStep {
+    /// `{ translate = [x, y, z] }`.
+    Translate([f32; 3]),
+    /// `{ rotate = { axis = [x, y, z], degrees = a } }`.
+    Rotate(Rotation),
+    /// `{ scale = [x, y, z] }` or `{ scale = s }`.
+    Scale(Triple),
+    /// `{ matrix = [[..4..], [..], [..], [..]] }`, row-major.
+    Matrix([[f32; 4]; 4]),
+}
+
+/// The table of a rotation step.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct Rotation {
+    pub axis: [f32; 3],
+    pub degrees: f32,
+}
+
+/// `[[objects]]`: common fields plus the shape fields of every type.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ObjectEntry {
+    #[serde(rename = "type")]
+    pub kind: Spanned<ObjectType>,
+    pub name: Option<String>,
+    pub material: Option<Spanned<String>>,
+    pub per_face: Option<bool>,
+    pub transform: Option<Spanned<Vec<Spanned<TransformStep>>>>,
+    pub vertices: Option<Spanned<Vec<[f32; 3]>>>,
+    pub uvs: Option<Spanned<Vec<[f32; 2]>>>,
+    pub origin: Option<Spanned<[f32; 3]>>,
+    pub edge_u: Option<Spanned<[f32; 3]>>,
+    pub edge_v: Option<Spanned<[f32; 3]>>,
+    pub file: Option<Spanned<String>>,
+    pub center: Option<Spanned<[f32; 3]>>,
+    pub radius: Option<Spanned<f32>>,
+    pub min: Option<Spanned<[f32; 3]>>,
+    pub max: Option<Spanned<[f32; 3]>>,
+    pub base: Option<Spanned<[f32; 3]>>,
+    pub top: Option<Spanned<[f32; 3]>>,
+    pub apex: Option<Spanned<[f32; 3]>>,
+    pub base_radius: Option<Spanned<f32>>,
+    pub top_radius: Option<Spanned<f32>>,
+    pub caps: Option<Spanned<bool>>,
+    pub cap: Option<Spanned<bool>>,
+    pub point: Option<Spanned<[f32; 3]>>,
+    pub normal: Option<Spanned<[f32; 3]>>,
+}
+
+impl ObjectEntry {
+    /// The shape fields present, with the span of each value.
+    pub fn shape_fields(&self) -> Vec<(&'static str, Range<usize>)> {
+        let mut out = Vec::new();
+        let mut add = |name: &'static str, span: Option<Range<usize>>| {
+            if let Some(span) = span {
+                out.push((name, span));
+            }
+        };
+        add("vertices", self.vertices.as_ref().map(Spanned::span));
+        add("uvs", self.uvs.as_ref().map(Spanned::span));
+        add("origin", self.origin.as_ref().map(Spanned::span));
+        add("edge_u", self.edge_u.as_ref().map(Spanned::span));
+        add("edge_v", self.edge_v.as_ref().map(Spanned::span));
+        add("file", self.file.as_ref().map(Spanned::span));
+        add("center", self.center.as_ref().map(Spanned::span));
+        add("radius", self.radius.as_ref().map(Spanned::span));
+        add("min", self.min.as_ref().map(Spanned::span));
+        add("max", self.max.as_ref().map(Spanned::span));
+        add("base", self.base.as_ref().map(Spanned::span));
+        add("top", self.top.as_ref().map(Spanned::span));
+        add("apex", self.apex.as_ref().map(Spanned::span));
+        add("base_radius", self.base_radius.as_ref().map(Spanned::span));
+        add("top_radius", self.top_radius.as_ref().map(Spanned::span));
+        add("caps", self.caps.as_ref().map(Spanned::span));
+        add("cap", self.cap.as_ref().map(Spanned::span));
+        add("point", self.point.as_ref().map(Spanned::span));
+        add("normal", self.normal.as_ref().map(Spanned::span));
+        out
+    }
+}
+
+/// The `type` of a light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum LightType {
+    Point,
+    Spot,
+    Directional,
+    Sky,
+}
+
+impl LightType {
+    /// The name as written in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            LightType::Point => "point",
+            LightType::Spot => "spot",
+            LightType::Directional => "directional",
+            LightType::Sky => "sky",
+        }
+    }
+
+    /// The fields this type accepts besides `type` and `name`.
+    pub fn fields(self) -> &'static [&'static str] {
+        match self {
+            LightType::Point => &["position", "intensity"],
+            LightType::Spot => &[
+                "position",
+                "direction",
+                "look_at",
+                "intensity",
+                "inner_degrees",
+                "outer_degrees",
+            ],
+            LightType::Directional => &["direction", "irradiance"],
+            LightType::Sky => &["radiance"],
+        }
+    }
+}
+
+/// `[[lights]]`: the fields of every light type.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct LightEntry {
+    #[serde(rename = "type")]
+    pub kind: Spanned<LightType>,
+    pub name: Option<String>,
+    pub position: Option<Spanned<[f32; 3]>>,
+    pub direction: Option<Spanned<[f32; 3]>>,
+    pub look_at: Option<Spanned<[f32; 3]>>,
+    pub intensity: Option<Spanned<Triple>>,
+    pub inner_degrees: Option<Spanned<f32>>,
+    pub outer_degrees: Option<Spanned<f32>>,
+    pub irradiance: Option<Spanned<Triple>>,
+    pub radiance: Option<Spanned<Triple>>,
+}
+
+impl LightEntry {
+    /// The type-specific fields present, with the span of each value.
+    pub fn kind_fields(&self) -> Vec<(&'static str, Range<usize>)> {
+        let mut out = Vec::new();
+        let mut add = |name: &'static str, span: Option<Range<usize>>| {
+            if let Some(span) = span {
+                out.push((name, span));
+            }
+        };
+        add("position", self.position.as_ref().map(Spanned::span));
+        add("direction", self.direction.as_ref().map(Spanned::span));
+        add("look_at", self.look_at.as_ref().map(Spanned::span));
+        add("intensity", self.intensity.as_ref().map(Spanned::span));
+        add("inner_degrees", self.inner_degrees.as_ref().map(Spanned::span));
+        add("outer_degrees", self.outer_degrees.as_ref().map(Spanned::span));
+        add("irradiance", self.irradiance.as_ref().map(Spanned::span));
+        add("radiance", self.radiance.as_ref().map(Spanned::span));
+        out
+    }
+}

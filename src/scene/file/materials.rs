@@ -1,0 +1,118 @@
+//! `[materials.NAME]` tables: values, textures and the energy-conservation check.
+
+use super::error::SceneError;
+use super::fields::Table;
+use super::format::MaterialEntry;
+use super::textures::TextureCache;
+use super::value::{ColorSpaceName, TextureEntry};
+use crate::color::Rgb;
+use crate::scene::{ColorSpace, Material, Scene, TextureId};
+use std::path::Path;
+use toml::Spanned;
+
+/// Allowed excess of the summed weights over 1 (rounding in hand-written decimals).
+const ENERGY_TOLERANCE: f32 = 1e-6;
+
+/// Where textures come from while building materials.
+pub(super) struct TextureContext<'a> {
+    /// Folder that relative texture paths start from (the scene file's folder).
+    pub base_dir: &'a Path,
+    /// Textures loaded so far.
+    pub cache: &'a mut TextureCache,
+}
+
+/// The material `name` described by `e`, with its textures added to `scene`.
+pub(super) fn build_material(
+    t: &Table<'_>,
+    name: &str,
+    e: &MaterialEntry,
+    textures: &mut TextureContext<'_>,
+    scene: &mut Scene,
+) -> Result<Material, SceneError> {
+    let defaults = Material::default();
+    let weight = |field: &str, v: Option<&Spanned<super::value::Triple>>, default: Rgb| {
+        let c = t.rgb(field, v)?.unwrap_or(default);
+        match v {
+            Some(s) if c.max_channel() > 1.0 => {
+                Err(t.error(s.span(), field, "weight must be in [0, 1]"))
+            }
+            _ => Ok(c),
+        }
+    };
+    let diffuse = weight("diffuse", e.diffuse.as_ref(), defaults.diffuse)?;
+    let specular = weight("specular", e.specular.as_ref(), Rgb::BLACK)?;
+    let mirror = weight("mirror", e.mirror.as_ref(), Rgb::BLACK)?;
+    let transmission = weight("transmission", e.transmission.as_ref(), Rgb::BLACK)?;
+    let sum = diffuse + specular + mirror + transmission;
+    if sum.max_channel() > 1.0 + ENERGY_TOLERANCE {
+        let channel = ["red", "green", "blue"][(0..3)
+            .max_by(|&a, &b| sum[a].total_cmp(&sum[b]))
+            .unwrap_or(0)];
+        return Err(t.table_error(format!(
+            "material \"{name}\" reflects more than it receives: diffuse + specular + mirror + \
+             transmission = {:.3} in the {channel} channel (must be ≤ 1)",
+            sum.max_channel()
+        )));
+    }
+    let emission = t.rgb("emission", e.emission.as_ref())?.unwrap_or(Rgb::BLACK);
+    let shininess = match t.number("shininess", e.shininess.as_ref())? {
+        Some(s) if s < 0.0 => {
+            let span = e.shininess.as_ref().map_or(t.span.clone(), Spanned::span);
+            return Err(t.error(span, "shininess", "shininess must be ≥ 0"));
+        }
+        Some(s) => s,
+        None => defaults.shininess,
+    };
+    let ior = match t.number("ior", e.ior.as_ref())? {
+        Some(i) if i <= 0.0 => {
+            let span = e.ior.as_ref().map_or(t.span.clone(), Spanned::span);
+            return Err(t.error(span, "ior", "index of refraction must be > 0"));
+        }
+        Some(i) => i,
+        None => defaults.ior,
+    };
+    let mut texture = |field: &str, entry: Option<&Spanned<TextureEntry>>, alpha: bool| {
+        entry
+            .map(|s| texture_id(t, field, s, alpha, textures, scene))
+            .transpose()
+    };
+    Ok(Material {
+        name: name.to_string(),
+        diffuse,
+        diffuse_texture: texture("diffuse_texture", e.diffuse_texture.as_ref(), false)?,
+        emission,
+        emission_texture: texture("emission_texture", e.emission_texture.as_ref(), false)?,
+        two_sided: e.two_sided.unwrap_or(false),
+        specular,
+        shininess,
+        mirror,
+        transmission,
+        ior,
+        alpha_texture: texture("alpha_texture", e.alpha_texture.as_ref(), true)?,
+        one_sided: e.one_sided.unwrap_or(false),
+    })
+}
+
+/// Loads the texture named by `entry` (relative to the scene file). Alpha textures decode
+/// linearly unless a colour space is given, and take alpha from the grey level when the
+/// image has no alpha.
+fn texture_id(
+    t: &Table<'_>,
+    field: &str,
+    entry: &Spanned<TextureEntry>,
+    alpha: bool,
+    textures: &mut TextureContext<'_>,
+    scene: &mut Scene,
+) -> Result<TextureId, SceneError> {
+    let path = textures.base_dir.join(&entry.get_ref().file);
+    let space = match entry.get_ref().colorspace {
+        Some(ColorSpaceName::Linear) => ColorSpace::Linear,
+        Some(ColorSpaceName::Srgb) => ColorSpace::Srgb,
+        None if alpha => ColorSpace::Linear,
+        None => ColorSpace::default_for(&path),
+    };
+    textures
+        .cache
+        .file(scene, &path, space, alpha)
+        .map_err(|m| t.error(entry.span(), field, m))
+}

@@ -1,0 +1,297 @@
+//! Every shape as a polygon mesh: planar shapes exactly, curved analytic shapes approximated
+//! with a chosen number of segments around their axis. Used where a shape must be a set of
+//! flat faces: radiosity patches and emissive analytic shapes (sampled as area lights).
+
+use super::{AnalyticKind, PolygonMesh, Shape};
+use glam::{Vec2, Vec3};
+use std::borrow::Cow;
+use std::f32::consts::PI;
+
+impl Shape {
+    /// This shape as a polygon mesh in object space. Planar shapes are exact (with default
+    /// texture coordinates where none are given: the unit square for quads and
+    /// parallelograms, `(0,0), (1,0), (0,1)` for triangles, the bounding rectangle in the
+    /// polygon's plane otherwise). Curved shapes use `segments` divisions around their axis
+    /// (at least 3). Boxes are exact. An infinite plane has no mesh (`Err`).
+    pub fn to_mesh(&self, segments: u32) -> Result<Cow<'_, PolygonMesh>, String> {
+        let segments = segments.max(3);
+        Ok(match self {
+            Shape::Mesh(m) => Cow::Borrowed(m.as_ref()),
+            Shape::Triangle { vertices, uvs } => {
+                let uvs = uvs.map_or_else(|| vec![Vec2::ZERO, Vec2::X, Vec2::Y], |u| u.to_vec());
+                Cow::Owned(single_face(vertices.to_vec(), uvs))
+            }
+            Shape::Polygon { vertices, uvs } => {
+                let uvs = uvs.clone().unwrap_or_else(|| default_polygon_uvs(vertices));
+                Cow::Owned(single_face(vertices.clone(), uvs))
+            }
+            Shape::Parallelogram {
+                origin,
+                edge_u,
+                edge_v,
+            } => {
+                let (o, u, v) = (*origin, *edge_u, *edge_v);
+                Cow::Owned(single_face(vec![o, o + u, o + u + v, o + v], unit_square().to_vec()))
+            }
+            Shape::Plane { .. } => return Err("an infinite plane cannot be tessellated".into()),
+            _ => {
+                let (kind, placement) = self
+                    .analytic()
+                    .ok_or_else(|| format!("degenerate {}", self.kind_name()))?;
+                let mut mesh = match kind {
+                    AnalyticKind::Sphere => unit_sphere(segments),
+                    AnalyticKind::Cube => unit_cube(),
+                    AnalyticKind::Frustum(f) => {
+                        unit_frustum(segments, f.top_radius, f.bottom_cap, f.top_cap)
+                    }
+                    AnalyticKind::Plane => unreachable!("planes return early"),
+                };
+                for p in &mut mesh.positions {
+                    *p = placement.point(*p);
+                }
+                if let Some(normals) = &mut mesh.normals {
+                    for n in normals {
+                        *n = placement.normal(*n).normalize_or_zero();
+                    }
+                }
+                Cow::Owned(mesh)
+            }
+        })
+    }
+}
+
+fn unit_square() -> [Vec2; 4] {
+    [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y]
+}
+
+fn single_face(positions: Vec<Vec3>, uvs: Vec<Vec2>) -> PolygonMesh {
+    let n = positions.len() as u32;
+    PolygonMesh {
+        positions,
+        uvs: Some(uvs),
+        indices: (0..n).collect(),
+        face_sizes: vec![n],
+        ..Default::default()
+    }
+}
+
+/// Unit square for quads, otherwise the polygon's bounding rectangle in its own plane.
+fn default_polygon_uvs(vertices: &[Vec3]) -> Vec<Vec2> {
+    if vertices.len() == 4 {
+        return unit_square().to_vec();
+    }
+    let normal = polygon_normal(vertices);
+    let s = (vertices[1] - vertices[0]).normalize_or_zero();
+    let t = normal.cross(s);
+    let coords: Vec<Vec2> = vertices
+        .iter()
+        .map(|p| Vec2::new((p - vertices[0]).dot(s), (p - vertices[0]).dot(t)))
+        .collect();
+    let lo = coords.iter().fold(Vec2::splat(f32::INFINITY), |a, &c| a.min(c));
+    let hi = coords.iter().fold(Vec2::splat(f32::NEG_INFINITY), |a, &c| a.max(c));
+    let size = (hi - lo).max(Vec2::splat(f32::MIN_POSITIVE));
+    coords.iter().map(|&c| (c - lo) / size).collect()
+}
+
+/// Unit normal of a polygon by Newell's method (robust for slightly non-planar input).
+pub fn polygon_normal(vertices: &[Vec3]) -> Vec3 {
+    let n = vertices.len();
+    (0..n)
+        .map(|i| vertices[i].cross(vertices[(i + 1) % n]))
+        .sum::<Vec3>()
+        .normalize_or_zero()
+}
+
+/// Area of a planar polygon (half the length of the Newell vector).
+pub fn polygon_area(vertices: &[Vec3]) -> f32 {
+    let n = vertices.len();
+    0.5 * (0..n)
+        .map(|i| vertices[i].cross(vertices[(i + 1) % n]))
+        .sum::<Vec3>()
+        .length()
+}
+
+fn unit_sphere(segments: u32) -> PolygonMesh {
+    let rings = (segments / 2).max(2);
+    let mut mesh = PolygonMesh {
+        normals: Some(Vec::new()),
+        uvs: Some(Vec::new()),
+        ..Default::default()
+    };
+    for ring in 0..=rings {
+        let v = ring as f32 / rings as f32;
+        let theta = PI * (1.0 - v);
+        for seg in 0..=segments {
+            let u = seg as f32 / segments as f32;
+            let phi = 2.0 * PI * (u - 0.5);
+            let p = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+            mesh.positions.push(p);
+            mesh.normals.as_mut().unwrap().push(p);
+            mesh.uvs.as_mut().unwrap().push(Vec2::new(u, v));
+        }
+    }
+    let row = segments + 1;
+    for ring in 0..rings {
+        for seg in 0..segments {
+            let a = ring * row + seg;
+            let (b, c, d) = (a + 1, a + row + 1, a + row);
+            // Counter-clockwise seen from outside; degenerate pole quads become triangles.
+            let face: Vec<u32> = if ring == 0 {
+                vec![a, c, d]
+            } else if ring == rings - 1 {
+                vec![a, b, d]
+            } else {
+                vec![a, b, c, d]
+            };
+            let face: Vec<u32> = face.into_iter().rev().collect();
+            mesh.face_sizes.push(face.len() as u32);
+            mesh.indices.extend(face);
+        }
+    }
+    mesh
+}
+
+fn unit_cube() -> PolygonMesh {
+    let mut mesh = PolygonMesh::default();
+    let mut uvs = Vec::new();
+    for axis in 0..3 {
+        for side in 0..2 {
+            let (ua, va) = ((axis + 1) % 3, (axis + 2) % 3);
+            let corner = |u: f32, v: f32| {
+                let mut p = Vec3::ZERO;
+                p[axis] = side as f32;
+                p[ua] = u;
+                p[va] = v;
+                p
+            };
+            let base = mesh.positions.len() as u32;
+            let mut quad = [corner(0.0, 0.0), corner(1.0, 0.0), corner(1.0, 1.0), corner(0.0, 1.0)];
+            let mut quad_uvs = unit_square();
+            // (u, v) axes are cyclic, so their cross product points along +axis; flip the low face.
+            if side == 0 {
+                quad.reverse();
+                quad_uvs.reverse();
+            }
+            mesh.positions.extend(quad);
+            uvs.extend(quad_uvs);
+            mesh.indices.extend(base..base + 4);
+            mesh.face_sizes.push(4);
+        }
+    }
+    mesh.uvs = Some(uvs);
+    mesh
+}
+
+fn unit_frustum(segments: u32, top_radius: f32, bottom_cap: bool, top_cap: bool) -> PolygonMesh {
+    let mut mesh = PolygonMesh::default();
+    let ring = |z: f32, r: f32| -> Vec<Vec3> {
+        (0..segments)
+            .map(|i| {
+                let phi = 2.0 * PI * i as f32 / segments as f32;
+                Vec3::new(r * phi.cos(), r * phi.sin(), z)
+            })
+            .collect()
+    };
+    let bottom = ring(0.0, 1.0);
+    let top = ring(1.0, top_radius);
+    mesh.positions.extend(&bottom);
+    mesh.positions.extend(&top);
+    let n = segments;
+    for i in 0..n {
+        let j = (i + 1) % n;
+        if top_radius > 0.0 {
+            mesh.indices.extend([i, j, n + j, n + i]);
+            mesh.face_sizes.push(4);
+        } else {
+            mesh.indices.extend([i, j, n + i]);
+            mesh.face_sizes.push(3);
+        }
+    }
+    if bottom_cap {
+        mesh.indices.extend((0..n).rev());
+        mesh.face_sizes.push(n);
+    }
+    if top_cap && top_radius > 0.0 {
+        mesh.indices.extend(n..2 * n);
+        mesh.face_sizes.push(n);
+    }
+    mesh
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn outward(mesh: &PolygonMesh, inside: Vec3) -> bool {
+        mesh.faces().all(|f| {
+            let verts: Vec<Vec3> = f.iter().map(|&i| mesh.positions[i as usize]).collect();
+            let c = verts.iter().sum::<Vec3>() / verts.len() as f32;
+            polygon_normal(&verts).dot(c - inside) > 0.0
+        })
+    }
+
+    fn total_area(mesh: &PolygonMesh) -> f32 {
+        mesh.faces()
+            .map(|f| {
+                let v: Vec<Vec3> = f.iter().map(|&i| mesh.positions[i as usize]).collect();
+                polygon_area(&v)
+            })
+            .sum()
+    }
+
+    #[test]
+    fn box_is_exact_and_outward() {
+        let shape = Shape::Box {
+            min: Vec3::ZERO,
+            max: Vec3::new(1.0, 2.0, 3.0),
+        };
+        let mesh = shape.to_mesh(8).unwrap();
+        assert_eq!(mesh.face_count(), 6);
+        assert!((total_area(&mesh) - 22.0).abs() < 1e-5);
+        assert!(outward(&mesh, Vec3::new(0.5, 1.0, 1.5)));
+    }
+
+    #[test]
+    fn curved_shapes_converge_to_their_area_and_face_outward() {
+        let sphere = Shape::Sphere {
+            center: Vec3::ONE,
+            radius: 2.0,
+        };
+        let m = sphere.to_mesh(256).unwrap();
+        assert!(outward(&m, Vec3::ONE));
+        assert!((total_area(&m) / (16.0 * PI) - 1.0).abs() < 1e-3);
+        let cyl = Shape::Cylinder {
+            base: Vec3::ZERO,
+            top: Vec3::Y * 2.0,
+            radius: 0.5,
+            caps: true,
+        };
+        let m = cyl.to_mesh(512).unwrap();
+        assert!(outward(&m, Vec3::Y));
+        let exact = 2.0 * PI * 0.5 * 2.0 + 2.0 * PI * 0.25;
+        assert!((total_area(&m) / exact - 1.0).abs() < 1e-3);
+        let cone = Shape::Cone {
+            base: Vec3::ZERO,
+            apex: Vec3::Y,
+            radius: 1.0,
+            cap: true,
+        };
+        let m = cone.to_mesh(512).unwrap();
+        assert!(outward(&m, Vec3::Y * 0.25));
+        let exact = PI * 1.0 * 2f32.sqrt() + PI;
+        assert!((total_area(&m) / exact - 1.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn planar_shapes_keep_their_corners_and_get_default_uvs() {
+        let quad = Shape::Parallelogram {
+            origin: Vec3::ZERO,
+            edge_u: Vec3::X,
+            edge_v: Vec3::Z * 2.0,
+        };
+        let m = quad.to_mesh(3).unwrap();
+        assert_eq!(m.positions[2], Vec3::new(1.0, 0.0, 2.0));
+        assert_eq!(m.uvs.as_ref().unwrap()[2], Vec2::ONE);
+        assert!(Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }.to_mesh(8).is_err());
+    }
+}

@@ -1,0 +1,166 @@
+//! Direct light at a surface point from every light of the scene, with shadow rays (or, with
+//! shadows off, only self-shadowing by facing: seed 002 §4.4, `NoShadows`).
+
+use super::bsdf::{SurfaceMaterial, emitted_toward};
+use super::sampler::Sampler;
+use super::sampling::{cosine_hemisphere, stratified};
+use super::{SurfaceHit, World};
+use crate::color::Rgb;
+use crate::geometry::{Frame, Ray, spawn_ray, spawn_ray_to};
+use crate::scene::LightKind;
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// How shadows are decided (seed 002 §4.4: `Shadows` and `NoShadows` processors).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShadowMode {
+    /// Every object of the scene can block a light.
+    #[default]
+    On,
+    /// Only the surface's own facing matters: lights behind it are ignored.
+    Off,
+}
+
+/// A surface point prepared for lighting: where it is, which way it faces the viewer, and its
+/// material.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadingPoint {
+    /// The hit.
+    pub hit: SurfaceHit,
+    /// Unit direction toward the viewer.
+    pub wo: Vec3,
+    /// Unit shading normal turned toward the viewer.
+    pub n: Vec3,
+    /// Unit geometric normal turned toward the viewer.
+    pub ng: Vec3,
+    /// Material with textures applied.
+    pub material: SurfaceMaterial,
+}
+
+impl ShadingPoint {
+    /// Prepares `hit`, found along a ray with direction `dir`.
+    pub fn new(world: &World, hit: SurfaceHit, dir: Vec3) -> Self {
+        let side = if hit.front_face { 1.0 } else { -1.0 };
+        ShadingPoint {
+            hit,
+            wo: -dir,
+            n: hit.ns * side,
+            ng: hit.ng * side,
+            material: SurfaceMaterial::at(&world.scene, &hit),
+        }
+    }
+
+    /// Unblocked (or, with shadows off, assumed unblocked) toward `target`?
+    fn sees(&self, world: &World, target: Vec3, shadows: ShadowMode) -> bool {
+        shadows == ShadowMode::Off || {
+            let (ray, t_max) = spawn_ray_to(self.hit.p, self.ng, target);
+            !world.occluded(&ray, t_max)
+        }
+    }
+
+    /// Unblocked toward infinity along `dir`?
+    fn sees_sky(&self, world: &World, dir: Vec3, shadows: ShadowMode) -> bool {
+        shadows == ShadowMode::Off || {
+            let ray: Ray = spawn_ray(self.hit.p, self.ng, dir);
+            !world.occluded(&ray, f32::INFINITY)
+        }
+    }
+}
+
+/// Radiance reflected toward the viewer from light arriving directly from all lights.
+/// Area lights and the sky each get `samples` shadow rays (stratified and jittered).
+pub fn direct_light(
+    world: &World,
+    sp: &ShadingPoint,
+    samples: u32,
+    shadows: ShadowMode,
+    sampler: &mut Sampler,
+) -> Rgb {
+    let mut total = Rgb::BLACK;
+    let x = sp.hit.p;
+    for light in &world.lights.delta {
+        let (wi, dist, irradiance_normal) = match *light {
+            LightKind::Point {
+                position,
+                intensity,
+            } => {
+                let d = position - x;
+                let dist2 = d.length_squared();
+                (d / dist2.sqrt(), dist2.sqrt(), intensity / dist2)
+            }
+            LightKind::Spot {
+                position,
+                direction,
+                intensity,
+                inner_degrees,
+                outer_degrees,
+            } => {
+                let d = position - x;
+                let dist2 = d.length_squared();
+                let wi = d / dist2.sqrt();
+                let falloff = LightKind::spot_falloff(-wi.dot(direction), inner_degrees, outer_degrees);
+                (wi, dist2.sqrt(), intensity * (falloff / dist2))
+            }
+            LightKind::Directional {
+                direction,
+                irradiance,
+            } => (-direction, f32::INFINITY, irradiance),
+            LightKind::Sky { .. } => continue,
+        };
+        let cos = sp.n.dot(wi);
+        if cos <= 0.0 || irradiance_normal.is_black() {
+            continue;
+        }
+        let visible = if dist.is_finite() {
+            sp.sees(world, x + wi * dist, shadows)
+        } else {
+            sp.sees_sky(world, wi, shadows)
+        };
+        if visible {
+            total += sp.material.eval(sp.n, sp.wo, wi) * irradiance_normal * cos;
+        }
+    }
+    let n_side = (samples.max(1) as f32).sqrt().ceil() as u32;
+    let count = n_side * n_side;
+    for index in 0..world.lights.area.len() {
+        let mut sum = Rgb::BLACK;
+        for k in 0..count {
+            let u_pick = sampler.next_1d();
+            let u = stratified(k, n_side, sampler.next_2d());
+            let s = world.lights.sample_area(&world.geometry, index, u_pick, u);
+            let d = s.p - x;
+            let dist2 = d.length_squared();
+            if dist2 <= 0.0 {
+                continue;
+            }
+            let wi = d / dist2.sqrt();
+            let cos_x = sp.n.dot(wi);
+            let cos_y = s.n.dot(-wi);
+            if cos_x <= 0.0 || cos_y == 0.0 {
+                continue;
+            }
+            let material = &world.scene.materials[world.geometry.owner(s.prim).1 as usize];
+            let le = emitted_toward(&world.scene, material, s.uv, cos_y > 0.0);
+            if le.is_black() || !sp.sees(world, s.p, shadows) {
+                continue;
+            }
+            let geometric = cos_x * cos_y.abs() / (dist2 * s.pdf_area);
+            sum += sp.material.eval(sp.n, sp.wo, wi) * le * geometric;
+        }
+        total += sum / count as f32;
+    }
+    if let Some(sky) = world.lights.sky {
+        let frame = Frame::from_normal(sp.n);
+        let mut sum = Rgb::BLACK;
+        for k in 0..count {
+            let wi = frame.to_world(cosine_hemisphere(stratified(k, n_side, sampler.next_2d())));
+            if sp.ng.dot(wi) > 0.0 && sp.sees_sky(world, wi, shadows) {
+                // L·f·cos / (cos/π) = π·L·f.
+                sum += sp.material.eval(sp.n, sp.wo, wi) * sky * PI;
+            }
+        }
+        total += sum / count as f32;
+    }
+    total
+}

@@ -1,0 +1,404 @@
+//! The scene flattened for ray queries: world-space triangles (from every planar shape, mesh
+//! and emissive analytic shape) and analytic shapes with their world transforms. It is the
+//! [`PrimitiveSet`] every accelerator indexes, and it finishes hits (the second stage).
+
+use crate::accel::{PrimHit, PrimitiveSet};
+use crate::geometry::{Aabb, LocalHit, Ray, Transform, Triangle, cuboid, plane, sphere};
+use crate::scene::{AnalyticKind, MaterialId, Scene, Shape, Texture};
+use glam::{Vec2, Vec3};
+
+/// Segments used when an emissive curved shape is turned into triangles for light sampling.
+pub const EMITTER_SEGMENTS: u32 = 64;
+
+/// Alpha below which a texel cuts the surface away.
+const ALPHA_CUTOFF: f32 = 0.5;
+
+/// Per-triangle data needed only after a hit.
+#[derive(Clone, Copy, Debug)]
+struct TriangleAttributes {
+    object: u32,
+    face: u32,
+    material: MaterialId,
+    uvs: [Vec2; 3],
+    /// Index into `shading_normals`, or `u32::MAX` for flat shading.
+    normals: u32,
+}
+
+/// An analytic shape placed in the world.
+#[derive(Clone, Debug)]
+struct AnalyticInstance {
+    kind: AnalyticKind,
+    to_world: Transform,
+    bounds: Aabb,
+    object: u32,
+    material: MaterialId,
+}
+
+/// Everything known about a hit after the second stage.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceHit {
+    /// Ray parameter.
+    pub t: f32,
+    /// Hit point (world).
+    pub p: Vec3,
+    /// Unit geometric normal of the front side.
+    pub ng: Vec3,
+    /// Unit shading normal, on the same side as `ng`.
+    pub ns: Vec3,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Surface derivative along `u` (world).
+    pub dpdu: Vec3,
+    /// Surface derivative along `v` (world).
+    pub dpdv: Vec3,
+    /// Material at the hit.
+    pub material: MaterialId,
+    /// Scene object hit.
+    pub object: u32,
+    /// Face of the object (mesh face index; 0 for single-face and analytic shapes).
+    pub face: u32,
+    /// Primitive index in the geometry.
+    pub prim: u32,
+    /// True when the ray arrived on the front side.
+    pub front_face: bool,
+}
+
+/// Error while flattening a scene.
+#[derive(Debug, thiserror::Error)]
+pub enum GeometryError {
+    /// An object's shape is degenerate.
+    #[error("object '{object}': {reason}")]
+    Degenerate {
+        /// Report name of the object.
+        object: String,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// The scene's geometry in world space, ready for ray queries.
+#[derive(Clone, Debug, Default)]
+pub struct SceneGeometry {
+    triangles: Vec<Triangle>,
+    attributes: Vec<TriangleAttributes>,
+    shading_normals: Vec<[Vec3; 3]>,
+    shapes: Vec<AnalyticInstance>,
+    /// Alpha texture per material (cloned so the geometry stands alone).
+    alpha: Vec<Option<Texture>>,
+}
+
+impl SceneGeometry {
+    /// Flattens `scene`. Emissive analytic shapes are tessellated (boxes exactly, curved ones
+    /// with [`EMITTER_SEGMENTS`]) so that the surface hit and the surface sampled as a light
+    /// are the same.
+    pub fn new(scene: &Scene) -> Result<Self, GeometryError> {
+        let mut g = SceneGeometry {
+            alpha: scene
+                .materials
+                .iter()
+                .map(|m| m.alpha_texture.map(|t| scene.textures[t as usize].clone()))
+                .collect(),
+            ..Default::default()
+        };
+        for (index, object) in scene.objects.iter().enumerate() {
+            let degenerate = |reason: String| GeometryError::Degenerate {
+                object: scene.object_name(index),
+                reason,
+            };
+            let emissive = scene.materials[object.material as usize].is_emissive();
+            let analytic = object.shape.analytic();
+            let tessellate_emitter = emissive && !matches!(object.shape, Shape::Plane { .. });
+            match analytic {
+                Some((kind, placement)) if !tessellate_emitter => {
+                    let to_world = placement.then(&object.transform);
+                    let bounds = match kind {
+                        AnalyticKind::Plane => Aabb::new(
+                            Vec3::splat(f32::NEG_INFINITY),
+                            Vec3::splat(f32::INFINITY),
+                        ),
+                        AnalyticKind::Sphere => {
+                            Aabb::new(Vec3::splat(-1.0), Vec3::ONE).transformed(&to_world.to_world)
+                        }
+                        AnalyticKind::Cube => {
+                            Aabb::new(Vec3::ZERO, Vec3::ONE).transformed(&to_world.to_world)
+                        }
+                        AnalyticKind::Frustum(_) => {
+                            Aabb::new(Vec3::new(-1.0, -1.0, 0.0), Vec3::ONE)
+                                .transformed(&to_world.to_world)
+                        }
+                    };
+                    g.shapes.push(AnalyticInstance {
+                        kind,
+                        to_world,
+                        bounds,
+                        object: index as u32,
+                        material: object.material,
+                    });
+                }
+                None if object.shape.is_analytic() => {
+                    return Err(degenerate(format!("degenerate {}", object.shape.kind_name())));
+                }
+                _ => {
+                    let mesh = object
+                        .shape
+                        .to_mesh(EMITTER_SEGMENTS)
+                        .map_err(degenerate)?;
+                    mesh.validate().map_err(degenerate)?;
+                    g.add_mesh(index as u32, object.material, &mesh, &object.transform);
+                }
+            }
+        }
+        Ok(g)
+    }
+
+    fn add_mesh(
+        &mut self,
+        object: u32,
+        material: MaterialId,
+        mesh: &crate::scene::PolygonMesh,
+        transform: &Transform,
+    ) {
+        let flip = transform.flips_orientation();
+        let world: Vec<Vec3> = mesh.positions.iter().map(|&p| transform.point(p)).collect();
+        let normals: Option<Vec<Vec3>> = mesh.normals.as_ref().map(|ns| {
+            ns.iter()
+                .map(|&n| transform.normal(n).normalize_or_zero())
+                .collect()
+        });
+        for (face, indices) in mesh.faces().enumerate() {
+            let face_material = mesh
+                .face_materials
+                .as_ref()
+                .map_or(material, |m| m[face]);
+            for k in 1..indices.len() - 1 {
+                let mut corner = [indices[0], indices[k], indices[k + 1]];
+                if flip {
+                    corner.swap(1, 2);
+                }
+                let [a, b, c] = corner.map(|i| i as usize);
+                let tri = Triangle::new(world[a], world[b], world[c]);
+                if tri.area() <= 0.0 {
+                    continue;
+                }
+                let uvs = mesh.uvs.as_ref().map_or([Vec2::ZERO, Vec2::X, Vec2::Y], |u| {
+                    [u[a], u[b], u[c]]
+                });
+                let normals = match &normals {
+                    Some(n) if [n[a], n[b], n[c]].iter().all(|v| *v != Vec3::ZERO) => {
+                        self.shading_normals.push([n[a], n[b], n[c]]);
+                        (self.shading_normals.len() - 1) as u32
+                    }
+                    _ => u32::MAX,
+                };
+                self.triangles.push(tri);
+                self.attributes.push(TriangleAttributes {
+                    object,
+                    face: face as u32,
+                    material: face_material,
+                    uvs,
+                    normals,
+                });
+            }
+        }
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Number of analytic shapes.
+    pub fn analytic_count(&self) -> usize {
+        self.shapes.len()
+    }
+
+    /// The triangle of primitive `prim`, if it is one.
+    pub fn triangle(&self, prim: u32) -> Option<&Triangle> {
+        self.triangles.get(prim as usize)
+    }
+
+    /// Object and material of primitive `prim`.
+    pub fn owner(&self, prim: u32) -> (u32, MaterialId) {
+        match self.attributes.get(prim as usize) {
+            Some(a) => (a.object, a.material),
+            None => {
+                let s = &self.shapes[prim as usize - self.triangles.len()];
+                (s.object, s.material)
+            }
+        }
+    }
+
+    /// Bounds of all bounded primitives.
+    pub fn bounds(&self) -> Aabb {
+        (0..self.len() as u32)
+            .map(|i| PrimitiveSet::bounds(self, i))
+            .filter(|b| b.min.is_finite() && b.max.is_finite())
+            .fold(Aabb::EMPTY, Aabb::union)
+    }
+
+    fn triangle_uv(&self, prim: usize, b1: f32, b2: f32) -> Vec2 {
+        let uv = &self.attributes[prim].uvs;
+        uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2
+    }
+
+    fn cut_away(&self, material: MaterialId, uv: impl FnOnce() -> Vec2) -> bool {
+        self.alpha[material as usize]
+            .as_ref()
+            .is_some_and(|t| t.alpha(uv()) < ALPHA_CUTOFF)
+    }
+
+    fn intersect_shape(&self, shape: &AnalyticInstance, ray: &Ray, t_max: f32) -> Option<(f32, u32)> {
+        let local = shape.to_world.ray_to_object(ray);
+        match shape.kind {
+            AnalyticKind::Sphere => sphere::intersect(&local, t_max).map(|t| (t, 0)),
+            AnalyticKind::Cube => cuboid::intersect(&local, t_max),
+            AnalyticKind::Frustum(f) => f.intersect(&local, t_max),
+            AnalyticKind::Plane => plane::intersect(&local, t_max).map(|t| (t, 0)),
+        }
+    }
+
+    fn describe_shape(shape: &AnalyticInstance, p_local: Vec3, part: u32) -> LocalHit {
+        match shape.kind {
+            AnalyticKind::Sphere => sphere::describe(p_local),
+            AnalyticKind::Cube => cuboid::describe(p_local, part),
+            AnalyticKind::Frustum(f) => f.describe(p_local, part),
+            AnalyticKind::Plane => plane::describe(p_local),
+        }
+    }
+
+    /// The surface description at barycentrics `(b1, b2)` of triangle `prim` (seen from its
+    /// front side).
+    pub fn point_on_triangle(&self, prim: u32, b1: f32, b2: f32) -> SurfaceHit {
+        let toward_front = -self.triangles[prim as usize].normal_area2();
+        let hit = PrimHit {
+            t: 0.0,
+            prim,
+            local: [b1, b2],
+        };
+        self.describe(&hit, &Ray::new(Vec3::ZERO, toward_front))
+    }
+
+    /// Second stage: the full description of `hit` found along `ray`.
+    pub fn describe(&self, hit: &PrimHit, ray: &Ray) -> SurfaceHit {
+        let prim = hit.prim as usize;
+        let surface = if let Some(tri) = self.triangles.get(prim) {
+            let attr = &self.attributes[prim];
+            let [b1, b2] = hit.local;
+            let b0 = 1.0 - b1 - b2;
+            let ng = tri.normal_area2().normalize();
+            let ns = if attr.normals == u32::MAX {
+                ng
+            } else {
+                let n = self.shading_normals[attr.normals as usize];
+                let s = (n[0] * b0 + n[1] * b1 + n[2] * b2).normalize_or(ng);
+                if s.dot(ng) < 0.0 { ng } else { s }
+            };
+            let (dpdu, dpdv) = triangle_tangents(tri, &attr.uvs, ng);
+            SurfaceHit {
+                t: hit.t,
+                p: tri.point(b1, b2),
+                ng,
+                ns,
+                uv: self.triangle_uv(prim, b1, b2),
+                dpdu,
+                dpdv,
+                material: attr.material,
+                object: attr.object,
+                face: attr.face,
+                prim: hit.prim,
+                front_face: true,
+            }
+        } else {
+            let shape = &self.shapes[prim - self.triangles.len()];
+            let local_ray = shape.to_world.ray_to_object(ray);
+            let local = Self::describe_shape(shape, local_ray.at(hit.t), hit.local[0] as u32);
+            let ng = shape.to_world.normal(local.n).normalize();
+            SurfaceHit {
+                t: hit.t,
+                p: shape.to_world.point(local.p),
+                ng,
+                ns: ng,
+                uv: local.uv,
+                dpdu: shape.to_world.vector(local.dpdu),
+                dpdv: shape.to_world.vector(local.dpdv),
+                material: shape.material,
+                object: shape.object,
+                face: 0,
+                prim: hit.prim,
+                front_face: true,
+            }
+        };
+        SurfaceHit {
+            front_face: ray.dir.dot(surface.ng) < 0.0,
+            ..surface
+        }
+    }
+}
+
+/// Tangents `dp/du`, `dp/dv` of a triangle from its texture coordinates (any orthogonal pair
+/// when the coordinates are degenerate).
+fn triangle_tangents(tri: &Triangle, uv: &[Vec2; 3], ng: Vec3) -> (Vec3, Vec3) {
+    let du1 = uv[1] - uv[0];
+    let du2 = uv[2] - uv[0];
+    let det = du1.x * du2.y - du1.y * du2.x;
+    if det.abs() > 1e-12 {
+        let inv = 1.0 / det;
+        let dpdu = (tri.e1 * du2.y - tri.e2 * du1.y) * inv;
+        let dpdv = (tri.e2 * du1.x - tri.e1 * du2.x) * inv;
+        if dpdu.is_finite() && dpdv.is_finite() && dpdu.cross(dpdv) != Vec3::ZERO {
+            return (dpdu, dpdv);
+        }
+    }
+    ng.any_orthonormal_pair()
+}
+
+impl PrimitiveSet for SceneGeometry {
+    fn len(&self) -> usize {
+        self.triangles.len() + self.shapes.len()
+    }
+
+    fn bounds(&self, prim: u32) -> Aabb {
+        match self.triangles.get(prim as usize) {
+            Some(t) => Aabb::from_points(t.vertices()),
+            None => self.shapes[prim as usize - self.triangles.len()].bounds,
+        }
+    }
+
+    #[inline]
+    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit> {
+        let index = prim as usize;
+        if let Some(tri) = self.triangles.get(index) {
+            let (t, b1, b2) = tri.intersect(ray, t_max)?;
+            let material = self.attributes[index].material;
+            if self.cut_away(material, || self.triangle_uv(index, b1, b2)) {
+                return None;
+            }
+            return Some(PrimHit {
+                t,
+                prim,
+                local: [b1, b2],
+            });
+        }
+        let shape = &self.shapes[index - self.triangles.len()];
+        let mut t_start = 0.0f32;
+        // Walk past cut-away points (an alpha-textured solid shows its inside through holes).
+        for _ in 0..4 {
+            let moved = Ray::new(ray.at(t_start), ray.dir);
+            let (t, part) = self.intersect_shape(shape, &moved, t_max - t_start)?;
+            let t = t + t_start;
+            let cut = self.cut_away(shape.material, || {
+                let local = shape.to_world.ray_to_object(ray);
+                Self::describe_shape(shape, local.at(t), part).uv
+            });
+            if !cut {
+                return Some(PrimHit {
+                    t,
+                    prim,
+                    local: [part as f32, 0.0],
+                });
+            }
+            t_start = t * (1.0 + 1e-5) + 1e-7;
+        }
+        None
+    }
+}

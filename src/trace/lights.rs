@@ -1,0 +1,130 @@
+//! The lights of a scene as the integrators see them: area lights (emissive objects, sampled
+//! by area), point, spot and directional lights, and the sky.
+
+use super::SceneGeometry;
+use super::sampling::uniform_triangle;
+use crate::color::Rgb;
+use crate::scene::{LightKind, Scene};
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// An emissive object: its triangles, chosen in proportion to their area.
+#[derive(Clone, Debug)]
+pub struct AreaLight {
+    /// Scene object index.
+    pub object: u32,
+    /// Primitive indices of its triangles.
+    pub prims: Vec<u32>,
+    /// Cumulative area fractions of `prims` (last = 1).
+    cdf: Vec<f32>,
+    /// Total area, squared scene units.
+    pub area: f32,
+    /// Emitted power estimate π·L·A summed over sides (W), for choosing lights by power.
+    pub power: Rgb,
+}
+
+/// A point sampled on an area light.
+#[derive(Clone, Copy, Debug)]
+pub struct AreaSample {
+    /// The point (world).
+    pub p: Vec3,
+    /// Unit front-side normal.
+    pub n: Vec3,
+    /// Texture coordinates.
+    pub uv: Vec2,
+    /// Primitive sampled.
+    pub prim: u32,
+    /// Density with respect to area (1 / light area).
+    pub pdf_area: f32,
+}
+
+/// All lights of a scene.
+#[derive(Clone, Debug, Default)]
+pub struct LightSet {
+    /// Emissive objects.
+    pub area: Vec<AreaLight>,
+    /// Point, spot and directional lights.
+    pub delta: Vec<LightKind>,
+    /// Sky radiance, if the scene has a sky.
+    pub sky: Option<Rgb>,
+}
+
+impl LightSet {
+    /// Collects the lights of `scene`, with emissive objects taken from `geometry`.
+    pub fn new(scene: &Scene, geometry: &SceneGeometry) -> Self {
+        let mut area: Vec<AreaLight> = Vec::new();
+        let mut by_object = std::collections::HashMap::new();
+        for prim in 0..geometry.triangle_count() as u32 {
+            let (object, material) = geometry.owner(prim);
+            let m = &scene.materials[material as usize];
+            if !m.is_emissive() {
+                continue;
+            }
+            let tri = geometry.triangle(prim).expect("index below the triangle count");
+            let a = tri.area();
+            let mean_emission = match m.emission_texture {
+                Some(t) => m.emission * scene.textures[t as usize].mean_color(),
+                None => m.emission,
+            };
+            let sides = if m.two_sided { 2.0 } else { 1.0 };
+            let slot = *by_object.entry(object).or_insert_with(|| {
+                area.push(AreaLight {
+                    object,
+                    prims: Vec::new(),
+                    cdf: Vec::new(),
+                    area: 0.0,
+                    power: Rgb::BLACK,
+                });
+                area.len() - 1
+            });
+            let light = &mut area[slot];
+            light.prims.push(prim);
+            light.area += a;
+            light.cdf.push(light.area);
+            light.power += mean_emission * (PI * a * sides);
+        }
+        for light in &mut area {
+            let total = light.area;
+            for c in &mut light.cdf {
+                *c /= total;
+            }
+        }
+        let mut delta = Vec::new();
+        let mut sky = None;
+        for l in &scene.lights {
+            match l.kind {
+                LightKind::Sky { radiance } => sky = Some(sky.unwrap_or(Rgb::BLACK) + radiance),
+                ref k => delta.push(k.clone()),
+            }
+        }
+        LightSet { area, delta, sky }
+    }
+
+    /// True when the scene has no light at all.
+    pub fn is_empty(&self) -> bool {
+        self.area.is_empty() && self.delta.is_empty() && self.sky.is_none()
+    }
+
+    /// A point on area light `light`, uniformly distributed over its area, from the uniform
+    /// numbers `u_pick` (chooses the triangle) and `u` (the point on it).
+    pub fn sample_area(
+        &self,
+        geometry: &SceneGeometry,
+        light: usize,
+        u_pick: f32,
+        u: Vec2,
+    ) -> AreaSample {
+        let l = &self.area[light];
+        let i = l.cdf.partition_point(|&c| c <= u_pick).min(l.prims.len() - 1);
+        let prim = l.prims[i];
+        let (b1, b2) = uniform_triangle(u);
+        let at = geometry.point_on_triangle(prim, b1, b2);
+        AreaSample {
+            p: at.p,
+            n: at.ng,
+            uv: at.uv,
+            prim,
+            pdf_area: 1.0 / l.area,
+        }
+    }
+}

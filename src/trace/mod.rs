@@ -1,0 +1,29 @@
+//! Ray tracing: the scene flattened for ray queries ([`World`]), light sampling, the
+//! integrators (the standard ray tracer now; path tracing and light tracing build on the
+//! same pieces), antialiasing and the tiled, parallel image loop.
+
+pub mod antialias;
+pub mod bsdf;
+pub mod direct;
+mod geometry;
+mod lights;
+pub mod render;
+pub mod sampler;
+pub mod sampling;
+mod whitted;
+mod world;
+
+pub use geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
+pub use lights::{AreaLight, AreaSample, LightSet};
+pub use whitted::StandardRayTracer;
+pub use world::World;
+
+use crate::color::Rgb;
+use crate::geometry::Ray;
+use sampler::Sampler;
+
+/// A ray processor (seed 002 §4.3, `RayProcessor`): the radiance arriving along a camera ray.
+pub trait Integrator: Sync {
+    /// Radiance (W·sr⁻¹·m⁻²) arriving at the ray origin from direction `-ray.dir`.
+    fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb;
+}

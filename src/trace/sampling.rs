@@ -1,0 +1,79 @@
+//! Warps from uniform points in `[0, 1)²` to the distributions the integrators sample.
+
+use glam::{Vec2, Vec3};
+use std::f32::consts::{FRAC_1_PI, PI};
+
+/// Barycentrics `(b1, b2)` of a point uniformly distributed over a triangle.
+pub fn uniform_triangle(u: Vec2) -> (f32, f32) {
+    let s = u.x.sqrt();
+    (s * (1.0 - u.y), s * u.y)
+}
+
+/// A cosine-weighted direction about local `+z`; its density is `cos θ / π`.
+pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = concentric_disk(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    Vec3::new(d.x, d.y, z)
+}
+
+/// Density of [`cosine_hemisphere`] for a direction with `cos θ`.
+pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    cos_theta.max(0.0) * FRAC_1_PI
+}
+
+/// A uniform direction on the unit sphere; its density is `1 / (4π)`.
+pub fn uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// A uniform point on the unit disc (Shirley–Chiu concentric map).
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o == Vec2::ZERO {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, (PI / 4.0) * (o.y / o.x))
+    } else {
+        (o.y, PI / 2.0 - (PI / 4.0) * (o.x / o.y))
+    };
+    Vec2::new(r * theta.cos(), r * theta.sin())
+}
+
+/// Cell `index` of an `n × n` stratification of `[0, 1)²`, jittered by `u`.
+pub fn stratified(index: u32, n: u32, u: Vec2) -> Vec2 {
+    let cell = Vec2::new((index % n) as f32, (index / n) as f32);
+    (cell + u) / n as f32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn warps_stay_in_their_domain() {
+        for i in 0..64 {
+            let u = Vec2::new((i % 8) as f32 / 8.0 + 0.03, (i / 8) as f32 / 8.0 + 0.07);
+            let (b1, b2) = uniform_triangle(u);
+            assert!(b1 >= 0.0 && b2 >= 0.0 && b1 + b2 <= 1.0);
+            let d = cosine_hemisphere(u);
+            assert!(d.z >= 0.0 && (d.length() - 1.0).abs() < 1e-5);
+            assert!((uniform_sphere(u).length() - 1.0).abs() < 1e-5);
+            assert!(concentric_disk(u).length() <= 1.0 + 1e-6);
+        }
+    }
+
+    #[test]
+    fn cosine_hemisphere_mean_cosine_is_two_thirds() {
+        // E[cos θ] under the density cos θ/π is 2/3.
+        let n = 64;
+        let mean: f32 = (0..n * n)
+            .map(|i| cosine_hemisphere(stratified(i, n, Vec2::splat(0.5))).z)
+            .sum::<f32>()
+            / (n * n) as f32;
+        assert!((mean - 2.0 / 3.0).abs() < 2e-3, "{mean}");
+    }
+}

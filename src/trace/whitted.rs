@@ -1,0 +1,77 @@
+//! The standard ray tracer (seed 002 §2.2, §3.1, §4.3, `DefaultRayTracer`): direct light with
+//! shadows on every surface, ideal mirror reflection and ideal refraction with Fresnel,
+//! recursion to a fixed depth; indirect diffuse light is ignored.
+
+use super::bsdf::{emitted, fresnel_dielectric, reflect, refract};
+use super::direct::{ShadingPoint, ShadowMode, direct_light};
+use super::sampler::Sampler;
+use super::{Integrator, World};
+use crate::color::Rgb;
+use crate::geometry::{Ray, spawn_ray};
+
+/// Settings of the standard ray tracer.
+#[derive(Clone, Debug)]
+pub struct StandardRayTracer {
+    /// Reflection/refraction recursion depth (0 = no reflections or refractions).
+    pub max_depth: u32,
+    /// Shadow rays per area light and for the sky, per camera sample.
+    pub light_samples: u32,
+    /// Shadow mode.
+    pub shadows: ShadowMode,
+}
+
+impl Default for StandardRayTracer {
+    fn default() -> Self {
+        StandardRayTracer {
+            max_depth: 6,
+            light_samples: 16,
+            shadows: ShadowMode::On,
+        }
+    }
+}
+
+impl StandardRayTracer {
+    fn trace(&self, world: &World, ray: &Ray, depth: u32, sampler: &mut Sampler) -> Rgb {
+        let Some(hit) = world.intersect(ray) else {
+            return world.lights.sky.unwrap_or(Rgb::BLACK);
+        };
+        let mut radiance = emitted(&world.scene, &hit);
+        let sp = ShadingPoint::new(world, hit, ray.dir);
+        if sp.material.is_black_from(hit.front_face) {
+            return radiance;
+        }
+        radiance += direct_light(world, &sp, self.light_samples, self.shadows, sampler);
+        if depth >= self.max_depth {
+            return radiance;
+        }
+        let m = sp.material;
+        let follow = |dir, weight: Rgb, sampler: &mut Sampler| {
+            if weight.is_black() {
+                return Rgb::BLACK;
+            }
+            weight * self.trace(world, &spawn_ray(hit.p, sp.ng, dir), depth + 1, sampler)
+        };
+        radiance += follow(reflect(sp.wo, sp.n), m.mirror, sampler);
+        if !m.transmission.is_black() {
+            // Entering through the front face goes from air (1) into the material (ior).
+            let eta = if hit.front_face { 1.0 / m.ior } else { m.ior };
+            let cos_i = sp.wo.dot(sp.n);
+            let fresnel = fresnel_dielectric(cos_i, eta);
+            let mirror_dir = reflect(sp.wo, sp.n);
+            match refract(sp.wo, sp.n, eta) {
+                Some(t) => {
+                    radiance += follow(mirror_dir, m.transmission * fresnel, sampler);
+                    radiance += follow(t, m.transmission * (1.0 - fresnel), sampler);
+                }
+                None => radiance += follow(mirror_dir, m.transmission, sampler),
+            }
+        }
+        radiance
+    }
+}
+
+impl Integrator for StandardRayTracer {
+    fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
+        self.trace(world, ray, 0, sampler)
+    }
+}
