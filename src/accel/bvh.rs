@@ -1,13 +1,14 @@
 //! Bounding-volume hierarchy built with the binned surface-area heuristic (SAH).
 //!
-//! Nodes are stored depth-first: an inner node's left child follows it directly and it
-//! records the index of its right child. Traversal visits the nearer child first and skips
-//! children whose box starts beyond the closest hit found so far. Unbounded primitives
-//! (infinite planes) are kept outside the tree and tested by every ray.
+//! The tree is built binary (depth-first: an inner node's left child follows it, it records
+//! its right child) and then collapsed into a 4-wide tree whose nodes hold the boxes of their
+//! four children side by side, so one SIMD slab test checks all four. Traversal visits hit
+//! children nearest first and skips those starting beyond the closest hit found so far.
+//! Unbounded primitives (infinite planes) are kept outside the tree and tested by every ray.
 
 use super::{AccelStats, Accelerator, PrimHit, PrimitiveSet, keep_closest};
 use crate::geometry::{Aabb, Ray};
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 /// Build options of the BVH.
 #[derive(Clone, Debug)]
@@ -31,39 +32,131 @@ impl Default for BvhOptions {
 }
 
 /// One node: its box, and either its children (`count == 0`, right child at `index`) or its
-/// primitives (`count > 0`, references `index .. index + count`).
+/// primitives (`count > 0`, references `index .. index + count`). The index and count ride
+/// in the unused fourth lanes of the corners so a node is two SIMD registers (32 bytes).
 #[derive(Clone, Copy, Debug)]
-#[repr(C)]
-struct Node {
-    min: Vec3,
-    index: u32,
-    max: Vec3,
-    count: u32,
+#[repr(C, align(32))]
+struct BinaryNode {
+    min: Vec4,
+    max: Vec4,
 }
 
-impl Node {
-    /// Entry parameter of the ray into this node's box, if it enters before `t_max`.
+impl BinaryNode {
+    fn new(bounds: Aabb, index: u32, count: u32) -> Self {
+        BinaryNode {
+            min: bounds.min.extend(f32::from_bits(index)),
+            max: bounds.max.extend(f32::from_bits(count)),
+        }
+    }
+
     #[inline(always)]
-    fn entry(&self, origin: Vec3, inv_dir: Vec3, t_max: f32) -> Option<f32> {
-        let t0 = (self.min - origin) * inv_dir;
-        let t1 = (self.max - origin) * inv_dir;
-        let t_near = t0.min(t1).max_element().max(0.0);
-        // Widened by a few ulps so rounding never loses a primitive touching the box face.
-        let t_far = t0.max(t1).min_element() * ROBUST_FAR;
-        (t_near <= t_far && t_near <= t_max).then_some(t_near)
+    fn index(&self) -> u32 {
+        self.min.w.to_bits()
+    }
+
+    #[inline(always)]
+    fn count(&self) -> u32 {
+        self.max.w.to_bits()
+    }
+
+    fn bounds(&self) -> Aabb {
+        Aabb::new(self.min.truncate(), self.max.truncate())
     }
 }
 
 /// `1 + 2γ₃` (Pharr et al., PBR 3rd ed. §3.9.2): makes the slab test conservative.
 const ROBUST_FAR: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
-/// Traversal stack depth; the build keeps trees shallower than this.
-const STACK_SIZE: usize = 64;
+/// Binary tree depth limit (leaves are forced beyond it); bounds the traversal stack.
+const MAX_BINARY_DEPTH: usize = 64;
+/// Traversal stack size: every wide node visited pushes at most three entries more than it
+/// pops, and wide trees are at most `MAX_BINARY_DEPTH` deep.
+const STACK_SIZE: usize = 3 * MAX_BINARY_DEPTH + 4;
+/// `count` of an unused child slot.
+const EMPTY: u32 = u32::MAX;
+
+/// A 4-wide node: the boxes of up to four children as structure-of-arrays lanes.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct WideNode {
+    min_x: Vec4,
+    min_y: Vec4,
+    min_z: Vec4,
+    max_x: Vec4,
+    max_y: Vec4,
+    max_z: Vec4,
+    /// Per child: wide-node index (inner child) or first reference (leaf child).
+    child: [u32; 4],
+    /// Per child: 0 for an inner node, the number of references for a leaf, `EMPTY` unused.
+    count: [u32; 4],
+}
+
+impl WideNode {
+    fn empty() -> Self {
+        let inf = Vec4::splat(f32::INFINITY);
+        WideNode {
+            min_x: inf,
+            min_y: inf,
+            min_z: inf,
+            max_x: -inf,
+            max_y: -inf,
+            max_z: -inf,
+            child: [0; 4],
+            count: [EMPTY; 4],
+        }
+    }
+
+    fn set_bounds(&mut self, slot: usize, b: &Aabb) {
+        self.min_x[slot] = b.min.x;
+        self.min_y[slot] = b.min.y;
+        self.min_z[slot] = b.min.z;
+        self.max_x[slot] = b.max.x;
+        self.max_y[slot] = b.max.y;
+        self.max_z[slot] = b.max.z;
+    }
+}
+
+/// A ray prepared for 4-wide slab tests.
+struct WideRay {
+    origin: [Vec4; 3],
+    inv_dir: [Vec4; 3],
+}
+
+impl WideRay {
+    fn new(ray: &Ray) -> Self {
+        let inv = ray.dir.recip();
+        WideRay {
+            origin: [
+                Vec4::splat(ray.origin.x),
+                Vec4::splat(ray.origin.y),
+                Vec4::splat(ray.origin.z),
+            ],
+            inv_dir: [Vec4::splat(inv.x), Vec4::splat(inv.y), Vec4::splat(inv.z)],
+        }
+    }
+
+    /// Entry parameters into the four child boxes and the mask of those entered before
+    /// `t_max`.
+    #[inline(always)]
+    fn test(&self, n: &WideNode, t_max: f32) -> (Vec4, u32) {
+        let t0x = (n.min_x - self.origin[0]) * self.inv_dir[0];
+        let t1x = (n.max_x - self.origin[0]) * self.inv_dir[0];
+        let t0y = (n.min_y - self.origin[1]) * self.inv_dir[1];
+        let t1y = (n.max_y - self.origin[1]) * self.inv_dir[1];
+        let t0z = (n.min_z - self.origin[2]) * self.inv_dir[2];
+        let t1z = (n.max_z - self.origin[2]) * self.inv_dir[2];
+        let near = t0x.min(t1x).max(t0y.min(t1y)).max(t0z.min(t1z)).max(Vec4::ZERO);
+        // Widened by a few ulps so rounding never loses a primitive touching a box face.
+        let far = t0x.max(t1x).min(t0y.max(t1y)).min(t0z.max(t1z)) * ROBUST_FAR;
+        let mask = near.cmple(far) & near.cmple(Vec4::splat(t_max));
+        (near, mask.bitmask())
+    }
+}
 
 /// A SAH bounding-volume hierarchy.
 #[derive(Clone, Debug)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    nodes: Vec<WideNode>,
     refs: Vec<u32>,
     unbounded: Vec<u32>,
     max_depth: usize,
@@ -74,7 +167,7 @@ struct Builder<'a> {
     bounds: Vec<Aabb>,
     centroids: Vec<Vec3>,
     refs: Vec<u32>,
-    nodes: Vec<Node>,
+    nodes: Vec<BinaryNode>,
     max_depth: usize,
 }
 
@@ -102,14 +195,17 @@ impl Bvh {
             nodes: Vec::with_capacity(2 * n / options.max_leaf_size.max(1) + 1),
             max_depth: 0,
         };
+        let mut nodes = Vec::new();
+        let mut max_depth = 0;
         if !builder.refs.is_empty() {
             builder.build_node(0, builder.refs.len(), 0);
+            collapse(&builder.nodes, 0, 0, &mut nodes, &mut max_depth);
         }
         Bvh {
-            nodes: builder.nodes,
+            nodes,
             refs: builder.refs,
             unbounded,
-            max_depth: builder.max_depth,
+            max_depth,
         }
     }
 
@@ -132,20 +228,21 @@ impl Bvh {
         if self.nodes.is_empty() {
             return best;
         }
-        let inv_dir = ray.dir.recip();
-        let origin = ray.origin;
+        let wide_ray = WideRay::new(ray);
         let mut limit = best.map_or(t_max, |b| b.t);
-        if self.nodes[0].entry(origin, inv_dir, limit).is_none() {
-            return best;
-        }
-        let mut stack = [0u32; STACK_SIZE];
-        let mut sp = 0usize;
-        let mut current = 0usize;
-        loop {
-            let node = &self.nodes[current];
-            if node.count > 0 {
-                let first = node.index as usize;
-                for &prim in &self.refs[first..first + node.count as usize] {
+        // Children waiting: (child, count, entry parameter).
+        let mut stack = [(0u32, 0u32, 0f32); STACK_SIZE];
+        stack[0] = (0, 0, 0.0);
+        let mut sp = 1usize;
+        while sp > 0 {
+            sp -= 1;
+            let (child, count, t_entry) = stack[sp];
+            if t_entry > limit {
+                continue;
+            }
+            if count > 0 {
+                let first = child as usize;
+                for &prim in &self.refs[first..first + count as usize] {
                     if let Some(hit) = prims.intersect(prim, ray, limit) {
                         if any {
                             return Some(hit);
@@ -156,37 +253,77 @@ impl Bvh {
                         }
                     }
                 }
-            } else {
-                let left = current + 1;
-                let right = node.index as usize;
-                let t_left = self.nodes[left].entry(origin, inv_dir, limit);
-                let t_right = self.nodes[right].entry(origin, inv_dir, limit);
-                match (t_left, t_right) {
-                    (Some(tl), Some(tr)) => {
-                        let (near, far) = if tl <= tr { (left, right) } else { (right, left) };
-                        stack[sp] = far as u32;
-                        sp += 1;
-                        current = near;
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        current = left;
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        current = right;
-                        continue;
-                    }
-                    (None, None) => {}
+                continue;
+            }
+            let node = &self.nodes[child as usize];
+            let (near, mut mask) = wide_ray.test(node, limit);
+            // Push hit children farthest first so the nearest is visited next.
+            let start = sp;
+            while mask != 0 {
+                let slot = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let entry = (node.child[slot], node.count[slot], near[slot]);
+                if entry.1 == EMPTY {
+                    continue;
                 }
+                let mut k = sp;
+                while k > start && stack[k - 1].2 < entry.2 {
+                    stack[k] = stack[k - 1];
+                    k -= 1;
+                }
+                stack[k] = entry;
+                sp += 1;
             }
-            if sp == 0 {
-                return best;
-            }
-            sp -= 1;
-            current = stack[sp] as usize;
         }
+        best
     }
+}
+
+/// Turns the binary subtree at `node` into wide nodes appended to `wide`; returns the index
+/// of its wide root. Each wide node takes the binary children of `node` and keeps opening the
+/// largest inner one until it has four children.
+fn collapse(
+    binary: &[BinaryNode],
+    node: usize,
+    depth: usize,
+    wide: &mut Vec<WideNode>,
+    max_depth: &mut usize,
+) -> u32 {
+    *max_depth = (*max_depth).max(depth);
+    let mut kids: Vec<usize> = if binary[node].count() > 0 {
+        vec![node]
+    } else {
+        vec![node + 1, binary[node].index() as usize]
+    };
+    while kids.len() < 4 {
+        let largest_inner = kids
+            .iter()
+            .enumerate()
+            .filter(|&(_, &k)| binary[k].count() == 0)
+            .max_by(|a, b| {
+                let area = |k: usize| binary[k].bounds().surface_area();
+                area(*a.1).total_cmp(&area(*b.1))
+            })
+            .map(|(pos, _)| pos);
+        let Some(pos) = largest_inner else { break };
+        let k = kids.swap_remove(pos);
+        kids.push(k + 1);
+        kids.push(binary[k].index() as usize);
+    }
+    let me = wide.len();
+    wide.push(WideNode::empty());
+    for (slot, &k) in kids.iter().enumerate() {
+        let (child, count) = if binary[k].count() > 0 {
+            (binary[k].index(), binary[k].count())
+        } else {
+            (collapse(binary, k, depth + 1, wide, max_depth), 0)
+        };
+        let n = &mut wide[me];
+        n.set_bounds(slot, &binary[k].bounds());
+        n.child[slot] = child;
+        n.count[slot] = count;
+    }
+    me as u32
 }
 
 impl Builder<'_> {
@@ -200,27 +337,17 @@ impl Builder<'_> {
     }
 
     fn push_leaf(&mut self, node: usize, bounds: Aabb, start: usize, end: usize) {
-        self.nodes[node] = Node {
-            min: bounds.min,
-            index: start as u32,
-            max: bounds.max,
-            count: (end - start) as u32,
-        };
+        self.nodes[node] = BinaryNode::new(bounds, start as u32, (end - start) as u32);
     }
 
     /// Builds the subtree over `refs[start..end]` and returns its node index.
     fn build_node(&mut self, start: usize, end: usize, depth: usize) -> usize {
         let node = self.nodes.len();
-        self.nodes.push(Node {
-            min: Vec3::ZERO,
-            index: 0,
-            max: Vec3::ZERO,
-            count: 0,
-        });
+        self.nodes.push(BinaryNode::new(Aabb::new(Vec3::ZERO, Vec3::ZERO), 0, 0));
         self.max_depth = self.max_depth.max(depth);
         let (bounds, centroid_bounds) = self.bounds_of(start, end);
         let count = end - start;
-        if count <= 1 || depth + 2 >= STACK_SIZE {
+        if count <= 1 || depth + 1 >= MAX_BINARY_DEPTH {
             self.push_leaf(node, bounds, start, end);
             return node;
         }
@@ -241,12 +368,7 @@ impl Builder<'_> {
         };
         self.build_node(start, mid, depth + 1);
         let right = self.build_node(mid, end, depth + 1);
-        self.nodes[node] = Node {
-            min: bounds.min,
-            index: right as u32,
-            max: bounds.max,
-            count: 0,
-        };
+        self.nodes[node] = BinaryNode::new(bounds, right as u32, 0);
         node
     }
 
@@ -361,7 +483,12 @@ impl<P: PrimitiveSet> Accelerator<P> for Bvh {
             kind: "bvh",
             primitives: self.refs.len() + self.unbounded.len(),
             nodes: self.nodes.len(),
-            leaves: self.nodes.iter().filter(|n| n.count > 0).count(),
+            leaves: self
+                .nodes
+                .iter()
+                .flat_map(|n| n.count)
+                .filter(|&c| c > 0 && c != EMPTY)
+                .count(),
             max_depth: self.max_depth,
             references: self.refs.len() + self.unbounded.len(),
         }

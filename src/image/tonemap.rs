@@ -12,8 +12,6 @@ use crate::color::Rgb;
 /// before compression.
 pub const REINHARD_KEY: f32 = 0.18;
 
-/// The luminance percentile that [`ToneMap::Auto`] maps to 1, in percent.
-pub const AUTO_EXPOSURE_PERCENTILE: usize = 99;
 
 /// A tone-mapping operator.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
@@ -27,9 +25,10 @@ pub enum ToneMap {
     /// 2^EV, then compressed with `L / (1 + L)`. The log-average is taken over pixels with
     /// positive luminance, so black backgrounds do not brighten the rest.
     Reinhard,
-    /// Automatic exposure: the 99th-percentile (nearest-rank) luminance among pixels with
-    /// positive luminance maps to 1, then × 2^EV, clamped. Small bright light sources above
-    /// the percentile saturate instead of darkening the image; a black image stays black.
+    /// Automatic exposure ("average metering"): the image is scaled so that its log-average
+    /// luminance (over pixels with positive luminance) becomes the middle grey 0.18, then
+    /// × 2^EV, clamped. Light sources saturate instead of darkening the image, whatever share
+    /// of the image they cover; a black image stays black.
     #[default]
     Auto,
 }
@@ -118,24 +117,11 @@ fn reinhard(pixels: &[Rgb], exposure: f32) -> Vec<Rgb> {
         .collect()
 }
 
-/// The nearest-rank [`AUTO_EXPOSURE_PERCENTILE`] of the usable luminances; `None` when
-/// there are none.
-fn percentile_luminance(pixels: &[Rgb]) -> Option<f32> {
-    let mut lums: Vec<f32> = pixels.iter().filter_map(|&c| usable_luminance(c)).collect();
-    if lums.is_empty() {
-        return None;
-    }
-    let rank = (AUTO_EXPOSURE_PERCENTILE * lums.len()).div_ceil(100);
-    let index = rank.saturating_sub(1);
-    let (_, value, _) = lums.select_nth_unstable_by(index, f32::total_cmp);
-    Some(*value)
-}
-
 fn auto_exposure(pixels: &[Rgb], exposure: f32) -> Vec<Rgb> {
-    let Some(white) = percentile_luminance(pixels) else {
+    let Some(l_avg) = log_average_luminance(pixels) else {
         return vec![Rgb::BLACK; pixels.len()];
     };
-    let scale = exposure / white;
+    let scale = (REINHARD_KEY as f64 / l_avg) as f32 * exposure;
     pixels.iter().map(|&c| finite_or_black(c) * scale).collect()
 }
 
@@ -219,30 +205,26 @@ mod tests {
     }
 
     #[test]
-    fn auto_puts_the_99th_percentile_at_one() {
-        // Grey luminances 1..=100 plus black pixels that do not count; nearest rank of the
-        // 99th percentile among 100 values is the 99th smallest, 99.
-        let mut pixels: Vec<Rgb> = (1..=100).map(|i| Rgb::splat(i as f32)).collect();
-        pixels.extend([Rgb::BLACK; 7]);
-        pixels.reverse();
-        let f = film(pixels);
+    fn auto_puts_the_log_average_at_middle_grey() {
+        // Luminances 1, 2 and 4 (log-average 2) plus black pixels that do not count.
+        let f = film(vec![Rgb::splat(1.0), Rgb::splat(2.0), Rgb::splat(4.0), Rgb::BLACK]);
         let out = mapping(ToneMap::Auto, 0.0).apply(&f);
-        let at = |lum: usize| out[107 - lum];
-        assert_close(at(99), Rgb::WHITE, 1e-6);
-        assert_close(at(100), Rgb::WHITE, 0.0);
-        assert_close(at(33), Rgb::splat(1.0 / 3.0), 1e-6);
-        assert_eq!(out[0], Rgb::BLACK);
+        assert_close(out[1], Rgb::splat(0.18), 1e-6);
+        assert_close(out[2], Rgb::splat(0.36), 1e-6);
+        assert_eq!(out[3], Rgb::BLACK);
         let out = mapping(ToneMap::Auto, -1.0).apply(&f);
-        assert_close(out[107 - 99], Rgb::splat(0.5), 1e-6);
+        assert_close(out[1], Rgb::splat(0.09), 1e-6);
     }
 
     #[test]
-    fn auto_ignores_a_small_bright_light() {
-        // 199 pixels of luminance 1 and one light of 1e6: the light is above the percentile.
+    fn auto_is_hardly_moved_by_a_bright_light() {
+        // 199 pixels of luminance 1 and one light of 1e6: the log-average is 1e6^(1/200) ≈
+        // 1.07, so the rest stays within 7 % of middle grey and the light saturates.
         let mut pixels = vec![Rgb::WHITE; 199];
         pixels.push(Rgb::splat(1.0e6));
         let out = mapping(ToneMap::Auto, 0.0).apply(&film(pixels));
-        assert_close(out[0], Rgb::WHITE, 1e-6);
+        let expected = 0.18 / 1.0e6f32.powf(1.0 / 200.0);
+        assert_close(out[0], Rgb::splat(expected), 1e-5);
         assert_close(out[199], Rgb::WHITE, 0.0);
     }
 

@@ -28,8 +28,9 @@ pub enum AntialiasMode {
 
 /// Maximum subdivision depth of adaptive supersampling.
 pub const ADAPTIVE_MAX_DEPTH: u32 = 4;
-/// Grid units per pixel side: the smallest square (depth 4) still has an integer centre.
-pub const ADAPTIVE_GRID: u32 = 2 << ADAPTIVE_MAX_DEPTH;
+/// Grid units per pixel side: the squares of the deepest level (side 2) still have an
+/// integer centre.
+pub const ADAPTIVE_GRID: u32 = 1 << ADAPTIVE_MAX_DEPTH;
 
 /// What the image loop needs to trace camera samples.
 pub struct SampleContext<'a> {

@@ -85,6 +85,8 @@ pub struct SceneGeometry {
     shapes: Vec<AnalyticInstance>,
     /// Alpha texture per material (cloned so the geometry stands alone).
     alpha: Vec<Option<Texture>>,
+    /// Whether any material has an alpha texture (skips the cut-out test when none does).
+    any_alpha: bool,
 }
 
 impl SceneGeometry {
@@ -98,6 +100,7 @@ impl SceneGeometry {
                 .iter()
                 .map(|m| m.alpha_texture.map(|t| scene.textures[t as usize].clone()))
                 .collect(),
+            any_alpha: scene.materials.iter().any(|m| m.alpha_texture.is_some()),
             ..Default::default()
         };
         for (index, object) in scene.objects.iter().enumerate() {
@@ -241,8 +244,10 @@ impl SceneGeometry {
         uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2
     }
 
+    #[inline(always)]
     fn cut_away(&self, material: MaterialId, uv: impl FnOnce() -> Vec2) -> bool {
-        self.alpha[material as usize]
+        self.any_alpha
+            && self.alpha[material as usize]
             .as_ref()
             .is_some_and(|t| t.alpha(uv()) < ALPHA_CUTOFF)
     }
@@ -369,8 +374,11 @@ impl PrimitiveSet for SceneGeometry {
         let index = prim as usize;
         if let Some(tri) = self.triangles.get(index) {
             let (t, b1, b2) = tri.intersect(ray, t_max)?;
-            let material = self.attributes[index].material;
-            if self.cut_away(material, || self.triangle_uv(index, b1, b2)) {
+            let cut = self.any_alpha
+                && self.cut_away(self.attributes[index].material, || {
+                    self.triangle_uv(index, b1, b2)
+                });
+            if cut {
                 return None;
             }
             return Some(PrimHit {

@@ -21,9 +21,10 @@ const DEFAULT_MATERIAL: &str = "default";
 /// Parses and builds the scene in `src`; relative paths start at `base_dir`.
 pub(super) fn build_scene(src: Source<'_>, base_dir: &Path) -> Result<Scene, SceneError> {
     let file: SceneFile = toml::from_str(src.text).map_err(|e| toml_error(src, &e))?;
-    let name = Path::new(src.file)
-        .file_stem()
-        .map_or_else(|| src.file.to_string(), |s| s.to_string_lossy().into_owned());
+    let name = Path::new(src.file).file_stem().map_or_else(
+        || src.file.to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    );
     let mut scene = Scene::empty(&name);
     scene.camera = build_camera(src, file.camera.as_ref())?;
 
@@ -36,7 +37,8 @@ pub(super) fn build_scene(src: Source<'_>, base_dir: &Path) -> Result<Scene, Sce
             base_dir,
             cache: &mut textures,
         };
-        let material = build_material(&t, key.get_ref(), entry.get_ref(), &mut context, &mut scene)?;
+        let material =
+            build_material(&t, key.get_ref(), entry.get_ref(), &mut context, &mut scene)?;
         scene.add_material(material);
     }
     let file_defined = scene.materials.len();
@@ -92,7 +94,10 @@ fn build_object(
                 t.error(
                     m.span(),
                     "material",
-                    format!("unknown material \"{name}\" (known: {})", c.known.join(", ")),
+                    format!(
+                        "unknown material \"{name}\" (known: {})",
+                        c.known.join(", ")
+                    ),
                 )
             })?;
             Some(id as MaterialId)

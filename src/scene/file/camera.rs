@@ -22,7 +22,11 @@ pub(super) fn build_camera(
     let fov = match t.number("fov", e.fov.as_ref())? {
         Some(f) if !(f > 0.0 && f < 180.0) => {
             let span = e.fov.as_ref().map_or(t.span.clone(), Spanned::span);
-            return Err(t.error(span, "fov", "vertical field of view must be in (0, 180) degrees"));
+            return Err(t.error(
+                span,
+                "fov",
+                "vertical field of view must be in (0, 180) degrees",
+            ));
         }
         Some(f) => f,
         None => defaults.fov_degrees,
@@ -33,8 +37,12 @@ pub(super) fn build_camera(
         None => Ok(default),
     };
     let camera = Camera {
-        position: t.vec3("position", e.position.as_ref())?.unwrap_or(defaults.position),
-        look_at: t.vec3("look_at", e.look_at.as_ref())?.unwrap_or(defaults.look_at),
+        position: t
+            .vec3("position", e.position.as_ref())?
+            .unwrap_or(defaults.position),
+        look_at: t
+            .vec3("look_at", e.look_at.as_ref())?
+            .unwrap_or(defaults.look_at),
         up: t.vec3("up", e.up.as_ref())?.unwrap_or(Vec3::Y),
         fov_degrees: fov,
         width: pixels("width", e.width.as_ref(), defaults.width)?,

@@ -2,7 +2,7 @@
 //! light, the camera), with errors that name the table's path and the field.
 
 use super::error::{SceneError, Source};
-use super::value::Triple;
+use super::value::{Coords, Triple};
 use crate::color::Rgb;
 use glam::Vec3;
 use std::ops::Range;
@@ -79,10 +79,14 @@ impl<'a> Table<'a> {
     }
 
     /// A vector of finite numbers, if given.
-    pub fn vec3(&self, name: &str, v: Option<&Spanned<[f32; 3]>>) -> Result<Option<Vec3>, SceneError> {
+    pub fn vec3(
+        &self,
+        name: &str,
+        v: Option<&Spanned<Coords>>,
+    ) -> Result<Option<Vec3>, SceneError> {
         match v {
             Some(s) => {
-                let p = Vec3::from(*s.get_ref());
+                let p = Vec3::from(s.get_ref().0);
                 if p.is_finite() {
                     Ok(Some(p))
                 } else {
@@ -97,7 +101,7 @@ impl<'a> Table<'a> {
     pub fn required_vec3(
         &self,
         name: &str,
-        v: Option<&Spanned<[f32; 3]>>,
+        v: Option<&Spanned<Coords>>,
         why: &str,
     ) -> Result<Vec3, SceneError> {
         self.vec3(name, v)?.ok_or_else(|| self.missing(name, why))
@@ -154,7 +158,10 @@ mod tests {
         let t = Table::new(src, "objects[1]", 0..3);
         let nan = Spanned::new(8..11, f32::NAN);
         let e = t.number("radius", Some(&nan)).unwrap_err();
-        assert_eq!(e.to_string(), "f.toml:2:5: objects[1].radius: number is not finite");
+        assert_eq!(
+            e.to_string(),
+            "f.toml:2:5: objects[1].radius: number is not finite"
+        );
         let e = t.missing("radius", "type sphere");
         assert_eq!(
             e.to_string(),

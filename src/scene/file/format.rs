@@ -5,7 +5,7 @@
 //! [`ObjectEntry::shape_fields`] / [`LightEntry::kind_fields`] list which ones were given so
 //! fields that do not belong to the type are reported.
 
-use super::value::{TextureEntry, Triple};
+use super::value::{Coords, Exact, TextureEntry, Triple};
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -28,9 +28,9 @@ pub(super) struct SceneFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct CameraEntry {
-    pub position: Option<Spanned<[f32; 3]>>,
-    pub look_at: Option<Spanned<[f32; 3]>>,
-    pub up: Option<Spanned<[f32; 3]>>,
+    pub position: Option<Spanned<Coords>>,
+    pub look_at: Option<Spanned<Coords>>,
+    pub up: Option<Spanned<Coords>>,
     pub fov: Option<Spanned<f32>>,
     pub width: Option<Spanned<u32>>,
     pub height: Option<Spanned<u32>>,
@@ -110,20 +110,20 @@ impl ObjectType {
 #[serde(rename_all = "lowercase")]
 pub(super) enum TransformStep {
     /// `{ translate = [x, y, z] }`.
-    Translate([f32; 3]),
+    Translate(Coords),
     /// `{ rotate = { axis = [x, y, z], degrees = a } }`.
     Rotate(Rotation),
     /// `{ scale = [x, y, z] }` or `{ scale = s }`.
     Scale(Triple),
     /// `{ matrix = [[..4..], [..], [..], [..]] }`, row-major.
-    Matrix([[f32; 4]; 4]),
+    Matrix(Exact<Exact<f32, 4>, 4>),
 }
 
 /// The table of a rotation step.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct Rotation {
-    pub axis: [f32; 3],
+    pub axis: Coords,
     pub degrees: f32,
 }
 
@@ -137,25 +137,25 @@ pub(super) struct ObjectEntry {
     pub material: Option<Spanned<String>>,
     pub per_face: Option<bool>,
     pub transform: Option<Spanned<Vec<Spanned<TransformStep>>>>,
-    pub vertices: Option<Spanned<Vec<[f32; 3]>>>,
-    pub uvs: Option<Spanned<Vec<[f32; 2]>>>,
-    pub origin: Option<Spanned<[f32; 3]>>,
-    pub edge_u: Option<Spanned<[f32; 3]>>,
-    pub edge_v: Option<Spanned<[f32; 3]>>,
+    pub vertices: Option<Spanned<Vec<Coords>>>,
+    pub uvs: Option<Spanned<Vec<Exact<f32, 2>>>>,
+    pub origin: Option<Spanned<Coords>>,
+    pub edge_u: Option<Spanned<Coords>>,
+    pub edge_v: Option<Spanned<Coords>>,
     pub file: Option<Spanned<String>>,
-    pub center: Option<Spanned<[f32; 3]>>,
+    pub center: Option<Spanned<Coords>>,
     pub radius: Option<Spanned<f32>>,
-    pub min: Option<Spanned<[f32; 3]>>,
-    pub max: Option<Spanned<[f32; 3]>>,
-    pub base: Option<Spanned<[f32; 3]>>,
-    pub top: Option<Spanned<[f32; 3]>>,
-    pub apex: Option<Spanned<[f32; 3]>>,
+    pub min: Option<Spanned<Coords>>,
+    pub max: Option<Spanned<Coords>>,
+    pub base: Option<Spanned<Coords>>,
+    pub top: Option<Spanned<Coords>>,
+    pub apex: Option<Spanned<Coords>>,
     pub base_radius: Option<Spanned<f32>>,
     pub top_radius: Option<Spanned<f32>>,
     pub caps: Option<Spanned<bool>>,
     pub cap: Option<Spanned<bool>>,
-    pub point: Option<Spanned<[f32; 3]>>,
-    pub normal: Option<Spanned<[f32; 3]>>,
+    pub point: Option<Spanned<Coords>>,
+    pub normal: Option<Spanned<Coords>>,
 }
 
 impl ObjectEntry {
@@ -236,9 +236,9 @@ pub(super) struct LightEntry {
     #[serde(rename = "type")]
     pub kind: Spanned<LightType>,
     pub name: Option<String>,
-    pub position: Option<Spanned<[f32; 3]>>,
-    pub direction: Option<Spanned<[f32; 3]>>,
-    pub look_at: Option<Spanned<[f32; 3]>>,
+    pub position: Option<Spanned<Coords>>,
+    pub direction: Option<Spanned<Coords>>,
+    pub look_at: Option<Spanned<Coords>>,
     pub intensity: Option<Spanned<Triple>>,
     pub inner_degrees: Option<Spanned<f32>>,
     pub outer_degrees: Option<Spanned<f32>>,
@@ -259,8 +259,14 @@ impl LightEntry {
         add("direction", self.direction.as_ref().map(Spanned::span));
         add("look_at", self.look_at.as_ref().map(Spanned::span));
         add("intensity", self.intensity.as_ref().map(Spanned::span));
-        add("inner_degrees", self.inner_degrees.as_ref().map(Spanned::span));
-        add("outer_degrees", self.outer_degrees.as_ref().map(Spanned::span));
+        add(
+            "inner_degrees",
+            self.inner_degrees.as_ref().map(Spanned::span),
+        );
+        add(
+            "outer_degrees",
+            self.outer_degrees.as_ref().map(Spanned::span),
+        );
         add("irradiance", self.irradiance.as_ref().map(Spanned::span));
         add("radiance", self.radiance.as_ref().map(Spanned::span));
         out

@@ -25,23 +25,44 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
             let position = t.required_vec3("position", e.position.as_ref(), why)?;
             let direction = match (e.direction.as_ref(), e.look_at.as_ref()) {
                 (Some(_), Some(l)) => {
-                    return Err(t.error(l.span(), "look_at", "give direction or look_at, not both"));
+                    return Err(t.error(
+                        l.span(),
+                        "look_at",
+                        "give direction or look_at, not both",
+                    ));
                 }
-                (Some(d), None) => unit(t, "direction", d, t.required_vec3("direction", Some(d), why)?)?,
+                (Some(d), None) => unit(
+                    t,
+                    "direction",
+                    d,
+                    t.required_vec3("direction", Some(d), why)?,
+                )?,
                 (None, Some(l)) => {
                     let target = t.required_vec3("look_at", Some(l), why)?;
                     unit(t, "look_at", l, target - position)?
                 }
-                (None, None) => return Err(t.missing("direction", "type spot (or give look_at)")),
+                (None, None) => {
+                    return Err(t.error(
+                        t.span.clone(),
+                        "direction",
+                        "missing field: a spot light needs direction or look_at",
+                    ));
+                }
             };
             let inner = t.required_number("inner_degrees", e.inner_degrees.as_ref(), why)?;
             let outer = t.required_number("outer_degrees", e.outer_degrees.as_ref(), why)?;
             if !(outer > 0.0 && outer <= 180.0) {
-                let span = e.outer_degrees.as_ref().map_or(t.span.clone(), Spanned::span);
+                let span = e
+                    .outer_degrees
+                    .as_ref()
+                    .map_or(t.span.clone(), Spanned::span);
                 return Err(t.error(span, "outer_degrees", "must be in (0, 180]"));
             }
             if !(0.0..=outer).contains(&inner) {
-                let span = e.inner_degrees.as_ref().map_or(t.span.clone(), Spanned::span);
+                let span = e
+                    .inner_degrees
+                    .as_ref()
+                    .map_or(t.span.clone(), Spanned::span);
                 return Err(t.error(span, "inner_degrees", "must be in [0, outer_degrees]"));
             }
             LightKind::Spot {
@@ -58,7 +79,12 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
                 .as_ref()
                 .ok_or_else(|| t.missing("direction", why))?;
             LightKind::Directional {
-                direction: unit(t, "direction", d, t.required_vec3("direction", Some(d), why)?)?,
+                direction: unit(
+                    t,
+                    "direction",
+                    d,
+                    t.required_vec3("direction", Some(d), why)?,
+                )?,
                 irradiance: color("irradiance", e.irradiance.as_ref())?,
             }
         }
@@ -73,7 +99,12 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
 }
 
 /// `v` normalised; an error at `field` when it is zero.
-fn unit(t: &Table<'_>, field: &str, at: &Spanned<[f32; 3]>, v: Vec3) -> Result<Vec3, SceneError> {
+fn unit(
+    t: &Table<'_>,
+    field: &str,
+    at: &Spanned<super::value::Coords>,
+    v: Vec3,
+) -> Result<Vec3, SceneError> {
     v.try_normalize()
         .ok_or_else(|| t.error(at.span(), field, "direction has zero length"))
 }

@@ -166,14 +166,20 @@ mod tests {
         assert_eq!(at("40").as_deref(), Some("camera.fov"));
         assert_eq!(at("radius").as_deref(), Some("objects[1].radius"));
         assert_eq!(at("2\n").as_deref(), Some("objects[1].radius"));
-        assert_eq!(at("3]").as_deref(), Some("objects[1].transform[0].translate[2]"));
+        assert_eq!(
+            at("3]").as_deref(),
+            Some("objects[1].transform[0].translate[2]")
+        );
         assert_eq!(at("\"box\"").as_deref(), Some("objects[0].type"));
     }
 
     #[test]
     fn unknown_names_get_a_suggestion_when_close() {
         let m = "unknown field `radiuss`, expected one of `type`, `radius`, `center`";
-        assert_eq!(polish_message(m), "unknown field `radiuss` (did you mean `radius`?)");
+        assert_eq!(
+            polish_message(m),
+            "unknown field `radiuss` (did you mean `radius`?)"
+        );
         let far = "unknown field `zzz`, expected `type` or `radius`";
         assert_eq!(polish_message(far), far);
         assert_eq!(edit_distance("sphre", "sphere"), 1);

@@ -54,7 +54,9 @@ pub(super) fn build_material(
             sum.max_channel()
         )));
     }
-    let emission = t.rgb("emission", e.emission.as_ref())?.unwrap_or(Rgb::BLACK);
+    let emission = t
+        .rgb("emission", e.emission.as_ref())?
+        .unwrap_or(Rgb::BLACK);
     let shininess = match t.number("shininess", e.shininess.as_ref())? {
         Some(s) if s < 0.0 => {
             let span = e.shininess.as_ref().map_or(t.span.clone(), Spanned::span);

@@ -89,7 +89,9 @@ impl MeshCache {
                     .data
                     .materials
                     .iter()
-                    .map(|m| add_material(scene, textures, &imported.data, m, &canonical, file_defined))
+                    .map(|m| {
+                        add_material(scene, textures, &imported.data, m, &canonical, file_defined)
+                    })
                     .collect::<Result<Vec<_>, _>>()
                     .map_err(|e| format!("mesh file \"{}\": {e}", path.display()))?;
                 imported.material_ids = Some(ids);
@@ -100,7 +102,10 @@ impl MeshCache {
                 mesh.face_materials = Some(
                     per_face
                         .iter()
-                        .map(|f| f.and_then(|i| ids.get(i as usize).copied()).unwrap_or(fallback))
+                        .map(|f| {
+                            f.and_then(|i| ids.get(i as usize).copied())
+                                .unwrap_or(fallback)
+                        })
                         .collect(),
                 );
             }
@@ -122,7 +127,10 @@ fn add_material(
     file_defined: usize,
 ) -> Result<MaterialId, String> {
     let name = m.material.name.as_str();
-    if let Some(id) = scene.material_id(name).filter(|&id| (id as usize) < file_defined) {
+    if let Some(id) = scene
+        .material_id(name)
+        .filter(|&id| (id as usize) < file_defined)
+    {
         return Ok(id);
     }
     let mut texture = |source: &Option<TextureSource>| -> Result<Option<TextureId>, String> {

@@ -18,7 +18,9 @@ pub(super) fn check_polygon(vertices: &[Vec3]) -> Result<(), String> {
     }
     let (lo, hi) = vertices
         .iter()
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
     let size = (hi - lo).length();
     for i in 0..n {
         if vertices[i] == vertices[(i + 1) % n] {
@@ -31,7 +33,7 @@ pub(super) fn check_polygon(vertices: &[Vec3]) -> Result<(), String> {
         .map(|i| (vertices[i] - origin).cross(vertices[(i + 1) % n] - origin))
         .sum();
     let area = 0.5 * newell.length();
-    if !(area > AREA_TOLERANCE * size * size) {
+    if area.is_nan() || area <= AREA_TOLERANCE * size * size {
         return Err("polygon has zero area".into());
     }
     let normal = newell / newell.length();
@@ -81,7 +83,12 @@ mod tests {
         let with_midpoint = [v(0., 0., 0.), v(0.5, 0., 0.), v(1., 0., 0.), v(0., 1., 0.)];
         assert!(check_polygon(&with_midpoint).is_ok());
         // Far from the origin and within the planarity tolerance (1e-4 of a size of ~1.41).
-        let far = [v(1e4, 0., 0.), v(1e4 + 1., 0., 0.), v(1e4 + 1., 1., 1e-4), v(1e4, 1., 0.)];
+        let far = [
+            v(1e4, 0., 0.),
+            v(1e4 + 1., 0., 0.),
+            v(1e4 + 1., 1., 1e-4),
+            v(1e4, 1., 0.),
+        ];
         assert!(check_polygon(&far).is_ok());
     }
 
@@ -91,7 +98,13 @@ mod tests {
         assert!(check_polygon(&line).unwrap_err().contains("zero area"));
         let bent = [v(0., 0., 0.), v(1., 0., 0.), v(1., 1., 0.01), v(0., 1., 0.)];
         assert!(check_polygon(&bent).unwrap_err().contains("not planar"));
-        let dart = [v(0., 0., 0.), v(2., 0., 0.), v(1., 0.5, 0.), v(2., 2., 0.), v(0., 2., 0.)];
+        let dart = [
+            v(0., 0., 0.),
+            v(2., 0., 0.),
+            v(1., 0.5, 0.),
+            v(2., 2., 0.),
+            v(0., 2., 0.),
+        ];
         assert!(check_polygon(&dart).unwrap_err().contains("not convex"));
         let star: Vec<Vec3> = (0..5)
             .map(|k| {

@@ -26,7 +26,9 @@ pub(super) fn build_shape(t: &Table<'_>, e: &ObjectEntry) -> Result<Shape, Scene
             let edge_u = t.required_vec3("edge_u", e.edge_u.as_ref(), why)?;
             let edge_v = t.required_vec3("edge_v", e.edge_v.as_ref(), why)?;
             if degenerate(edge_u, edge_v) {
-                return Err(t.table_error("parallelogram has zero area (edges are parallel or zero)"));
+                return Err(
+                    t.table_error("parallelogram has zero area (edges are parallel or zero)")
+                );
             }
             Shape::Parallelogram {
                 origin,
@@ -118,7 +120,8 @@ fn positive(
 
 /// True when the edges `a`, `b` span (almost) no area.
 fn degenerate(a: Vec3, b: Vec3) -> bool {
-    !(a.cross(b).length() > SINE_TOLERANCE * a.length() * b.length())
+    let sine_area = a.cross(b).length();
+    sine_area.is_nan() || sine_area <= SINE_TOLERANCE * a.length() * b.length()
 }
 
 /// Triangles, polygons and quads from `vertices` and optional `uvs`.
@@ -127,7 +130,7 @@ fn planar(t: &Table<'_>, e: &ObjectEntry, kind: ObjectType) -> Result<Shape, Sce
     let Some(spanned) = e.vertices.as_ref() else {
         return Err(t.missing("vertices", &why));
     };
-    let vertices: Vec<Vec3> = spanned.get_ref().iter().map(|&v| Vec3::from(v)).collect();
+    let vertices: Vec<Vec3> = spanned.get_ref().iter().map(|v| Vec3::from(v.0)).collect();
     let span = spanned.span();
     if vertices.iter().any(|v| !v.is_finite()) {
         return Err(t.error(span, "vertices", "a vertex is not finite"));
@@ -141,18 +144,26 @@ fn planar(t: &Table<'_>, e: &ObjectEntry, kind: ObjectType) -> Result<Shape, Sce
         return Err(t.error(
             span,
             "vertices",
-            format!("a {} needs {n} vertices, got {}", kind.name(), vertices.len()),
+            format!(
+                "a {} needs {n} vertices, got {}",
+                kind.name(),
+                vertices.len()
+            ),
         ));
     }
     check_polygon(&vertices).map_err(|m| t.error(span.clone(), "vertices", m))?;
     let uvs: Option<Vec<Vec2>> = match e.uvs.as_ref() {
         Some(u) => {
-            let uvs: Vec<Vec2> = u.get_ref().iter().map(|&p| Vec2::from(p)).collect();
+            let uvs: Vec<Vec2> = u.get_ref().iter().map(|p| Vec2::from(p.0)).collect();
             if uvs.len() != vertices.len() {
                 return Err(t.error(
                     u.span(),
                     "uvs",
-                    format!("{} texture coordinates for {} vertices", uvs.len(), vertices.len()),
+                    format!(
+                        "{} texture coordinates for {} vertices",
+                        uvs.len(),
+                        vertices.len()
+                    ),
                 ));
             }
             if uvs.iter().any(|p| !p.is_finite()) {

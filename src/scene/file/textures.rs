@@ -67,7 +67,12 @@ mod tests {
         let mut scene = Scene::empty("t");
         let mut cache = TextureCache::default();
         let err = cache
-            .file(&mut scene, Path::new("no/such/file.ppm"), ColorSpace::Linear, false)
+            .file(
+                &mut scene,
+                Path::new("no/such/file.ppm"),
+                ColorSpace::Linear,
+                false,
+            )
             .unwrap_err();
         assert!(err.contains("no/such/file.ppm"), "{err}");
         assert!(scene.textures.is_empty());

@@ -20,8 +20,16 @@ pub(super) fn build_transform(
         total = total.then(&t);
     }
     let det = total.to_world.determinant();
-    if !total.to_world.is_finite() || !total.to_object.is_finite() || !det.is_finite() || det.abs() < 1e-20 {
-        return Err(table.error(steps.span(), "transform", "the steps combine to a singular transform"));
+    if !total.to_world.is_finite()
+        || !total.to_object.is_finite()
+        || !det.is_finite()
+        || det.abs() < 1e-20
+    {
+        return Err(table.error(
+            steps.span(),
+            "transform",
+            "the steps combine to a singular transform",
+        ));
     }
     Ok(total)
 }
@@ -30,11 +38,11 @@ pub(super) fn build_transform(
 fn step_transform(step: &TransformStep) -> Result<Transform, String> {
     match step {
         TransformStep::Translate(v) => {
-            let v = finite(*v)?;
+            let v = finite(v.0)?;
             Ok(Transform::translate(v))
         }
         TransformStep::Rotate(r) => {
-            let axis = finite(r.axis)?;
+            let axis = finite(r.axis.0)?;
             if !r.degrees.is_finite() {
                 return Err("rotation angle is not finite".into());
             }
@@ -45,13 +53,14 @@ fn step_transform(step: &TransformStep) -> Result<Transform, String> {
             Transform::scale(s).ok_or_else(|| "singular transform: a scale factor is zero".into())
         }
         TransformStep::Matrix(rows) => {
+            let rows = rows.0.map(|row| row.0);
             if rows.iter().flatten().any(|x| !x.is_finite()) {
                 return Err("matrix is not finite".into());
             }
             if rows[3] != [0.0, 0.0, 0.0, 1.0] {
                 return Err("matrix is not affine: its last row must be [0, 0, 0, 1]".into());
             }
-            let m = Mat4::from_cols_array_2d(rows).transpose();
+            let m = Mat4::from_cols_array_2d(&rows).transpose();
             Transform::from_matrix(m).ok_or_else(|| "singular matrix (determinant 0)".into())
         }
     }
@@ -70,30 +79,30 @@ fn finite(v: [f32; 3]) -> Result<Vec3, String> {
 mod tests {
     use super::*;
     use crate::scene::file::format::Rotation;
-    use crate::scene::file::value::Triple;
+    use crate::scene::file::value::{Exact, Triple};
 
     #[test]
     fn matrix_rows_are_row_major_and_validated() {
-        let shift = TransformStep::Matrix([
-            [1.0, 0.0, 0.0, 5.0],
-            [0.0, 1.0, 0.0, 0.0],
-            [0.0, 0.0, 1.0, 0.0],
-            [0.0, 0.0, 0.0, 1.0],
-        ]);
+        let shift = TransformStep::Matrix(Exact([
+            Exact([1.0, 0.0, 0.0, 5.0]),
+            Exact([0.0, 1.0, 0.0, 0.0]),
+            Exact([0.0, 0.0, 1.0, 0.0]),
+            Exact([0.0, 0.0, 0.0, 1.0]),
+        ]));
         let t = step_transform(&shift).unwrap();
         assert!((t.point(Vec3::ZERO) - Vec3::new(5.0, 0.0, 0.0)).length() < 1e-6);
-        let singular = TransformStep::Matrix([
-            [1.0, 0.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0, 0.0],
-            [0.0, 0.0, 1.0, 0.0],
-            [0.0, 0.0, 0.0, 1.0],
-        ]);
+        let singular = TransformStep::Matrix(Exact([
+            Exact([1.0, 0.0, 0.0, 0.0]),
+            Exact([2.0, 0.0, 0.0, 0.0]),
+            Exact([0.0, 0.0, 1.0, 0.0]),
+            Exact([0.0, 0.0, 0.0, 1.0]),
+        ]));
         assert!(step_transform(&singular).unwrap_err().contains("singular"));
-        let projective = TransformStep::Matrix([[1.0, 0.0, 0.0, 0.0]; 4]);
+        let projective = TransformStep::Matrix(Exact([Exact([1.0, 0.0, 0.0, 0.0]); 4]));
         assert!(step_transform(&projective).unwrap_err().contains("affine"));
         assert!(step_transform(&TransformStep::Scale(Triple([1.0, 0.0, 1.0]))).is_err());
         let zero_axis = TransformStep::Rotate(Rotation {
-            axis: [0.0; 3],
+            axis: Exact([0.0; 3]),
             degrees: 30.0,
         });
         assert!(step_transform(&zero_axis).is_err());

@@ -43,12 +43,65 @@ impl<'de> Visitor<'de> for TripleVisitor {
                 .next_element()?
                 .ok_or_else(|| de::Error::invalid_length(i, &self))?;
         }
-        if seq.next_element::<de::IgnoredAny>()?.is_some() {
-            return Err(de::Error::invalid_length(4, &self));
+        let mut count = 3;
+        while seq.next_element::<de::IgnoredAny>()?.is_some() {
+            count += 1;
+        }
+        if count > 3 {
+            return Err(de::Error::invalid_length(count, &self));
         }
         Ok(Triple(out))
     }
 }
+
+/// Exactly `N` values written as an array (`toml` alone accepts longer arrays for Rust
+/// arrays, silently dropping the rest).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Exact<T, const N: usize>(pub [T; N]);
+
+impl<T: Copy + Default, const N: usize> Default for Exact<T, N> {
+    fn default() -> Self {
+        Exact([T::default(); N])
+    }
+}
+
+impl<'de, T: Deserialize<'de> + Copy + Default, const N: usize> Deserialize<'de> for Exact<T, N> {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_seq(ExactVisitor::<T, N>(std::marker::PhantomData))
+    }
+}
+
+struct ExactVisitor<T, const N: usize>(std::marker::PhantomData<T>);
+
+impl<'de, T: Deserialize<'de> + Copy + Default, const N: usize> Visitor<'de>
+    for ExactVisitor<T, N>
+{
+    type Value = Exact<T, N>;
+
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        write!(f, "an array of {N} elements")
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Exact<T, N>, A::Error> {
+        let mut out = [T::default(); N];
+        for (i, slot) in out.iter_mut().enumerate() {
+            *slot = seq
+                .next_element()?
+                .ok_or_else(|| de::Error::invalid_length(i, &self))?;
+        }
+        let mut count = N;
+        while seq.next_element::<de::IgnoredAny>()?.is_some() {
+            count += 1;
+        }
+        if count > N {
+            return Err(de::Error::invalid_length(count, &self));
+        }
+        Ok(Exact(out))
+    }
+}
+
+/// Three coordinates `[x, y, z]`.
+pub(super) type Coords = Exact<f32, 3>;
 
 /// How a texture's 8-bit values are decoded, as written in a scene file.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
@@ -134,11 +187,31 @@ mod tests {
     }
 
     #[test]
+    fn exact_arrays_reject_other_lengths() {
+        #[derive(Debug, serde::Deserialize)]
+        struct P {
+            p: Coords,
+            m: Exact<Exact<f32, 2>, 2>,
+        }
+        let ok: P = toml::from_str("p = [1, 2, 3]\nm = [[1, 2], [3, 4]]").unwrap();
+        assert_eq!(ok.p, Exact([1.0, 2.0, 3.0]));
+        assert_eq!(ok.m.0[1], Exact([3.0, 4.0]));
+        let long = toml::from_str::<P>("p = [1, 2, 3, 4]\nm = [[1, 2], [3, 4]]").unwrap_err();
+        assert!(
+            long.message()
+                .contains("invalid length 4, expected an array of 3 elements")
+        );
+        assert_eq!(long.span(), Some(4..16));
+        let short = toml::from_str::<P>("p = [1, 2, 3]\nm = [[1, 2], [3]]").unwrap_err();
+        assert!(short.message().contains("invalid length 1"));
+    }
+
+    #[test]
     fn wrong_lengths_and_fields_are_rejected() {
         let two = toml::from_str::<Doc>("a = [1, 2]\nb = 1\nt = \"x\"\nu = \"y\"");
         assert!(two.unwrap_err().message().contains("invalid length 2"));
         let four = toml::from_str::<Doc>("a = [1, 2, 3, 4]\nb = 1\nt = \"x\"\nu = \"y\"");
-        assert!(four.is_err());
+        assert!(four.unwrap_err().message().contains("invalid length 4"));
         let typo = toml::from_str::<Doc>("a = 1\nb = 1\nt = { fiel = \"x\" }\nu = \"y\"");
         assert!(typo.unwrap_err().message().contains("unknown field `fiel`"));
     }

@@ -42,7 +42,10 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
         material_ids: HashMap::new(),
         image_ids: HashMap::new(),
     };
-    let roots: Vec<_> = match document.default_scene().or_else(|| document.scenes().next()) {
+    let roots: Vec<_> = match document
+        .default_scene()
+        .or_else(|| document.scenes().next())
+    {
         Some(scene) => scene.nodes().collect(),
         None => {
             let children: Vec<usize> = document
@@ -219,8 +222,9 @@ impl Importer<'_> {
         if let Some(&i) = self.image_ids.get(&key) {
             return Ok(TextureSource::Embedded(i));
         }
-        let data = ::gltf::image::Data::from_source(image.source(), Some(self.folder), self.buffers)
-            .map_err(|e| format!("image {}: {e}", image.index()))?;
+        let data =
+            ::gltf::image::Data::from_source(image.source(), Some(self.folder), self.buffers)
+                .map_err(|e| format!("image {}: {e}", image.index()))?;
         let name = format!("{}#image{}", self.path.display(), image.index());
         let decoded = decode_image(&name, &data, space)?;
         self.out.embedded_textures.push(decoded);
@@ -257,7 +261,11 @@ fn triangles(mode: Mode, indices: &[u32]) -> Option<Vec<[u32; 3]>> {
 
 /// A decoded glTF image as a linear RGBA texture; colour channels are decoded per `space`,
 /// alpha is kept as stored.
-fn decode_image(name: &str, data: &::gltf::image::Data, space: ColorSpace) -> Result<Texture, String> {
+fn decode_image(
+    name: &str,
+    data: &::gltf::image::Data,
+    space: ColorSpace,
+) -> Result<Texture, String> {
     use ::gltf::image::Format;
     let (channels, bytes) = match data.format {
         Format::R8 => (1, 1),

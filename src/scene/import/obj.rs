@@ -23,7 +23,6 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     let (models, mtl) =
         tobj::load_obj(path, &options).map_err(|e| ImportError::invalid(path, e))?;
@@ -48,9 +47,8 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
     let mut mesh = PolygonMesh::default();
     let mut face_materials = Vec::new();
     for model in models {
-        let part = convert_mesh(&model.mesh).map_err(|e| {
-            ImportError::invalid(path, format!("object \"{}\": {e}", model.name))
-        })?;
+        let part = convert_mesh(&model.mesh)
+            .map_err(|e| ImportError::invalid(path, format!("object \"{}\": {e}", model.name)))?;
         let material = match model.mesh.material_id {
             Some(id) if id < materials.len() => Some(id as u32),
             _ => None,
