@@ -5,10 +5,10 @@
 //! otherwise; lengths in scene units (metres for photometric reports); colours are linear
 //! Rec.709 RGB; emission is radiance L in W·sr⁻¹·m⁻²; reflectance ρ ∈ [0, 1] per channel.
 
+pub mod accel;
 pub mod cli;
 pub mod color;
 pub mod geometry;
-pub mod scene;
-pub mod accel;
-pub mod trace;
 pub mod image;
+pub mod scene;
+pub mod trace;

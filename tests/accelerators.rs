@@ -4,7 +4,7 @@ use strahl::accel::{AccelKind, Accelerator};
 use strahl::geometry::Ray;
 use strahl::scene::builtin;
 use strahl::trace::SceneGeometry;
-use strahl::trace::sampler::{SequenceKind, Sampler};
+use strahl::trace::sampler::{Sampler, SequenceKind};
 use strahl::trace::sampling::uniform_sphere;
 
 fn random_rays(geometry: &SceneGeometry, count: usize, seed: u64) -> Vec<Ray> {
@@ -49,7 +49,10 @@ fn check_scene(spec: &str) {
             );
         }
     }
-    assert!(hits > 400, "{spec}: too few rays hit anything ({hits}) to test much");
+    assert!(
+        hits > 400,
+        "{spec}: too few rays hit anything ({hits}) to test much"
+    );
 }
 
 #[test]

@@ -46,8 +46,8 @@ fn render_with(world: &World, settings: &RenderSettings, threads: usize) -> Rend
 /// deliberate change of the standard ray tracer's output, and say why in the commit.
 #[test]
 fn cornell_matches_stored_reference_for_every_accelerator() {
-    let reference_path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/cornell_standard_48.pfm");
+    let reference_path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cornell_standard_48.pfm");
     let s = settings(48, 48, AntialiasMode::None);
     if std::env::var_os("STRAHL_WRITE_REFERENCE").is_some() {
         let out = render_with(&world("cornell", AccelKind::Bvh), &s, 2);
@@ -90,7 +90,11 @@ fn the_image_does_not_depend_on_the_thread_count() {
         let one = render_with(&w, &s, 1);
         for threads in [2, 3] {
             let many = render_with(&w, &s, threads);
-            assert_same(&many.film, &one.film, &format!("{aa:?} with {threads} threads"));
+            assert_same(
+                &many.film,
+                &one.film,
+                &format!("{aa:?} with {threads} threads"),
+            );
             assert_eq!(many.samples_traced, one.samples_traced);
         }
     }
@@ -104,7 +108,10 @@ fn adaptive_antialiasing_traces_each_grid_point_once() {
     let mut s = settings(width as u32, height as u32, AntialiasMode::Adaptive);
     s.adaptive_threshold = f32::INFINITY;
     let out = render_with(&w, &s, 2);
-    assert_eq!(out.samples_traced, (width + 1) * (height + 1) + width * height);
+    assert_eq!(
+        out.samples_traced,
+        (width + 1) * (height + 1) + width * height
+    );
     assert!(out.subdivisions.iter().all(|&c| c == 0));
     // Always subdividing to depth 4: squares of side 2 on a grid of 16 per pixel, so every
     // even grid point and every odd-odd centre, each once.
@@ -123,5 +130,8 @@ fn adaptive_antialiasing_subdivides_only_at_edges() {
     let out = render_with(&w, &settings(64, 64, AntialiasMode::Adaptive), 2);
     let subdivided = out.subdivisions.iter().filter(|&&c| c > 0).count();
     // Edges of walls, blocks and the light: a minority of pixels, but not none.
-    assert!(subdivided > 64 && subdivided < 64 * 64 / 2, "{subdivided} pixels subdivided");
+    assert!(
+        subdivided > 64 && subdivided < 64 * 64 / 2,
+        "{subdivided} pixels subdivided"
+    );
 }

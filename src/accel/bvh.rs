@@ -145,7 +145,11 @@ impl WideRay {
         let t1y = (n.max_y - self.origin[1]) * self.inv_dir[1];
         let t0z = (n.min_z - self.origin[2]) * self.inv_dir[2];
         let t1z = (n.max_z - self.origin[2]) * self.inv_dir[2];
-        let near = t0x.min(t1x).max(t0y.min(t1y)).max(t0z.min(t1z)).max(Vec4::ZERO);
+        let near = t0x
+            .min(t1x)
+            .max(t0y.min(t1y))
+            .max(t0z.min(t1z))
+            .max(Vec4::ZERO);
         // Widened by a few ulps so rounding never loses a primitive touching a box face.
         let far = t0x.max(t1x).min(t0y.max(t1y)).min(t0z.max(t1z)) * ROBUST_FAR;
         let mask = near.cmple(far) & near.cmple(Vec4::splat(t_max));
@@ -328,12 +332,14 @@ fn collapse(
 
 impl Builder<'_> {
     fn bounds_of(&self, start: usize, end: usize) -> (Aabb, Aabb) {
-        self.refs[start..end].iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), &r| {
-            (
-                b.union(self.bounds[r as usize]),
-                c.grow(self.centroids[r as usize]),
-            )
-        })
+        self.refs[start..end]
+            .iter()
+            .fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), &r| {
+                (
+                    b.union(self.bounds[r as usize]),
+                    c.grow(self.centroids[r as usize]),
+                )
+            })
     }
 
     fn push_leaf(&mut self, node: usize, bounds: Aabb, start: usize, end: usize) {
@@ -343,7 +349,8 @@ impl Builder<'_> {
     /// Builds the subtree over `refs[start..end]` and returns its node index.
     fn build_node(&mut self, start: usize, end: usize, depth: usize) -> usize {
         let node = self.nodes.len();
-        self.nodes.push(BinaryNode::new(Aabb::new(Vec3::ZERO, Vec3::ZERO), 0, 0));
+        self.nodes
+            .push(BinaryNode::new(Aabb::new(Vec3::ZERO, Vec3::ZERO), 0, 0));
         self.max_depth = self.max_depth.max(depth);
         let (bounds, centroid_bounds) = self.bounds_of(start, end);
         let count = end - start;

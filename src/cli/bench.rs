@@ -12,7 +12,7 @@ use super::{source, with_threads};
 use crate::accel::AccelKind;
 use crate::geometry::Ray;
 use crate::trace::World;
-use crate::trace::sampler::{SequenceKind, Sampler};
+use crate::trace::sampler::{Sampler, SequenceKind};
 use crate::trace::sampling::uniform_sphere;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
@@ -113,7 +113,10 @@ fn time_queries(rays: &[Ray], repeat: u32, query: impl Fn(&Ray) -> bool + Sync) 
     let mut hits = 0;
     for _ in 0..repeat.max(1) {
         let start = Instant::now();
-        hits = rays.par_chunks(4096).map(|c| c.iter().filter(|r| query(r)).count()).sum();
+        hits = rays
+            .par_chunks(4096)
+            .map(|c| c.iter().filter(|r| query(r)).count())
+            .sum();
         best = best.min(start.elapsed().as_secs_f64());
     }
     QueryResult {
@@ -136,7 +139,9 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         let closest = time_queries(&rays, args.repeat, |r| {
             world.accel.closest_hit(g, r, f32::INFINITY).is_some()
         });
-        let any = time_queries(&rays, args.repeat, |r| world.accel.any_hit(g, r, f32::INFINITY));
+        let any = time_queries(&rays, args.repeat, |r| {
+            world.accel.any_hit(g, r, f32::INFINITY)
+        });
         (closest, any)
     })?;
     let result = BenchResult {

@@ -44,7 +44,11 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         world.geometry.triangle_count(),
         world.geometry.analytic_count()
     );
-    println!("materials   {}, textures {}", scene.materials.len(), scene.textures.len());
+    println!(
+        "materials   {}, textures {}",
+        scene.materials.len(),
+        scene.textures.len()
+    );
     let mut lights: BTreeMap<&str, usize> = BTreeMap::new();
     for l in &scene.lights {
         let k = match l.kind {
@@ -60,11 +64,20 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     light_list.push(format!(
         "{} area (emissive objects, {} triangles, {area:.6} units²)",
         world.lights.area.len(),
-        world.lights.area.iter().map(|l| l.prims.len()).sum::<usize>()
+        world
+            .lights
+            .area
+            .iter()
+            .map(|l| l.prims.len())
+            .sum::<usize>()
     ));
     println!("lights      {}", light_list.join(", "));
     let b = world.geometry.bounds();
-    println!("bounds      {:?} .. {:?}", b.min.to_array(), b.max.to_array());
+    println!(
+        "bounds      {:?} .. {:?}",
+        b.min.to_array(),
+        b.max.to_array()
+    );
     let s = world.accel.stats();
     println!(
         "{:<11} built in {:.3} s: {} nodes, {} leaves, depth {}, {} primitive references",

@@ -19,9 +19,11 @@ impl Bar {
             ProgressBar::new(0)
         };
         bar.set_style(
-            ProgressStyle::with_template("{msg:12} [{bar:40}] {percent:>3}% {elapsed_precise} (eta {eta})")
-                .unwrap_or_else(|_| ProgressStyle::default_bar())
-                .progress_chars("=> "),
+            ProgressStyle::with_template(
+                "{msg:12} [{bar:40}] {percent:>3}% {elapsed_precise} (eta {eta})",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> "),
         );
         bar.set_message(label.to_string());
         Bar { bar }

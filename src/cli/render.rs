@@ -2,16 +2,16 @@
 
 use super::{progress, source, with_threads};
 use crate::accel::AccelKind;
+use crate::color::Rgb;
 use crate::image::{self, Film, ToneMap, ToneMapping};
 use crate::trace::antialias::AntialiasMode;
 use crate::trace::direct::ShadowMode;
 use crate::trace::render::{RenderSettings, render};
 use crate::trace::sampler::SequenceKind;
 use crate::trace::{StandardRayTracer, World};
-use crate::color::Rgb;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Rendering methods.
@@ -95,8 +95,17 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         bail!("the image size must be at least 1×1 (got {width}×{height})");
     }
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
-    if world.scene.camera.with_resolution(width, height).rays().is_none() {
-        bail!("the camera of '{}' is degenerate (look_at equals position, up parallel to the view, or fov outside 0–180°)", args.scene);
+    if world
+        .scene
+        .camera
+        .with_resolution(width, height)
+        .rays()
+        .is_none()
+    {
+        bail!(
+            "the camera of '{}' is degenerate (look_at equals position, up parallel to the view, or fov outside 0–180°)",
+            args.scene
+        );
     }
     let settings = RenderSettings {
         width,
@@ -135,7 +144,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             width,
             height,
             output.samples_traced,
-            if output.complete { "" } else { " (interrupted: partial image)" }
+            if output.complete {
+                ""
+            } else {
+                " (interrupted: partial image)"
+            }
         );
     }
     Ok(())
@@ -143,7 +156,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 
 /// Writes the subdivision counts as a grey image: black = never subdivided, white = the
 /// most-subdivided pixel.
-fn save_subdivision_map(counts: &[u32], width: u32, height: u32, path: &PathBuf) -> Result<()> {
+fn save_subdivision_map(counts: &[u32], width: u32, height: u32, path: &Path) -> Result<()> {
     let max = counts.iter().copied().max().unwrap_or(0).max(1) as f32;
     let pixels = counts.iter().map(|&c| Rgb::splat(c as f32 / max)).collect();
     let film = Film::from_pixels(width, height, pixels).context("subdivision map size")?;

@@ -137,13 +137,21 @@ mod tests {
     fn ray_interval_hits_and_misses() {
         let b = Aabb::new(Vec3::splat(-1.0), Vec3::splat(1.0));
         let ray = Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X);
-        let (t0, t1) = b.ray_interval(&ray, ray.dir.recip(), f32::INFINITY).unwrap();
+        let (t0, t1) = b
+            .ray_interval(&ray, ray.dir.recip(), f32::INFINITY)
+            .unwrap();
         assert!((t0 - 4.0).abs() < 1e-6 && (t1 - 6.0).abs() < 1e-6);
         let miss = Ray::new(Vec3::new(-5.0, 2.0, 0.0), Vec3::X);
-        assert!(b.ray_interval(&miss, miss.dir.recip(), f32::INFINITY).is_none());
+        assert!(
+            b.ray_interval(&miss, miss.dir.recip(), f32::INFINITY)
+                .is_none()
+        );
         // Parallel to a slab, inside it: infinities must not produce NaN misses.
         let inside = Ray::new(Vec3::new(-5.0, 0.5, 0.5), Vec3::X);
-        assert!(b.ray_interval(&inside, inside.dir.recip(), f32::INFINITY).is_some());
+        assert!(
+            b.ray_interval(&inside, inside.dir.recip(), f32::INFINITY)
+                .is_some()
+        );
     }
 
     #[test]

@@ -55,7 +55,12 @@ impl UnitFrustum {
         if d.z != 0.0 {
             let caps = [
                 (self.bottom_cap, 0.0, 1.0, BOTTOM),
-                (self.top_cap && self.top_radius > 0.0, 1.0, self.top_radius, TOP),
+                (
+                    self.top_cap && self.top_radius > 0.0,
+                    1.0,
+                    self.top_radius,
+                    TOP,
+                ),
             ];
             for (present, z, radius, part) in caps {
                 if present {
@@ -143,7 +148,11 @@ mod tests {
             ..CYLINDER
         };
         assert!(open.intersect(&top, f32::INFINITY).is_none());
-        assert!(CYLINDER.intersect(&Ray::new(Vec3::new(-3.0, 0.0, 1.5), Vec3::X), 9.0).is_none());
+        assert!(
+            CYLINDER
+                .intersect(&Ray::new(Vec3::new(-3.0, 0.0, 1.5), Vec3::X), 9.0)
+                .is_none()
+        );
     }
 
     #[test]
@@ -155,7 +164,10 @@ mod tests {
         let expected = Vec3::new(-1.0, 0.0, 1.0).normalize();
         assert!((n - expected).length() < 1e-5);
         // Above the apex the lower nappe's mirror must not be hit.
-        assert!(CONE.intersect(&Ray::new(Vec3::new(-3.0, 0.0, 1.5), Vec3::X), 9.0).is_none());
+        assert!(
+            CONE.intersect(&Ray::new(Vec3::new(-3.0, 0.0, 1.5), Vec3::X), 9.0)
+                .is_none()
+        );
     }
 
     #[test]

@@ -39,11 +39,7 @@ pub(crate) fn quadratic_roots(a: f32, b: f32, c: f32) -> Option<(f32, f32)> {
         return None;
     }
     let q = -0.5 * (b + b.signum() * disc.sqrt());
-    let (r0, r1) = if q == 0.0 {
-        (0.0, 0.0)
-    } else {
-        (q / a, c / q)
-    };
+    let (r0, r1) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
     Some(if r0 <= r1 {
         (r0 as f32, r1 as f32)
     } else {

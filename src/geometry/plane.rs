@@ -31,8 +31,14 @@ mod tests {
 
     #[test]
     fn hits_from_both_sides_and_misses_parallel() {
-        assert_eq!(intersect(&Ray::new(Vec3::new(1.0, 2.0, 3.0), -Vec3::Z), 10.0), Some(3.0));
-        assert_eq!(intersect(&Ray::new(Vec3::new(0.0, 0.0, -2.0), Vec3::Z), 10.0), Some(2.0));
+        assert_eq!(
+            intersect(&Ray::new(Vec3::new(1.0, 2.0, 3.0), -Vec3::Z), 10.0),
+            Some(3.0)
+        );
+        assert_eq!(
+            intersect(&Ray::new(Vec3::new(0.0, 0.0, -2.0), Vec3::Z), 10.0),
+            Some(2.0)
+        );
         assert!(intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::X), 10.0).is_none());
         assert!(intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::Z), 10.0).is_none());
     }

@@ -40,7 +40,11 @@ pub fn surface_offset(p: Vec3) -> f32 {
 /// direction `dir`: `p` moved along `±n` to the side `dir` points into.
 pub fn offset_origin(p: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
     let d = surface_offset(p);
-    if n.dot(dir) >= 0.0 { p + n * d } else { p - n * d }
+    if n.dot(dir) >= 0.0 {
+        p + n * d
+    } else {
+        p - n * d
+    }
 }
 
 /// A ray leaving surface point `p` (geometric normal `n`) in direction `dir`.

@@ -1,7 +1,7 @@
 //! The unit sphere at the origin (object space of every sphere).
 
-use super::local_hit::{LocalHit, quadratic_first_root};
 use super::Ray;
+use super::local_hit::{LocalHit, quadratic_first_root};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 

@@ -82,12 +82,18 @@ mod tests {
     fn hits_inside_from_both_sides() {
         let t = tri();
         let (th, b1, b2) = t
-            .intersect(&Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z), f32::INFINITY)
+            .intersect(
+                &Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z),
+                f32::INFINITY,
+            )
             .unwrap();
         assert!((th - 1.0).abs() < 1e-6 && (b1 - 0.25).abs() < 1e-6 && (b2 - 0.25).abs() < 1e-6);
         assert!(
-            t.intersect(&Ray::new(Vec3::new(0.25, 0.25, -1.0), Vec3::Z), f32::INFINITY)
-                .is_some()
+            t.intersect(
+                &Ray::new(Vec3::new(0.25, 0.25, -1.0), Vec3::Z),
+                f32::INFINITY
+            )
+            .is_some()
         );
         assert!(t.normal_area2().z > 0.0);
         assert!((t.area() - 0.5).abs() < 1e-6);
@@ -97,10 +103,22 @@ mod tests {
     fn misses_outside_behind_and_beyond_t_max() {
         let t = tri();
         let down = -Vec3::Z;
-        assert!(t.intersect(&Ray::new(Vec3::new(0.6, 0.6, 1.0), down), 10.0).is_none());
-        assert!(t.intersect(&Ray::new(Vec3::new(0.25, 0.25, -1.0), down), 10.0).is_none());
-        assert!(t.intersect(&Ray::new(Vec3::new(0.25, 0.25, 1.0), down), 0.5).is_none());
+        assert!(
+            t.intersect(&Ray::new(Vec3::new(0.6, 0.6, 1.0), down), 10.0)
+                .is_none()
+        );
+        assert!(
+            t.intersect(&Ray::new(Vec3::new(0.25, 0.25, -1.0), down), 10.0)
+                .is_none()
+        );
+        assert!(
+            t.intersect(&Ray::new(Vec3::new(0.25, 0.25, 1.0), down), 0.5)
+                .is_none()
+        );
         // A ray in the triangle's plane never hits.
-        assert!(t.intersect(&Ray::new(Vec3::new(-1.0, 0.2, 0.0), Vec3::X), 10.0).is_none());
+        assert!(
+            t.intersect(&Ray::new(Vec3::new(-1.0, 0.2, 0.0), Vec3::X), 10.0)
+                .is_none()
+        );
     }
 }

@@ -12,7 +12,6 @@ use crate::color::Rgb;
 /// before compression.
 pub const REINHARD_KEY: f32 = 0.18;
 
-
 /// A tone-mapping operator.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum ToneMap {
@@ -207,7 +206,12 @@ mod tests {
     #[test]
     fn auto_puts_the_log_average_at_middle_grey() {
         // Luminances 1, 2 and 4 (log-average 2) plus black pixels that do not count.
-        let f = film(vec![Rgb::splat(1.0), Rgb::splat(2.0), Rgb::splat(4.0), Rgb::BLACK]);
+        let f = film(vec![
+            Rgb::splat(1.0),
+            Rgb::splat(2.0),
+            Rgb::splat(4.0),
+            Rgb::BLACK,
+        ]);
         let out = mapping(ToneMap::Auto, 0.0).apply(&f);
         assert_close(out[1], Rgb::splat(0.18), 1e-6);
         assert_close(out[2], Rgb::splat(0.36), 1e-6);

@@ -97,6 +97,13 @@ mod tests {
         assert!(top.y > 0.0);
         // Right-handed, y up, looking along +z: image right is world -x.
         assert!(rays.ray(100.0, 50.0).dir.x < 0.0);
-        assert!(Camera { look_at: Vec3::ZERO, ..cam.clone() }.rays().is_none());
+        assert!(
+            Camera {
+                look_at: Vec3::ZERO,
+                ..cam.clone()
+            }
+            .rays()
+            .is_none()
+        );
     }
 }

@@ -76,7 +76,10 @@ mod tests {
     #[test]
     fn spot_falloff_is_one_inside_zero_outside_monotone_between() {
         assert_eq!(LightKind::spot_falloff(1.0, 20.0, 30.0), 1.0);
-        assert_eq!(LightKind::spot_falloff(35f32.to_radians().cos(), 20.0, 30.0), 0.0);
+        assert_eq!(
+            LightKind::spot_falloff(35f32.to_radians().cos(), 20.0, 30.0),
+            0.0
+        );
         let a = LightKind::spot_falloff(22f32.to_radians().cos(), 20.0, 30.0);
         let b = LightKind::spot_falloff(28f32.to_radians().cos(), 20.0, 30.0);
         assert!(a > b && a < 1.0 && b > 0.0);

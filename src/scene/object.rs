@@ -129,23 +129,42 @@ impl Shape {
         match *self {
             Shape::Sphere { center, radius } => Some((
                 AnalyticKind::Sphere,
-                Transform::from_matrix(Mat4::from_translation(center) * Mat4::from_scale(Vec3::splat(radius)))?,
+                Transform::from_matrix(
+                    Mat4::from_translation(center) * Mat4::from_scale(Vec3::splat(radius)),
+                )?,
             )),
             Shape::Box { min, max } => Some((
                 AnalyticKind::Cube,
                 Transform::from_matrix(Mat4::from_translation(min) * Mat4::from_scale(max - min))?,
             )),
-            Shape::Cylinder { base, top, radius, caps } => {
-                frustum(base, top, radius, radius, caps, caps)
-            }
-            Shape::Cone { base, apex, radius, cap } => frustum(base, apex, radius, 0.0, cap, false),
-            Shape::Frustum { base, top, base_radius, top_radius, caps } => {
-                frustum(base, top, base_radius, top_radius, caps, caps)
-            }
+            Shape::Cylinder {
+                base,
+                top,
+                radius,
+                caps,
+            } => frustum(base, top, radius, radius, caps, caps),
+            Shape::Cone {
+                base,
+                apex,
+                radius,
+                cap,
+            } => frustum(base, apex, radius, 0.0, cap, false),
+            Shape::Frustum {
+                base,
+                top,
+                base_radius,
+                top_radius,
+                caps,
+            } => frustum(base, top, base_radius, top_radius, caps, caps),
             Shape::Plane { point, normal } => {
                 let n = normal.try_normalize()?;
                 let (s, t) = n.any_orthonormal_pair();
-                let m = Mat4::from_cols(s.extend(0.0), t.extend(0.0), n.extend(0.0), point.extend(1.0));
+                let m = Mat4::from_cols(
+                    s.extend(0.0),
+                    t.extend(0.0),
+                    n.extend(0.0),
+                    point.extend(1.0),
+                );
                 Some((AnalyticKind::Plane, Transform::from_matrix(m)?))
             }
             _ => None,
@@ -156,7 +175,10 @@ impl Shape {
     pub fn is_analytic(&self) -> bool {
         !matches!(
             self,
-            Shape::Triangle { .. } | Shape::Polygon { .. } | Shape::Parallelogram { .. } | Shape::Mesh(_)
+            Shape::Triangle { .. }
+                | Shape::Polygon { .. }
+                | Shape::Parallelogram { .. }
+                | Shape::Mesh(_)
         )
     }
 

@@ -31,7 +31,10 @@ impl Shape {
                 edge_v,
             } => {
                 let (o, u, v) = (*origin, *edge_u, *edge_v);
-                Cow::Owned(single_face(vec![o, o + u, o + u + v, o + v], unit_square().to_vec()))
+                Cow::Owned(single_face(
+                    vec![o, o + u, o + u + v, o + v],
+                    unit_square().to_vec(),
+                ))
             }
             Shape::Plane { .. } => return Err("an infinite plane cannot be tessellated".into()),
             _ => {
@@ -87,8 +90,12 @@ fn default_polygon_uvs(vertices: &[Vec3]) -> Vec<Vec2> {
         .iter()
         .map(|p| Vec2::new((p - vertices[0]).dot(s), (p - vertices[0]).dot(t)))
         .collect();
-    let lo = coords.iter().fold(Vec2::splat(f32::INFINITY), |a, &c| a.min(c));
-    let hi = coords.iter().fold(Vec2::splat(f32::NEG_INFINITY), |a, &c| a.max(c));
+    let lo = coords
+        .iter()
+        .fold(Vec2::splat(f32::INFINITY), |a, &c| a.min(c));
+    let hi = coords
+        .iter()
+        .fold(Vec2::splat(f32::NEG_INFINITY), |a, &c| a.max(c));
     let size = (hi - lo).max(Vec2::splat(f32::MIN_POSITIVE));
     coords.iter().map(|&c| (c - lo) / size).collect()
 }
@@ -124,7 +131,11 @@ fn unit_sphere(segments: u32) -> PolygonMesh {
         for seg in 0..=segments {
             let u = seg as f32 / segments as f32;
             let phi = 2.0 * PI * (u - 0.5);
-            let p = Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin());
+            let p = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            );
             mesh.positions.push(p);
             mesh.normals.as_mut().unwrap().push(p);
             mesh.uvs.as_mut().unwrap().push(Vec2::new(u, v));
@@ -165,7 +176,12 @@ fn unit_cube() -> PolygonMesh {
                 p
             };
             let base = mesh.positions.len() as u32;
-            let mut quad = [corner(0.0, 0.0), corner(1.0, 0.0), corner(1.0, 1.0), corner(0.0, 1.0)];
+            let mut quad = [
+                corner(0.0, 0.0),
+                corner(1.0, 0.0),
+                corner(1.0, 1.0),
+                corner(0.0, 1.0),
+            ];
             let mut quad_uvs = unit_square();
             // (u, v) axes are cyclic, so their cross product points along +axis; flip the low face.
             if side == 0 {
@@ -292,6 +308,13 @@ mod tests {
         let m = quad.to_mesh(3).unwrap();
         assert_eq!(m.positions[2], Vec3::new(1.0, 0.0, 2.0));
         assert_eq!(m.uvs.as_ref().unwrap()[2], Vec2::ONE);
-        assert!(Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }.to_mesh(8).is_err());
+        assert!(
+            Shape::Plane {
+                point: Vec3::ZERO,
+                normal: Vec3::Y
+            }
+            .to_mesh(8)
+            .is_err()
+        );
     }
 }

@@ -6,7 +6,7 @@
 //!   depth 4. Samples sit on a fixed grid of [`ADAPTIVE_GRID`] units per pixel side and are
 //!   cached, so no grid point is traced twice — not across pixels, rows or threads.
 
-use super::sampler::{SequenceKind, Sampler, hash64};
+use super::sampler::{Sampler, SequenceKind, hash64};
 use super::{Integrator, World};
 use crate::color::Rgb;
 use crate::scene::CameraRays;
@@ -59,7 +59,12 @@ impl SampleContext<'_> {
 
     /// Pixel value with no antialiasing.
     pub fn centre(&self, px: u32, py: u32, width: u32) -> Rgb {
-        self.trace(px as f32 + 0.5, py as f32 + 0.5, pixel_stream(px, py, width), 0)
+        self.trace(
+            px as f32 + 0.5,
+            py as f32 + 0.5,
+            pixel_stream(px, py, width),
+            0,
+        )
     }
 
     /// Pixel value from `samples` camera samples: jittered `n × n` strata (n = ⌈√samples⌉)

@@ -78,7 +78,12 @@ pub fn phong_lobe(n: Vec3, wo: Vec3, wi: Vec3, shininess: f32) -> f32 {
 /// Radiance emitted by `hit` back along the ray that found it (front face only unless the
 /// material is two-sided), emission texture applied.
 pub fn emitted(scene: &Scene, hit: &SurfaceHit) -> Rgb {
-    emitted_toward(scene, &scene.materials[hit.material as usize], hit.uv, hit.front_face)
+    emitted_toward(
+        scene,
+        &scene.materials[hit.material as usize],
+        hit.uv,
+        hit.front_face,
+    )
 }
 
 /// Radiance emitted by material `m` at texture coordinate `uv` toward the front
@@ -159,8 +164,13 @@ mod tests {
                 let theta = (i as f32 + 0.5) / steps as f32 * PI / 2.0;
                 for j in 0..steps {
                     let phi = (j as f32 + 0.5) / steps as f32 * 2.0 * PI;
-                    let wi = Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
-                    let d_omega = theta.sin() * (PI / 2.0 / steps as f32) * (2.0 * PI / steps as f32);
+                    let wi = Vec3::new(
+                        theta.sin() * phi.cos(),
+                        theta.sin() * phi.sin(),
+                        theta.cos(),
+                    );
+                    let d_omega =
+                        theta.sin() * (PI / 2.0 / steps as f32) * (2.0 * PI / steps as f32);
                     sum += phong_lobe(n, n, wi, s) * wi.z * d_omega;
                 }
             }

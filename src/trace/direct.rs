@@ -99,7 +99,8 @@ pub fn direct_light(
                 let d = position - x;
                 let dist2 = d.length_squared();
                 let wi = d / dist2.sqrt();
-                let falloff = LightKind::spot_falloff(-wi.dot(direction), inner_degrees, outer_degrees);
+                let falloff =
+                    LightKind::spot_falloff(-wi.dot(direction), inner_degrees, outer_degrees);
                 (wi, dist2.sqrt(), intensity * (falloff / dist2))
             }
             LightKind::Directional {

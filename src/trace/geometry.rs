@@ -115,10 +115,9 @@ impl SceneGeometry {
                 Some((kind, placement)) if !tessellate_emitter => {
                     let to_world = placement.then(&object.transform);
                     let bounds = match kind {
-                        AnalyticKind::Plane => Aabb::new(
-                            Vec3::splat(f32::NEG_INFINITY),
-                            Vec3::splat(f32::INFINITY),
-                        ),
+                        AnalyticKind::Plane => {
+                            Aabb::new(Vec3::splat(f32::NEG_INFINITY), Vec3::splat(f32::INFINITY))
+                        }
                         AnalyticKind::Sphere => {
                             Aabb::new(Vec3::splat(-1.0), Vec3::ONE).transformed(&to_world.to_world)
                         }
@@ -139,13 +138,13 @@ impl SceneGeometry {
                     });
                 }
                 None if object.shape.is_analytic() => {
-                    return Err(degenerate(format!("degenerate {}", object.shape.kind_name())));
+                    return Err(degenerate(format!(
+                        "degenerate {}",
+                        object.shape.kind_name()
+                    )));
                 }
                 _ => {
-                    let mesh = object
-                        .shape
-                        .to_mesh(EMITTER_SEGMENTS)
-                        .map_err(degenerate)?;
+                    let mesh = object.shape.to_mesh(EMITTER_SEGMENTS).map_err(degenerate)?;
                     mesh.validate().map_err(degenerate)?;
                     g.add_mesh(index as u32, object.material, &mesh, &object.transform);
                 }
@@ -169,10 +168,7 @@ impl SceneGeometry {
                 .collect()
         });
         for (face, indices) in mesh.faces().enumerate() {
-            let face_material = mesh
-                .face_materials
-                .as_ref()
-                .map_or(material, |m| m[face]);
+            let face_material = mesh.face_materials.as_ref().map_or(material, |m| m[face]);
             for k in 1..indices.len() - 1 {
                 let mut corner = [indices[0], indices[k], indices[k + 1]];
                 if flip {
@@ -183,9 +179,10 @@ impl SceneGeometry {
                 if tri.area() <= 0.0 {
                     continue;
                 }
-                let uvs = mesh.uvs.as_ref().map_or([Vec2::ZERO, Vec2::X, Vec2::Y], |u| {
-                    [u[a], u[b], u[c]]
-                });
+                let uvs = mesh
+                    .uvs
+                    .as_ref()
+                    .map_or([Vec2::ZERO, Vec2::X, Vec2::Y], |u| [u[a], u[b], u[c]]);
                 let normals = match &normals {
                     Some(n) if [n[a], n[b], n[c]].iter().all(|v| *v != Vec3::ZERO) => {
                         self.shading_normals.push([n[a], n[b], n[c]]);
@@ -248,11 +245,16 @@ impl SceneGeometry {
     fn cut_away(&self, material: MaterialId, uv: impl FnOnce() -> Vec2) -> bool {
         self.any_alpha
             && self.alpha[material as usize]
-            .as_ref()
-            .is_some_and(|t| t.alpha(uv()) < ALPHA_CUTOFF)
+                .as_ref()
+                .is_some_and(|t| t.alpha(uv()) < ALPHA_CUTOFF)
     }
 
-    fn intersect_shape(&self, shape: &AnalyticInstance, ray: &Ray, t_max: f32) -> Option<(f32, u32)> {
+    fn intersect_shape(
+        &self,
+        shape: &AnalyticInstance,
+        ray: &Ray,
+        t_max: f32,
+    ) -> Option<(f32, u32)> {
         let local = shape.to_world.ray_to_object(ray);
         match shape.kind {
             AnalyticKind::Sphere => sphere::intersect(&local, t_max).map(|t| (t, 0)),

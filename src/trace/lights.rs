@@ -60,7 +60,9 @@ impl LightSet {
             if !m.is_emissive() {
                 continue;
             }
-            let tri = geometry.triangle(prim).expect("index below the triangle count");
+            let tri = geometry
+                .triangle(prim)
+                .expect("index below the triangle count");
             let a = tri.area();
             let mean_emission = match m.emission_texture {
                 Some(t) => m.emission * scene.textures[t as usize].mean_color(),
@@ -115,7 +117,10 @@ impl LightSet {
         u: Vec2,
     ) -> AreaSample {
         let l = &self.area[light];
-        let i = l.cdf.partition_point(|&c| c <= u_pick).min(l.prims.len() - 1);
+        let i = l
+            .cdf
+            .partition_point(|&c| c <= u_pick)
+            .min(l.prims.len() - 1);
         let prim = l.prims[i];
         let (b1, b2) = uniform_triangle(u);
         let at = geometry.point_on_triangle(prim, b1, b2);

@@ -171,7 +171,11 @@ pub fn render(
             let samples = match settings.antialias {
                 AntialiasMode::None => n as u64,
                 AntialiasMode::Stochastic => {
-                    n as u64 * u64::from(stochastic_count(settings.samples_per_pixel, settings.sequence))
+                    n as u64
+                        * u64::from(stochastic_count(
+                            settings.samples_per_pixel,
+                            settings.sequence,
+                        ))
                 }
                 AntialiasMode::Adaptive => cache.traced,
             };
