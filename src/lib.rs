@@ -10,5 +10,7 @@ pub mod cli;
 pub mod color;
 pub mod geometry;
 pub mod image;
+pub mod radiosity;
+pub mod report;
 pub mod scene;
 pub mod trace;

@@ -234,16 +234,12 @@ impl Bvh {
         }
         let wide_ray = WideRay::new(ray);
         let mut limit = best.map_or(t_max, |b| b.t);
-        // Children waiting: (child, count, entry parameter).
-        let mut stack = [(0u32, 0u32, 0f32); STACK_SIZE];
-        stack[0] = (0, 0, 0.0);
-        let mut sp = 1usize;
-        while sp > 0 {
-            sp -= 1;
-            let (child, count, t_entry) = stack[sp];
-            if t_entry > limit {
-                continue;
-            }
+        // Children waiting: (child, count, entry parameter); uninitialised beyond `sp`.
+        let mut stack = [std::mem::MaybeUninit::<Entry>::uninit(); STACK_SIZE];
+        let mut sp = 0usize;
+        let mut current: Entry = (0, 0, 0.0);
+        loop {
+            let (child, count, _) = current;
             if count > 0 {
                 let first = child as usize;
                 for &prim in &self.refs[first..first + count as usize] {
@@ -257,31 +253,56 @@ impl Bvh {
                         }
                     }
                 }
-                continue;
-            }
-            let node = &self.nodes[child as usize];
-            let (near, mut mask) = wide_ray.test(node, limit);
-            // Push hit children farthest first so the nearest is visited next.
-            let start = sp;
-            while mask != 0 {
-                let slot = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let entry = (node.child[slot], node.count[slot], near[slot]);
-                if entry.1 == EMPTY {
+            } else {
+                let node = &self.nodes[child as usize];
+                let (near, mut mask) = wide_ray.test(node, limit);
+                // The hit children, sorted farthest first.
+                let mut hits = [(0u32, 0u32, 0f32); 4];
+                let mut n = 0;
+                while mask != 0 {
+                    let slot = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    if node.count[slot] == EMPTY {
+                        continue;
+                    }
+                    let entry = (node.child[slot], node.count[slot], near[slot]);
+                    let mut k = n;
+                    while k > 0 && hits[k - 1].2 < entry.2 {
+                        hits[k] = hits[k - 1];
+                        k -= 1;
+                    }
+                    hits[k] = entry;
+                    n += 1;
+                }
+                if n > 0 {
+                    for &entry in &hits[..n - 1] {
+                        stack[sp].write(entry);
+                        sp += 1;
+                    }
+                    current = hits[n - 1];
                     continue;
                 }
-                let mut k = sp;
-                while k > start && stack[k - 1].2 < entry.2 {
-                    stack[k] = stack[k - 1];
-                    k -= 1;
+            }
+            // Pop the nearest waiting child that still starts before the closest hit.
+            loop {
+                if sp == 0 {
+                    return best;
                 }
-                stack[k] = entry;
-                sp += 1;
+                sp -= 1;
+                // SAFETY: every slot below `sp` was written before `sp` moved past it.
+                let entry = unsafe { stack[sp].assume_init() };
+                if entry.2 <= limit {
+                    current = entry;
+                    break;
+                }
             }
         }
-        best
     }
 }
+
+/// A child waiting for traversal: (wide node or first reference, reference count (0 for an
+/// inner node), ray parameter where the ray enters its box).
+type Entry = (u32, u32, f32);
 
 /// Turns the binary subtree at `node` into wide nodes appended to `wide`; returns the index
 /// of its wide root. Each wide node takes the binary children of `node` and keeps opening the

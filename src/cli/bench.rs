@@ -4,7 +4,8 @@
 //! Ray sets (reproducible by any kernel):
 //! - `primary`: a pinhole image 1024 pixels wide (height by the camera's aspect) from the
 //!   scene camera, one ray through each pixel centre; for a bare mesh file the camera sits at
-//!   the centre of the mesh bounds looking along +x with a 90° vertical field of view;
+//!   the centre of the mesh bounds looking along +x with a 90° vertical field of view. Rays
+//!   are traced tile by tile (16 × 16 pixels), as the renderer does;
 //! - `random`: 2²⁰ rays with origins uniform in the scene bounds and directions uniform on
 //!   the sphere, from a fixed seed.
 
@@ -22,6 +23,8 @@ use std::time::Instant;
 
 /// Width of the primary-ray image.
 pub const PRIMARY_WIDTH: u32 = 1024;
+/// Side of the square tiles primary rays are traced in.
+const TILE: u32 = 16;
 /// Number of random rays.
 pub const RANDOM_RAYS: usize = 1 << 20;
 
@@ -86,8 +89,14 @@ pub fn ray_set(world: &World, set: RaySet) -> Result<Vec<Ray>> {
                 .with_resolution(PRIMARY_WIDTH, height)
                 .rays()
                 .context("the camera is degenerate")?;
-            (0..height)
-                .flat_map(|y| (0..PRIMARY_WIDTH).map(move |x| (x, y)))
+            let tiles_x = PRIMARY_WIDTH.div_ceil(TILE);
+            (0..height.div_ceil(TILE) * tiles_x)
+                .flat_map(|tile| {
+                    let (x0, y0) = (tile % tiles_x * TILE, tile / tiles_x * TILE);
+                    (y0..(y0 + TILE).min(height)).flat_map(move |y| {
+                        (x0..(x0 + TILE).min(PRIMARY_WIDTH)).map(move |x| (x, y))
+                    })
+                })
                 .map(|(x, y)| rays.ray(x as f32 + 0.5, y as f32 + 0.5))
                 .collect()
         }

@@ -1,9 +1,10 @@
-//! The `strahl` command line: `render`, `scenes`, `info` and `bench`.
+//! The `strahl` command line: `render`, `solve`, `scenes`, `info` and `bench`.
 
 mod bench;
 mod info;
 mod progress;
 mod render;
+mod solve;
 mod source;
 
 use clap::{Parser, Subcommand};
@@ -22,6 +23,8 @@ pub struct Cli {
 pub enum Command {
     /// Render an image of a scene.
     Render(render::RenderArgs),
+    /// Compute the light on every object and write a per-object report.
+    Solve(solve::SolveArgs),
     /// List the built-in scenes.
     Scenes,
     /// Validate a scene and print its statistics.
@@ -35,6 +38,7 @@ pub fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
+        Command::Solve(args) => solve::run(&args),
         Command::Scenes => {
             for (name, description) in crate::scene::builtin::names() {
                 println!("{name:18} {description}");

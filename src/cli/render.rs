@@ -6,19 +6,23 @@ use crate::color::Rgb;
 use crate::image::{self, Film, ToneMap, ToneMapping};
 use crate::trace::antialias::AntialiasMode;
 use crate::trace::direct::ShadowMode;
+use crate::trace::progressive::{ProgressiveSettings, render_progressive};
 use crate::trace::render::{RenderSettings, render};
 use crate::trace::sampler::SequenceKind;
-use crate::trace::{StandardRayTracer, World};
+use crate::trace::{PathTracer, StandardRayTracer, World};
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Rendering methods.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Method {
     /// The standard (Whitted-style) ray tracer: direct light, ideal reflection and refraction.
     Raytrace,
+    /// Unbiased Monte Carlo path tracing with next-event estimation and multiple importance
+    /// sampling, rendered in progressive passes.
+    Pathtrace,
 }
 
 /// Arguments of `strahl render`.
@@ -38,16 +42,25 @@ pub struct RenderArgs {
     /// Image height in pixels (default: the scene camera's).
     #[arg(long)]
     pub height: Option<u32>,
-    /// Camera samples per pixel for stochastic antialiasing (rounded up to a square).
-    #[arg(long, default_value_t = 4)]
-    pub spp: u32,
-    /// Reflection/refraction recursion depth (0 turns reflections and refractions off).
-    #[arg(long, default_value_t = 6)]
-    pub depth: u32,
-    /// Shadow rays per area light and for the sky at every shading point.
+    /// Samples per pixel: camera samples for stochastic antialiasing with raytrace (rounded up
+    /// to a square; default 4), paths per pixel with pathtrace (default 64).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// raytrace: reflection/refraction recursion depth (0 turns them off; default 6).
+    /// pathtrace: maximum scattering events per path (1 = direct light only; default
+    /// unbounded, paths ended by Russian roulette from bounce 5).
+    #[arg(long)]
+    pub depth: Option<u32>,
+    /// pathtrace: paths branching from the first hit of each camera ray.
+    #[arg(long)]
+    pub first_hit_paths: Option<u32>,
+    /// pathtrace: stop after the last pass of samples that fits in this many seconds.
+    #[arg(long)]
+    pub time_limit: Option<f64>,
+    /// raytrace: shadow rays per area light and for the sky at every shading point.
     #[arg(long, default_value_t = 16)]
     pub light_samples: u32,
-    /// Antialiasing method.
+    /// raytrace: antialiasing method (pathtrace always jitters its samples over the pixel).
     #[arg(long, value_enum, default_value_t = AntialiasMode::Stochastic)]
     pub aa: AntialiasMode,
     /// Colour difference that makes adaptive antialiasing subdivide.
@@ -107,27 +120,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             args.scene
         );
     }
-    let settings = RenderSettings {
-        width,
-        height,
-        antialias: args.aa,
-        samples_per_pixel: args.spp,
-        adaptive_threshold: args.aa_threshold,
-        seed: args.seed,
-        sequence: SequenceKind::Random,
-    };
-    let integrator = StandardRayTracer {
-        max_depth: args.depth,
-        light_samples: args.light_samples,
-        shadows: args.shadows,
-    };
     let cancel = progress::cancel_flag();
     let bar = progress::Bar::new("rendering", args.quiet);
     let start = Instant::now();
-    let output = with_threads(args.threads, || {
-        render(&world, &integrator, &settings, &bar, &cancel)
-    })?
-    .context("the camera is degenerate")?;
+    let output = match args.method {
+        Method::Raytrace => render_standard(args, &world, width, height, &bar, &cancel)?,
+        Method::Pathtrace => render_path_traced(args, &world, width, height, &bar, &cancel)?,
+    };
     let seconds = start.elapsed().as_secs_f64();
     let tone_mapping = ToneMapping {
         operator: args.tonemap,
@@ -139,19 +138,118 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     if !args.quiet {
         eprintln!(
-            "{} {}×{} in {seconds:.2} s, {} camera samples{}",
+            "{} {}×{} in {seconds:.2} s, {}{}",
             args.output.display(),
             width,
             height,
-            output.samples_traced,
+            output.summary,
             if output.complete {
                 ""
             } else {
-                " (interrupted: partial image)"
+                " (stopped early: partial image)"
             }
         );
     }
     Ok(())
+}
+
+/// What either rendering method produced.
+struct Rendered {
+    film: Film,
+    /// Adaptive antialiasing subdivisions per pixel (raytrace only).
+    subdivisions: Vec<u32>,
+    /// One phrase on the samples taken.
+    summary: String,
+    complete: bool,
+}
+
+/// Renders with the standard ray tracer.
+fn render_standard(
+    args: &RenderArgs,
+    world: &World,
+    width: u32,
+    height: u32,
+    bar: &progress::Bar,
+    cancel: &std::sync::atomic::AtomicBool,
+) -> Result<Rendered> {
+    if args.first_hit_paths.is_some() || args.time_limit.is_some() {
+        bail!("--first-hit-paths and --time-limit need --method pathtrace");
+    }
+    let settings = RenderSettings {
+        width,
+        height,
+        antialias: args.aa,
+        samples_per_pixel: args.spp.unwrap_or(4),
+        adaptive_threshold: args.aa_threshold,
+        seed: args.seed,
+        sequence: SequenceKind::Random,
+    };
+    let integrator = StandardRayTracer {
+        max_depth: args.depth.unwrap_or(6),
+        light_samples: args.light_samples,
+        shadows: args.shadows,
+    };
+    let output = with_threads(args.threads, || {
+        render(world, &integrator, &settings, bar, cancel)
+    })?
+    .context("the camera is degenerate")?;
+    Ok(Rendered {
+        film: output.film,
+        subdivisions: output.subdivisions,
+        summary: format!("{} camera samples", output.samples_traced),
+        complete: output.complete,
+    })
+}
+
+/// Renders with the path tracer in progressive passes.
+fn render_path_traced(
+    args: &RenderArgs,
+    world: &World,
+    width: u32,
+    height: u32,
+    bar: &progress::Bar,
+    cancel: &std::sync::atomic::AtomicBool,
+) -> Result<Rendered> {
+    if args.aa != AntialiasMode::Stochastic || args.aa_map.is_some() {
+        bail!("--aa and --aa-map apply to --method raytrace only");
+    }
+    if args.shadows != ShadowMode::On {
+        bail!("--shadows off applies to --method raytrace only");
+    }
+    let time_limit = match args.time_limit {
+        Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
+        Some(s) => bail!("--time-limit must be a positive number of seconds (got {s})"),
+        None => None,
+    };
+    let spp = args.spp.unwrap_or(64);
+    if spp == 0 {
+        bail!("--spp must be at least 1 for pathtrace");
+    }
+    let first_hit_paths = args.first_hit_paths.unwrap_or(1);
+    if first_hit_paths == 0 {
+        bail!("--first-hit-paths must be at least 1");
+    }
+    let integrator = PathTracer::new(world, args.depth.unwrap_or(u32::MAX), first_hit_paths);
+    let settings = ProgressiveSettings {
+        width,
+        height,
+        samples_per_pixel: spp,
+        seed: args.seed,
+        time_limit,
+    };
+    let output = with_threads(args.threads, || {
+        render_progressive(world, &integrator, &settings, bar, cancel)
+    })?
+    .context("the camera is degenerate")?;
+    Ok(Rendered {
+        film: output.film,
+        subdivisions: Vec::new(),
+        summary: format!(
+            "{} paths per pixel in {} passes",
+            output.samples_per_pixel, output.passes
+        ),
+        complete: output.complete,
+    })
 }
 
 /// Writes the subdivision counts as a grey image: black = never subdivided, white = the

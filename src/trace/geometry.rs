@@ -150,7 +150,40 @@ impl SceneGeometry {
                 }
             }
         }
+        g.sort_triangles_spatially();
         Ok(g)
+    }
+
+    /// Reorders the triangles along a Morton (Z-order) curve through their centroids, so
+    /// primitive indices that are close are close in space. Accelerator leaves then read
+    /// neighbouring memory. Done once here, so every accelerator sees the same indices.
+    fn sort_triangles_spatially(&mut self) {
+        let bounds = self
+            .triangles
+            .iter()
+            .fold(Aabb::EMPTY, |b, t| b.union(Aabb::from_points(t.vertices())));
+        if self.triangles.len() < 2 || bounds.is_empty() {
+            return;
+        }
+        let scale = Vec3::splat(1023.0) / bounds.extent().max(Vec3::splat(f32::MIN_POSITIVE));
+        let mut order: Vec<(u32, u32)> = self
+            .triangles
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let c = (t.p0 + (t.e1 + t.e2) / 3.0 - bounds.min) * scale;
+                (morton3(c.x as u32, c.y as u32, c.z as u32), i as u32)
+            })
+            .collect();
+        order.sort_unstable();
+        self.triangles = order
+            .iter()
+            .map(|&(_, i)| self.triangles[i as usize])
+            .collect();
+        self.attributes = order
+            .iter()
+            .map(|&(_, i)| self.attributes[i as usize])
+            .collect();
     }
 
     fn add_mesh(
@@ -285,6 +318,32 @@ impl SceneGeometry {
         self.describe(&hit, &Ray::new(Vec3::ZERO, toward_front))
     }
 
+    /// First stage for an analytic shape, walking past cut-away points (an alpha-textured
+    /// solid shows its inside through its holes).
+    #[inline(never)]
+    fn intersect_analytic(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit> {
+        let shape = &self.shapes[prim as usize - self.triangles.len()];
+        let mut t_start = 0.0f32;
+        for _ in 0..4 {
+            let moved = Ray::new(ray.at(t_start), ray.dir);
+            let (t, part) = self.intersect_shape(shape, &moved, t_max - t_start)?;
+            let t = t + t_start;
+            let cut = self.cut_away(shape.material, || {
+                let local = shape.to_world.ray_to_object(ray);
+                Self::describe_shape(shape, local.at(t), part).uv
+            });
+            if !cut {
+                return Some(PrimHit {
+                    t,
+                    prim,
+                    local: [part as f32, 0.0],
+                });
+            }
+            t_start = t * (1.0 + 1e-5) + 1e-7;
+        }
+        None
+    }
+
     /// Second stage: the full description of `hit` found along `ray`.
     pub fn describe(&self, hit: &PrimHit, ray: &Ray) -> SurfaceHit {
         let prim = hit.prim as usize;
@@ -342,6 +401,18 @@ impl SceneGeometry {
     }
 }
 
+/// Interleaves the low 10 bits of three integers into a 30-bit Morton code.
+fn morton3(x: u32, y: u32, z: u32) -> u32 {
+    fn spread(v: u32) -> u32 {
+        let mut v = v.min(1023);
+        v = (v | (v << 16)) & 0x0300_00ff;
+        v = (v | (v << 8)) & 0x0300_f00f;
+        v = (v | (v << 4)) & 0x030c_30c3;
+        (v | (v << 2)) & 0x0924_9249
+    }
+    spread(x) | (spread(y) << 1) | (spread(z) << 2)
+}
+
 /// Tangents `dp/du`, `dp/dv` of a triangle from its texture coordinates (any orthogonal pair
 /// when the coordinates are degenerate).
 fn triangle_tangents(tri: &Triangle, uv: &[Vec2; 3], ng: Vec3) -> (Vec3, Vec3) {
@@ -371,44 +442,21 @@ impl PrimitiveSet for SceneGeometry {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit> {
         let index = prim as usize;
-        if let Some(tri) = self.triangles.get(index) {
-            let (t, b1, b2) = tri.intersect(ray, t_max)?;
-            let cut = self.any_alpha
-                && self.cut_away(self.attributes[index].material, || {
-                    self.triangle_uv(index, b1, b2)
-                });
-            if cut {
-                return None;
-            }
-            return Some(PrimHit {
-                t,
-                prim,
-                local: [b1, b2],
+        let Some(tri) = self.triangles.get(index) else {
+            return self.intersect_analytic(prim, ray, t_max);
+        };
+        let (t, b1, b2) = tri.intersect(ray, t_max)?;
+        let cut = self.any_alpha
+            && self.cut_away(self.attributes[index].material, || {
+                self.triangle_uv(index, b1, b2)
             });
-        }
-        let shape = &self.shapes[index - self.triangles.len()];
-        let mut t_start = 0.0f32;
-        // Walk past cut-away points (an alpha-textured solid shows its inside through holes).
-        for _ in 0..4 {
-            let moved = Ray::new(ray.at(t_start), ray.dir);
-            let (t, part) = self.intersect_shape(shape, &moved, t_max - t_start)?;
-            let t = t + t_start;
-            let cut = self.cut_away(shape.material, || {
-                let local = shape.to_world.ray_to_object(ray);
-                Self::describe_shape(shape, local.at(t), part).uv
-            });
-            if !cut {
-                return Some(PrimHit {
-                    t,
-                    prim,
-                    local: [part as f32, 0.0],
-                });
-            }
-            t_start = t * (1.0 + 1e-5) + 1e-7;
-        }
-        None
+        (!cut).then_some(PrimHit {
+            t,
+            prim,
+            local: [b1, b2],
+        })
     }
 }

@@ -47,6 +47,8 @@ pub struct LightSet {
     pub delta: Vec<LightKind>,
     /// Sky radiance, if the scene has a sky.
     pub sky: Option<Rgb>,
+    /// Per triangle primitive: index into `area` of its area light, or `u32::MAX`.
+    light_of_prim: Vec<u32>,
 }
 
 impl LightSet {
@@ -54,6 +56,7 @@ impl LightSet {
     pub fn new(scene: &Scene, geometry: &SceneGeometry) -> Self {
         let mut area: Vec<AreaLight> = Vec::new();
         let mut by_object = std::collections::HashMap::new();
+        let mut light_of_prim = vec![u32::MAX; geometry.triangle_count()];
         for prim in 0..geometry.triangle_count() as u32 {
             let (object, material) = geometry.owner(prim);
             let m = &scene.materials[material as usize];
@@ -79,6 +82,7 @@ impl LightSet {
                 });
                 area.len() - 1
             });
+            light_of_prim[prim as usize] = slot as u32;
             let light = &mut area[slot];
             light.prims.push(prim);
             light.area += a;
@@ -99,7 +103,21 @@ impl LightSet {
                 ref k => delta.push(k.clone()),
             }
         }
-        LightSet { area, delta, sky }
+        LightSet {
+            area,
+            delta,
+            sky,
+            light_of_prim,
+        }
+    }
+
+    /// The index into [`LightSet::area`] of the area light that primitive `prim` belongs to,
+    /// if it is an emissive triangle.
+    pub fn area_light_of(&self, prim: u32) -> Option<usize> {
+        match self.light_of_prim.get(prim as usize) {
+            Some(&i) if i != u32::MAX => Some(i as usize),
+            _ => None,
+        }
     }
 
     /// True when the scene has no light at all.

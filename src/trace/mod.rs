@@ -4,9 +4,16 @@
 
 pub mod antialias;
 pub mod bsdf;
+pub mod bsdf_sampling;
 pub mod direct;
 mod geometry;
+pub mod light_sampling;
 mod lights;
+pub mod lighttracer;
+pub mod pathtracer;
+pub mod photon_scatter;
+pub mod photon_sources;
+pub mod progressive;
 pub mod render;
 pub mod sampler;
 pub mod sampling;
@@ -15,6 +22,7 @@ mod world;
 
 pub use geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
 pub use lights::{AreaLight, AreaSample, LightSet};
+pub use pathtracer::PathTracer;
 pub use whitted::StandardRayTracer;
 pub use world::World;
 

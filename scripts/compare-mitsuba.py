@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""Side-by-side path tracing time and noise: strahl against Mitsuba 3.
+
+Each renderer draws its own Cornell box at 256x256, 64 samples per pixel, path length
+unbounded with Russian roulette from bounce 5, on all cores. Timings are of the whole
+process (start-up, scene build, render, image write), several runs, median reported.
+Noise is the RMS difference to a high-sample reference of the same renderer, relative to the
+reference's mean (both renderers' own scenes, so the numbers compare estimator quality).
+
+Needs: `pip install mitsuba` (and for `llvm_ad_rgb` Debian's libllvm19, found through
+DRJIT_LIBLLVM_PATH), a release build of strahl (`cargo build --release`), numpy.
+
+Usage: scripts/compare-mitsuba.py [--runs 5] [--strahl target/release/strahl]
+           [--variants llvm_ad_rgb,scalar_rgb] [--reference-spp 1024] [--out DIR]
+"""
+
+import argparse
+import glob
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+SIZE = 256
+SPP = 64
+
+MITSUBA_RENDER = r"""
+import sys, mitsuba as mi
+mi.set_variant(sys.argv[1])
+scene_dict = mi.cornell_box()
+scene_dict["integrator"] = {"type": "path", "max_depth": -1, "rr_depth": 5}
+scene_dict["sensor"]["film"]["width"] = int(sys.argv[3])
+scene_dict["sensor"]["film"]["height"] = int(sys.argv[3])
+scene_dict["sensor"]["sampler"]["sample_count"] = int(sys.argv[4])
+scene = mi.load_dict(scene_dict)
+image = mi.render(scene, spp=int(sys.argv[4]), seed=int(sys.argv[5]))
+mi.util.write_bitmap(sys.argv[2], image)
+"""
+
+
+def find_libllvm():
+    if os.environ.get("DRJIT_LIBLLVM_PATH"):
+        return os.environ["DRJIT_LIBLLVM_PATH"]
+    for pattern in ("/usr/lib/llvm-*/lib/libLLVM.so*", "/usr/lib/*/libLLVM*.so*"):
+        found = sorted(glob.glob(pattern))
+        if found:
+            return found[-1]
+    return None
+
+
+def timed(command, env=None):
+    start = time.perf_counter()
+    subprocess.run(command, check=True, env=env, stdout=subprocess.DEVNULL)
+    return time.perf_counter() - start
+
+
+def mitsuba_command(variant, path, spp, seed):
+    return [sys.executable, "-c", MITSUBA_RENDER, variant, path, str(SIZE), str(spp), str(seed)]
+
+
+def strahl_command(binary, path, spp, seed):
+    return [
+        binary, "render", "cornell", "--method", "pathtrace", "--width", str(SIZE),
+        "--height", str(SIZE), "--spp", str(spp), "--seed", str(seed), "--quiet", "-o", path,
+    ]
+
+
+def load_linear(path):
+    import mitsuba as mi
+    import numpy as np
+
+    if not mi.variant():
+        mi.set_variant("scalar_rgb")
+    return np.array(mi.Bitmap(path), dtype=np.float64)[..., :3]
+
+
+def relative_rms(image, reference):
+    import numpy as np
+
+    luminance = lambda a: a @ np.array([0.2126, 0.7152, 0.0722])
+    diff = luminance(image) - luminance(reference)
+    return float(np.sqrt(np.mean(diff * diff)) / np.mean(luminance(reference)))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=5)
+    parser.add_argument("--strahl", default="target/release/strahl")
+    parser.add_argument("--variants", default="llvm_ad_rgb,scalar_rgb")
+    parser.add_argument("--reference-spp", type=int, default=1024)
+    parser.add_argument("--out", default=None, help="keep images here")
+    args = parser.parse_args()
+    out = args.out or tempfile.mkdtemp(prefix="compare-mitsuba-")
+    os.makedirs(out, exist_ok=True)
+    env = dict(os.environ)
+    llvm = find_libllvm()
+    if llvm:
+        env["DRJIT_LIBLLVM_PATH"] = llvm
+
+    renderers = [("strahl", lambda path, spp, seed: strahl_command(args.strahl, path, spp, seed))]
+    for variant in filter(None, args.variants.split(",")):
+        renderers.append(
+            (f"mitsuba {variant}", lambda path, spp, seed, v=variant: mitsuba_command(v, path, spp, seed))
+        )
+
+    results = {}
+    for name, command in renderers:
+        tag = name.replace(" ", "_")
+        image = os.path.join(out, f"{tag}_{SPP}.exr")
+        # One untimed run first warms file caches (and Mitsuba's kernel cache).
+        timed(command(image, SPP, 1), env)
+        times = [timed(command(image, SPP, 1 + run), env) for run in range(args.runs)]
+        reference = os.path.join(out, f"{tag}_{args.reference_spp}.exr")
+        if not os.path.exists(reference):
+            timed(command(reference, args.reference_spp, 1000), env)
+        noise = relative_rms(load_linear(image), load_linear(reference))
+        results[name] = {
+            "median_seconds": statistics.median(times),
+            "seconds": [round(t, 3) for t in times],
+            "relative_rms_noise": noise,
+        }
+        print(f"{name:24} median {statistics.median(times):6.2f} s  "
+              f"runs {[round(t, 2) for t in times]}  relative RMS noise {noise:.4f}", flush=True)
+    print(json.dumps({"size": SIZE, "spp": SPP, "results": results}, indent=2))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,150 @@
+//! `strahl solve`: compute the light on every object of a scene and report it per object
+//! (or per face) as JSON or CSV.
+
+use super::{progress, source, with_threads};
+use crate::accel::AccelKind;
+use crate::report::{ObjectReport, Report, ReportFormat, luminance, write_report};
+use crate::trace::World;
+use crate::trace::lighttracer::{LightTraceSettings, trace_light};
+use anyhow::{Context, Result};
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+
+/// Light solvers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Solver {
+    /// The light model: photons traced from all lights and the sky, Monte Carlo.
+    LightTrace,
+}
+
+/// Options of the light-trace solver.
+#[derive(Debug, Args)]
+#[command(next_help_heading = "Light tracing (--solver light-trace)")]
+pub struct LightTraceArgs {
+    /// Photons to trace.
+    #[arg(long, default_value_t = 1_000_000)]
+    pub photons: u64,
+    /// Scattering events after which a photon is absorbed where it is.
+    #[arg(long, default_value_t = 1000)]
+    pub max_bounces: u32,
+}
+
+/// Arguments of `strahl solve`.
+#[derive(Debug, Args)]
+pub struct SolveArgs {
+    /// Scene: a built-in name (see `strahl scenes`), a .toml scene file or a mesh file.
+    pub scene: String,
+    /// Which solver computes the light.
+    #[arg(long, value_enum, default_value_t = Solver::LightTrace)]
+    pub solver: Solver,
+    /// Per-object report: .json (full report) or .csv (one row per object). Without it the
+    /// JSON report goes to standard output.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Seed of all random numbers (same seed, same report, for any thread count).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Worker threads (0 = one per core).
+    #[arg(long, default_value_t = 0)]
+    pub threads: usize,
+    /// Acceleration structure for ray queries.
+    #[arg(long, value_enum, default_value_t = AccelKind::Bvh)]
+    pub accel: AccelKind,
+    /// No progress bar or summary.
+    #[arg(short, long, conflicts_with = "verbose")]
+    pub quiet: bool,
+    /// Also print a per-object table (area, absorbed power, irradiance, illuminance).
+    #[arg(short, long)]
+    pub verbose: bool,
+    /// Light-trace options.
+    #[command(flatten)]
+    pub light_trace: LightTraceArgs,
+}
+
+/// Runs `strahl solve`.
+pub fn run(args: &SolveArgs) -> Result<()> {
+    if let Some(path) = &args.report {
+        ReportFormat::from_path(path)?;
+    }
+    let scene = source::load(&args.scene)?;
+    let name = scene.name.clone();
+    let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
+    let cancel = progress::cancel_flag();
+    let report = match args.solver {
+        Solver::LightTrace => {
+            let settings = LightTraceSettings {
+                photons: args.light_trace.photons,
+                seed: args.seed,
+                max_bounces: args.light_trace.max_bounces,
+            };
+            let bar = progress::Bar::new("photons", args.quiet);
+            let out = with_threads(args.threads, || {
+                trace_light(&world, &settings, &bar, &cancel)
+            })??;
+            if !args.quiet {
+                eprintln!(
+                    "{name}: light-trace, {} of {} photons, {} rays in {:.2} s{}",
+                    out.photons_traced,
+                    out.photons,
+                    out.rays,
+                    out.seconds,
+                    if out.complete() {
+                        ""
+                    } else {
+                        " (interrupted: report scaled to the full photon count)"
+                    }
+                );
+            }
+            out.report(&name)
+        }
+    };
+    if !args.quiet {
+        let t = &report.totals;
+        eprintln!(
+            "emitted {:.4} W, absorbed {:.4} W, escaped {:.4} W (luminance-weighted)",
+            luminance(t.emitted_power),
+            luminance(t.absorbed_power),
+            luminance(t.escaped_power)
+        );
+    }
+    if args.verbose {
+        print_table(&report);
+    }
+    match &args.report {
+        Some(path) => {
+            write_report(&report, path)?;
+            if !args.quiet {
+                eprintln!("report: {}", path.display());
+            }
+        }
+        None => println!("{}", serde_json::to_string_pretty(&report)?),
+    }
+    Ok(())
+}
+
+/// Prints one line per report entry to standard error.
+fn print_table(report: &Report) {
+    eprintln!(
+        "{:24} {:>10} {:>12} {:>12} {:>12}",
+        "object", "area", "absorbed W", "E W/m²", "lux"
+    );
+    for o in &report.objects {
+        eprintln!("{}", table_row(o));
+    }
+}
+
+/// One table line: name (with face), area, luminance of absorbed power and irradiance, lux.
+fn table_row(o: &ObjectReport) -> String {
+    let name = match o.face {
+        Some(f) => format!("{}[{f}]", o.name),
+        None => o.name.clone(),
+    };
+    let opt = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.4}"));
+    format!(
+        "{name:24} {:>10} {:>12.5} {:>12} {:>12}",
+        opt(o.area),
+        luminance(o.absorbed_power),
+        opt(o.irradiance.map(luminance)),
+        opt(o.illuminance_lux)
+    )
+}

@@ -1,0 +1,315 @@
+//! Diffuse form factors (seed 000 §3): the analytic point-to-polygon form factor (the
+//! "Prisma"/Nusselt contour integral, §3.5.2) with the emitter clipped to the receiver's front
+//! half-space first, the point-to-point approximation (§3.2, clamped to `[0, 1]`), and a
+//! hybrid that picks by the distance-to-size ratio (§3.4).
+//!
+//! Notation: `F_ij` is the fraction of the energy leaving patch `i` (the receiver in a
+//! gathering step) that arrives at patch `j` (the emitter); `B_i = E_i + ρ_i Σ_j F_ij B_j`.
+//! Reciprocity gives the reverse direction: `F_ji = A_i F_ij / A_j` ([`reciprocal`]). The
+//! factors here are purely geometric (no visibility) and do not depend on which side of the
+//! emitter faces the receiver; [`super::clip::facing`] decides whether a pair exchanges light.
+
+use super::clip::{Plane, clip_to_front};
+use super::mesh::Patch;
+use glam::DVec3;
+use std::f64::consts::{PI, TAU};
+
+/// Which form-factor approximation to use (`--form-factor`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FormFactorMethod {
+    /// Point-to-polygon contour integral at receiver points (exact for a differential
+    /// receiver).
+    #[default]
+    Analytic,
+    /// Centroid-to-centroid point approximation `cosθᵢ cosθⱼ Aⱼ / (π d²)`, clamped to 1.
+    Point,
+    /// Point approximation when the patches are far apart relative to their size, analytic
+    /// otherwise ([`FormFactorOptions::hybrid_ratio`]).
+    Hybrid,
+}
+
+/// Settings of the patch-to-patch form factor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FormFactorOptions {
+    /// The approximation.
+    pub method: FormFactorMethod,
+    /// Receiver points per axis for the analytic factor: 1 evaluates at the receiver's area
+    /// centroid (the seed's first simplification); `n > 1` averages over the centres of an
+    /// `n × n` grid of equal-parameter strata, weighted by area.
+    pub receiver_samples: u32,
+    /// Hybrid switch: the point approximation is used when the centroid distance divided by
+    /// √(larger area) exceeds this (dimensionless, scale-free). At 3 the point factor of
+    /// two parallel, directly opposed squares is within 7.3 % of the exact value; the seed
+    /// suggests ≈ 1.5, where the error is 28 %.
+    pub hybrid_ratio: f64,
+}
+
+impl Default for FormFactorOptions {
+    /// Analytic at the centroid; hybrid ratio 3.
+    fn default() -> Self {
+        FormFactorOptions {
+            method: FormFactorMethod::Analytic,
+            receiver_samples: 1,
+            hybrid_ratio: 3.0,
+        }
+    }
+}
+
+/// The form factor from a differential area at `point` with unit normal `normal` to the
+/// convex planar `polygon` (any winding): `F = |Σ_edges θ_k (n · γ̂_k)| / 2π`, where `θ_k`
+/// is the angle an edge subtends at the point and `γ̂_k` the unit normal of the plane through
+/// the point and the edge. The polygon is first clipped to the half-space in front of the
+/// point, so parts behind it contribute nothing and the result is never negative; a polygon
+/// in the point's own plane gives 0. Result in `[0, 1]`.
+pub fn point_to_polygon(point: DVec3, normal: DVec3, polygon: &[DVec3]) -> f64 {
+    let visible = clip_to_front(&Plane::new(point, normal), polygon);
+    let n = visible.len();
+    let mut sum = DVec3::ZERO;
+    for i in 0..n {
+        let a = visible[i] - point;
+        let b = visible[(i + 1) % n] - point;
+        let cross = a.cross(b);
+        let length = cross.length();
+        if length > 0.0 {
+            // atan2 keeps full precision for small and for near-π angles.
+            sum += cross * (length.atan2(a.dot(b)) / length);
+        }
+    }
+    (sum.dot(normal).abs() / TAU).min(1.0)
+}
+
+/// The point-to-point form factor (seed §3.2, "second simplification") from a differential
+/// area at `from` (unit normal `from_normal`) to a small patch of area `to_area` at `to`
+/// (unit normal `to_normal`): `|cosθ_to| · cosθ_from · A_to / (π d²)`, zero when `to` lies
+/// behind or in the plane of `from`, and clamped to at most 1.
+pub fn point_to_point(
+    from: DVec3,
+    from_normal: DVec3,
+    to: DVec3,
+    to_normal: DVec3,
+    to_area: f64,
+) -> f64 {
+    let d = to - from;
+    let d2 = d.length_squared();
+    if d2 <= 0.0 {
+        return 0.0;
+    }
+    let cos_from = from_normal.dot(d);
+    if cos_from <= 0.0 {
+        return 0.0;
+    }
+    let cos_to = to_normal.dot(d).abs();
+    (cos_from * cos_to * to_area / (PI * d2 * d2)).min(1.0)
+}
+
+/// `F_ji` from `F_ij` by reciprocity: `A_i F_ij = A_j F_ji` (areas in scene units²).
+pub fn reciprocal(f_ij: f64, area_i: f64, area_j: f64) -> f64 {
+    if area_j > 0.0 {
+        f_ij * area_i / area_j
+    } else {
+        0.0
+    }
+}
+
+/// Points on `patch` and their area weights (summing to 1) for `n × n` receiver samples; the
+/// area centroid alone for `n ≤ 1`.
+pub fn receiver_points(patch: &Patch, n: u32) -> Vec<(DVec3, f64)> {
+    if n <= 1 {
+        return vec![(patch.centroid, 1.0)];
+    }
+    let mut points = Vec::with_capacity((n * n) as usize);
+    let step = 1.0 / n as f64;
+    for i in 0..n {
+        for j in 0..n {
+            let (s, t) = ((i as f64 + 0.5) * step, (j as f64 + 0.5) * step);
+            points.push((patch.point_at(s, t), jacobian(patch, s, t)));
+        }
+    }
+    let total: f64 = points.iter().map(|p| p.1).sum();
+    for p in &mut points {
+        p.1 /= total;
+    }
+    points
+}
+
+/// Area density of [`Patch::point_at`] at `(s, t)` (up to a constant factor).
+fn jacobian(patch: &Patch, s: f64, t: f64) -> f64 {
+    if patch.is_triangle() {
+        return 1.0;
+    }
+    let c = patch.corners();
+    let ds = (c[1] - c[0]).lerp(c[2] - c[3], t);
+    let dt = (c[3] - c[0]).lerp(c[2] - c[1], s);
+    ds.cross(dt).length()
+}
+
+/// `F_ij` from `receiver` (i) to `emitter` (j) by `options.method`, without visibility. The
+/// reverse factor is [`reciprocal`]`(F_ij, A_i, A_j)`. The factor of a patch to itself (or to
+/// any patch in its plane) is 0.
+pub fn form_factor(receiver: &Patch, emitter: &Patch, options: &FormFactorOptions) -> f64 {
+    if std::ptr::eq(receiver, emitter) {
+        return 0.0;
+    }
+    let use_point = match options.method {
+        FormFactorMethod::Analytic => false,
+        FormFactorMethod::Point => true,
+        FormFactorMethod::Hybrid => {
+            let size = receiver.area.max(emitter.area).sqrt();
+            receiver.centroid.distance(emitter.centroid) > options.hybrid_ratio * size
+        }
+    };
+    if use_point {
+        return point_to_point(
+            receiver.centroid,
+            receiver.normal,
+            emitter.centroid,
+            emitter.normal,
+            emitter.area,
+        );
+    }
+    receiver_points(receiver, options.receiver_samples)
+        .into_iter()
+        .map(|(p, w)| w * point_to_polygon(p, receiver.normal, emitter.corners()))
+        .sum::<f64>()
+        .min(1.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec2;
+
+    fn rect(corners: [[f64; 3]; 4]) -> Patch {
+        Patch::new(&corners.map(DVec3::from_array), &[DVec2::ZERO; 4]).unwrap()
+    }
+
+    /// Differential element at the origin facing +z, to the parallel rectangle
+    /// `[0,a]×[0,b]` at height c (corner above the element): Howell catalog B-3.
+    fn element_to_parallel_rectangle(a: f64, b: f64, c: f64) -> f64 {
+        let (x, y) = (a / c, b / c);
+        let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+        (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / TAU
+    }
+
+    #[test]
+    fn element_to_parallel_rectangle_matches_closed_form() {
+        for (a, b, c) in [(1.0, 1.0, 1.0), (2.0, 0.5, 0.3), (0.01, 3.0, 7.0)] {
+            let poly = [
+                DVec3::new(0.0, 0.0, c),
+                DVec3::new(a, 0.0, c),
+                DVec3::new(a, b, c),
+                DVec3::new(0.0, b, c),
+            ];
+            let f = point_to_polygon(DVec3::ZERO, DVec3::Z, &poly);
+            let exact = element_to_parallel_rectangle(a, b, c);
+            assert!(((f - exact) / exact).abs() < 1e-12, "{f} vs {exact}");
+        }
+    }
+
+    #[test]
+    fn winding_does_not_change_the_value() {
+        let poly = [
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(1.0, 0.0, 1.0),
+            DVec3::new(1.0, 1.0, 1.0),
+        ];
+        let mut reversed = poly;
+        reversed.reverse();
+        let a = point_to_polygon(DVec3::ZERO, DVec3::Z, &poly);
+        let b = point_to_polygon(DVec3::ZERO, DVec3::Z, &reversed);
+        assert!(a > 0.0 && (a - b).abs() < 1e-15);
+    }
+
+    #[test]
+    fn emitter_behind_or_in_plane_gives_zero() {
+        let below = [
+            DVec3::new(0.0, 0.0, -1.0),
+            DVec3::new(1.0, 0.0, -1.0),
+            DVec3::new(1.0, 1.0, -1.0),
+        ];
+        assert_eq!(point_to_polygon(DVec3::ZERO, DVec3::Z, &below), 0.0);
+        let coplanar = [
+            DVec3::X,
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.0, 1.0, 0.0),
+        ];
+        assert_eq!(point_to_polygon(DVec3::ZERO, DVec3::Z, &coplanar), 0.0);
+    }
+
+    #[test]
+    fn huge_emitter_covering_the_hemisphere_gives_one() {
+        let s = 1e7;
+        let poly = [
+            DVec3::new(-s, -s, 1.0),
+            DVec3::new(s, -s, 1.0),
+            DVec3::new(s, s, 1.0),
+            DVec3::new(-s, s, 1.0),
+        ];
+        let f = point_to_polygon(DVec3::ZERO, DVec3::Z, &poly);
+        assert!((f - 1.0).abs() < 1e-6 && f <= 1.0, "{f}");
+    }
+
+    #[test]
+    fn point_form_factor_is_clamped_and_respects_the_receiver_side() {
+        let close = point_to_point(DVec3::ZERO, DVec3::Z, DVec3::Z * 0.01, -DVec3::Z, 1.0);
+        assert_eq!(close, 1.0);
+        let behind = point_to_point(DVec3::ZERO, DVec3::Z, -DVec3::Z, DVec3::Z, 1.0);
+        assert_eq!(behind, 0.0);
+        let far = point_to_point(DVec3::ZERO, DVec3::Z, DVec3::Z * 10.0, -DVec3::Z, 2.0);
+        assert!((far - 2.0 / (PI * 100.0)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn patch_to_itself_is_zero_and_reciprocity_scales_by_area() {
+        let a = rect([[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+        assert_eq!(form_factor(&a, &a, &FormFactorOptions::default()), 0.0);
+        let copy = a.clone();
+        assert_eq!(form_factor(&a, &copy, &FormFactorOptions::default()), 0.0);
+        assert!((reciprocal(0.2, 2.0, 4.0) - 0.1).abs() < 1e-15);
+        assert_eq!(reciprocal(0.2, 2.0, 0.0), 0.0);
+    }
+
+    #[test]
+    fn receiver_samples_weights_sum_to_one_and_respect_area() {
+        // A trapezoid: the wide half must get more weight than the narrow half.
+        let p = rect([[0.0; 3], [4.0, 0.0, 0.0], [3.0, 1.0, 0.0], [1.0, 1.0, 0.0]]);
+        let pts = receiver_points(&p, 4);
+        let total: f64 = pts.iter().map(|x| x.1).sum();
+        assert!((total - 1.0).abs() < 1e-14);
+        let low: f64 = pts.iter().filter(|x| x.0.y < 0.5).map(|x| x.1).sum();
+        // Exact lower-half share of the trapezoid: (4 + 3)/2·0.5 / 3 = 7/12.
+        assert!((low - 7.0 / 12.0).abs() < 1e-12, "{low}");
+    }
+
+    #[test]
+    fn hybrid_switches_to_point_only_far_away() {
+        let r = rect([[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+        let near = rect([
+            [0.0, 0.0, 1.0],
+            [0.0, 1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [1.0, 0.0, 1.0],
+        ]);
+        let far = rect([
+            [0.0, 0.0, 5.0],
+            [0.0, 1.0, 5.0],
+            [1.0, 1.0, 5.0],
+            [1.0, 0.0, 5.0],
+        ]);
+        let opts = |method| FormFactorOptions {
+            method,
+            ..Default::default()
+        };
+        let hybrid = opts(FormFactorMethod::Hybrid);
+        assert_eq!(
+            form_factor(&r, &near, &hybrid),
+            form_factor(&r, &near, &opts(FormFactorMethod::Analytic))
+        );
+        assert_eq!(
+            form_factor(&r, &far, &hybrid),
+            form_factor(&r, &far, &opts(FormFactorMethod::Point))
+        );
+        assert!((form_factor(&r, &far, &hybrid) - 1.0 / (25.0 * PI)).abs() < 1e-15);
+    }
+}

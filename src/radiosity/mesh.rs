@@ -1,0 +1,654 @@
+//! The radiosity patch mesh: every planar face of the scene becomes a root patch (a triangle
+//! or a convex planar quad) with a quadtree of children. Quads split into four quads at their
+//! edge midpoints and vertex mean, triangles into four triangles at their edge midpoints;
+//! children inherit texture coordinates by the same midpoint subdivision.
+//!
+//! All geometry is in world space, in `f64`, in scene units. A patch's front side is the side
+//! its corners wind counter-clockwise around (its `normal` points there).
+
+use crate::scene::{MaterialId, PolygonMesh, Scene, Shape};
+use glam::{DVec2, DVec3, Vec2, Vec3};
+use std::fmt;
+use std::str::FromStr;
+
+/// Index of a patch in [`PatchMesh::patches`].
+pub type PatchId = u32;
+
+/// Relative distance from the plane of a quad's first three corners beyond which the quad is
+/// treated as non-planar and split into two triangles.
+const PLANARITY_TOLERANCE: f64 = 1e-6;
+
+/// Deepest quadtree level [`MeshSize::MaxEdge`] subdivides to (4¹² leaves per root).
+const MAX_UNIFORM_DEPTH: u32 = 12;
+
+/// A planar triangle or convex quad of the mesh, with its place in the quadtree.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Patch {
+    corners: [DVec3; 4],
+    uvs: [DVec2; 4],
+    sides: u8,
+    /// Unit normal of the front side (the side the corners wind counter-clockwise around).
+    pub normal: DVec3,
+    /// Area in scene units².
+    pub area: f64,
+    /// Area centroid (world space).
+    pub centroid: DVec3,
+    /// Index of the scene object the patch belongs to.
+    pub object: u32,
+    /// Face of the object's polygon mesh the patch comes from.
+    pub face: u32,
+    /// Material of the face.
+    pub material: MaterialId,
+    /// The patch this one was split from (`None` for a root).
+    pub parent: Option<PatchId>,
+    /// The four children, once split.
+    pub children: Option<[PatchId; 4]>,
+    /// Quadtree level: 0 for roots.
+    pub depth: u32,
+}
+
+impl Patch {
+    /// A patch from a triangle or convex planar quad (corners counter-clockwise around the
+    /// front side) with texture coordinates per corner. `None` when the polygon has neither
+    /// 3 nor 4 corners, the lengths differ, or its area is zero or not finite.
+    pub fn new(corners: &[DVec3], uvs: &[DVec2]) -> Option<Patch> {
+        let sides = corners.len();
+        if !(3..=4).contains(&sides) || uvs.len() != sides {
+            return None;
+        }
+        let newell = newell_vector(corners);
+        let twice_area = newell.length();
+        if !(twice_area.is_finite() && twice_area > 0.0) {
+            return None;
+        }
+        let mut c = [DVec3::ZERO; 4];
+        let mut t = [DVec2::ZERO; 4];
+        c[..sides].copy_from_slice(corners);
+        t[..sides].copy_from_slice(uvs);
+        Some(Patch {
+            corners: c,
+            uvs: t,
+            sides: sides as u8,
+            normal: newell / twice_area,
+            area: 0.5 * twice_area,
+            centroid: area_centroid(corners),
+            object: 0,
+            face: 0,
+            material: 0,
+            parent: None,
+            children: None,
+            depth: 0,
+        })
+    }
+
+    /// The corners, counter-clockwise around the front side (3 or 4).
+    pub fn corners(&self) -> &[DVec3] {
+        &self.corners[..self.sides as usize]
+    }
+
+    /// The texture coordinates of the corners.
+    pub fn uvs(&self) -> &[DVec2] {
+        &self.uvs[..self.sides as usize]
+    }
+
+    /// True for a triangle, false for a quad.
+    pub fn is_triangle(&self) -> bool {
+        self.sides == 3
+    }
+
+    /// True when the patch has not been split.
+    pub fn is_leaf(&self) -> bool {
+        self.children.is_none()
+    }
+
+    /// Longest edge length (scene units).
+    pub fn longest_edge(&self) -> f64 {
+        let c = self.corners();
+        (0..c.len())
+            .map(|i| c[i].distance(c[(i + 1) % c.len()]))
+            .fold(0.0, f64::max)
+    }
+
+    /// The point at parametric coordinates `(s, t) ∈ [0,1]²`: bilinear over a quad; over a
+    /// triangle the area-preserving square-to-triangle map (so uniform `(s, t)` give uniform
+    /// points and strata stay strata).
+    pub fn point_at(&self, s: f64, t: f64) -> DVec3 {
+        let c = self.corners();
+        if self.is_triangle() {
+            let r = s.sqrt();
+            c[0] * (1.0 - r) + c[1] * (r * (1.0 - t)) + c[2] * (r * t)
+        } else {
+            let bottom = c[0].lerp(c[1], s);
+            let top = c[3].lerp(c[2], s);
+            bottom.lerp(top, t)
+        }
+    }
+
+    /// The four children's corners and texture coordinates, by midpoint subdivision.
+    fn split_geometry(&self) -> [(Vec<DVec3>, Vec<DVec2>); 4] {
+        let (c, u) = (self.corners(), self.uvs());
+        let mid = |a: usize, b: usize| ((c[a] + c[b]) * 0.5, (u[a] + u[b]) * 0.5);
+        if self.is_triangle() {
+            let (m01, n01) = mid(0, 1);
+            let (m12, n12) = mid(1, 2);
+            let (m20, n20) = mid(2, 0);
+            [
+                (vec![c[0], m01, m20], vec![u[0], n01, n20]),
+                (vec![m01, c[1], m12], vec![n01, u[1], n12]),
+                (vec![m20, m12, c[2]], vec![n20, n12, u[2]]),
+                (vec![m01, m12, m20], vec![n01, n12, n20]),
+            ]
+        } else {
+            let (m01, n01) = mid(0, 1);
+            let (m12, n12) = mid(1, 2);
+            let (m23, n23) = mid(2, 3);
+            let (m30, n30) = mid(3, 0);
+            let centre = (c[0] + c[1] + c[2] + c[3]) * 0.25;
+            let centre_uv = (u[0] + u[1] + u[2] + u[3]) * 0.25;
+            [
+                (
+                    vec![c[0], m01, centre, m30],
+                    vec![u[0], n01, centre_uv, n30],
+                ),
+                (
+                    vec![m01, c[1], m12, centre],
+                    vec![n01, u[1], n12, centre_uv],
+                ),
+                (
+                    vec![centre, m12, c[2], m23],
+                    vec![centre_uv, n12, u[2], n23],
+                ),
+                (
+                    vec![m30, centre, m23, c[3]],
+                    vec![n30, centre_uv, n23, u[3]],
+                ),
+            ]
+        }
+    }
+}
+
+/// Twice the vector area of a polygon (Newell's method).
+fn newell_vector(corners: &[DVec3]) -> DVec3 {
+    let n = corners.len();
+    (0..n).map(|i| corners[i].cross(corners[(i + 1) % n])).sum()
+}
+
+/// Area centroid of a convex planar polygon (fan of triangles from the first corner).
+fn area_centroid(corners: &[DVec3]) -> DVec3 {
+    let mut weighted = DVec3::ZERO;
+    let mut total = 0.0;
+    for k in 1..corners.len() - 1 {
+        let (a, b, c) = (corners[0], corners[k], corners[k + 1]);
+        let w = (b - a).cross(c - a).length();
+        weighted += (a + b + c) * (w / 3.0);
+        total += w;
+    }
+    if total > 0.0 {
+        weighted / total
+    } else {
+        corners.iter().sum::<DVec3>() / corners.len() as f64
+    }
+}
+
+/// The initial uniform subdivision of every root patch (`--mesh-size`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MeshSize {
+    /// Split every root this many quadtree levels (`2ᴺ × 2ᴺ` leaves per quad root).
+    Levels(u32),
+    /// Split every patch until its longest edge is at most this length (scene units).
+    MaxEdge(f64),
+}
+
+impl Default for MeshSize {
+    /// No initial subdivision.
+    fn default() -> Self {
+        MeshSize::Levels(0)
+    }
+}
+
+impl fmt::Display for MeshSize {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MeshSize::Levels(n) => write!(f, "levels:{n}"),
+            MeshSize::MaxEdge(len) => write!(f, "{len}"),
+        }
+    }
+}
+
+impl FromStr for MeshSize {
+    type Err = String;
+
+    /// `levels:N` (N quadtree levels) or a positive number (the longest patch edge in scene
+    /// units).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if let Some(levels) = s.strip_prefix("levels:") {
+            return levels
+                .trim()
+                .parse::<u32>()
+                .ok()
+                .filter(|&n| n <= MAX_UNIFORM_DEPTH)
+                .map(MeshSize::Levels)
+                .ok_or_else(|| {
+                    format!("mesh size '{s}': levels must be an integer 0..={MAX_UNIFORM_DEPTH}")
+                });
+        }
+        match s.trim().parse::<f64>() {
+            Ok(len) if len.is_finite() && len > 0.0 => Ok(MeshSize::MaxEdge(len)),
+            _ => Err(format!(
+                "mesh size '{s}': expected 'levels:N' or a positive edge length"
+            )),
+        }
+    }
+}
+
+/// How the scene is turned into patches.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshOptions {
+    /// Segments around the axis for curved shapes (spheres, cylinders, cones, frusta).
+    pub segments: u32,
+    /// Initial uniform subdivision.
+    pub size: MeshSize,
+}
+
+impl Default for MeshOptions {
+    /// 16 segments, no initial subdivision.
+    fn default() -> Self {
+        MeshOptions {
+            segments: 16,
+            size: MeshSize::default(),
+        }
+    }
+}
+
+/// Error while building the patch mesh.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum MeshError {
+    /// An object's shape cannot be turned into polygons.
+    #[error("object '{object}': {reason}")]
+    Shape {
+        /// Report name of the object.
+        object: String,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// All patches of a scene: the roots (one per planar face) and every quadtree node below them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PatchMesh {
+    /// Every patch, roots and children; indexed by [`PatchId`].
+    pub patches: Vec<Patch>,
+    /// The root patches, in scene order (object, then face).
+    pub roots: Vec<PatchId>,
+    /// Objects left out because they have no finite surface (infinite planes). They still
+    /// block light in visibility tests.
+    pub skipped_objects: Vec<u32>,
+}
+
+impl PatchMesh {
+    /// The patch mesh of `scene`: every planar face (polygons, mesh faces, parallelograms,
+    /// box faces, curved shapes tessellated with `options.segments`) becomes a root patch,
+    /// non-planar quads and faces with more than four corners become triangle fans; then every
+    /// root is subdivided as `options.size` asks. Degenerate faces (zero area) are dropped.
+    pub fn from_scene(scene: &Scene, options: &MeshOptions) -> Result<PatchMesh, MeshError> {
+        let mut mesh = PatchMesh::default();
+        for (index, object) in scene.objects.iter().enumerate() {
+            if matches!(object.shape, Shape::Plane { .. }) {
+                mesh.skipped_objects.push(index as u32);
+                continue;
+            }
+            let error = |reason: String| MeshError::Shape {
+                object: scene.object_name(index),
+                reason,
+            };
+            let polygons = object.shape.to_mesh(options.segments).map_err(error)?;
+            polygons.validate().map_err(error)?;
+            let to_world = |p: Vec3| object.transform.point(p).as_dvec3();
+            mesh.add_polygon_mesh(
+                &polygons,
+                index as u32,
+                object.material,
+                to_world,
+                object.transform.flips_orientation(),
+            );
+        }
+        let roots = mesh.roots.clone();
+        for root in roots {
+            mesh.subdivide_uniformly(root, options.size);
+        }
+        Ok(mesh)
+    }
+
+    fn add_polygon_mesh(
+        &mut self,
+        polygons: &PolygonMesh,
+        object: u32,
+        material: MaterialId,
+        to_world: impl Fn(Vec3) -> DVec3,
+        flip: bool,
+    ) {
+        let world: Vec<DVec3> = polygons.positions.iter().map(|&p| to_world(p)).collect();
+        for (face, indices) in polygons.faces().enumerate() {
+            let face_material = polygons
+                .face_materials
+                .as_ref()
+                .map_or(material, |m| m[face]);
+            let mut order: Vec<usize> = indices.iter().map(|&i| i as usize).collect();
+            if flip {
+                order.reverse();
+            }
+            let corners: Vec<DVec3> = order.iter().map(|&i| world[i]).collect();
+            let uvs: Vec<DVec2> = order
+                .iter()
+                .enumerate()
+                .map(|(k, &i)| {
+                    polygons
+                        .uvs
+                        .as_ref()
+                        .map_or_else(|| default_uv(k, order.len()), |u| u[i])
+                        .as_dvec2()
+                })
+                .collect();
+            for (c, u) in planar_pieces(&corners, &uvs) {
+                if let Some(mut patch) = Patch::new(&c, &u) {
+                    patch.object = object;
+                    patch.face = face as u32;
+                    patch.material = face_material;
+                    let id = self.push(patch);
+                    self.roots.push(id);
+                }
+            }
+        }
+    }
+
+    fn push(&mut self, patch: Patch) -> PatchId {
+        self.patches.push(patch);
+        (self.patches.len() - 1) as PatchId
+    }
+
+    /// The patch with id `id`.
+    pub fn patch(&self, id: PatchId) -> &Patch {
+        &self.patches[id as usize]
+    }
+
+    /// Number of patches (all quadtree nodes).
+    pub fn len(&self) -> usize {
+        self.patches.len()
+    }
+
+    /// True when the scene had no finite surfaces.
+    pub fn is_empty(&self) -> bool {
+        self.patches.is_empty()
+    }
+
+    /// Splits patch `id` into four children (midpoint subdivision) and returns their ids; a
+    /// patch already split returns its existing children.
+    pub fn subdivide(&mut self, id: PatchId) -> [PatchId; 4] {
+        if let Some(children) = self.patch(id).children {
+            return children;
+        }
+        let parent = self.patch(id).clone();
+        let mut ids = [0; 4];
+        for (k, (corners, uvs)) in parent.split_geometry().into_iter().enumerate() {
+            // Midpoint children of a valid patch have a quarter of its area, never zero.
+            let mut child = Patch::new(&corners, &uvs).unwrap_or_else(|| Patch {
+                area: parent.area * 0.25,
+                ..parent.clone()
+            });
+            child.normal = parent.normal;
+            child.object = parent.object;
+            child.face = parent.face;
+            child.material = parent.material;
+            child.parent = Some(id);
+            child.children = None;
+            child.depth = parent.depth + 1;
+            ids[k] = self.push(child);
+        }
+        self.patches[id as usize].children = Some(ids);
+        ids
+    }
+
+    /// Subdivides the subtree under `id` uniformly to `size`.
+    pub fn subdivide_uniformly(&mut self, id: PatchId, size: MeshSize) {
+        let mut stack = vec![id];
+        while let Some(p) = stack.pop() {
+            let patch = self.patch(p);
+            let split = match size {
+                MeshSize::Levels(n) => patch.depth < n.min(MAX_UNIFORM_DEPTH),
+                MeshSize::MaxEdge(len) => {
+                    patch.longest_edge() > len && patch.depth < MAX_UNIFORM_DEPTH
+                }
+            };
+            if split {
+                stack.extend(self.subdivide(p));
+            }
+        }
+    }
+
+    /// The leaves under `id` (itself when unsplit), depth first.
+    pub fn leaves_under(&self, id: PatchId) -> Vec<PatchId> {
+        let mut out = Vec::new();
+        let mut stack = vec![id];
+        while let Some(p) = stack.pop() {
+            match self.patch(p).children {
+                Some(children) => stack.extend(children.iter().rev()),
+                None => out.push(p),
+            }
+        }
+        out
+    }
+
+    /// All leaves of the mesh, root by root.
+    pub fn leaves(&self) -> Vec<PatchId> {
+        self.roots
+            .iter()
+            .flat_map(|&r| self.leaves_under(r))
+            .collect()
+    }
+}
+
+/// Default texture coordinates of corner `k` of an `n`-gon without any: the unit square for
+/// quads, `(0,0), (1,0), (0,1)` for triangles, the unit circle mapped to `[0,1]²` otherwise.
+fn default_uv(k: usize, n: usize) -> Vec2 {
+    match (n, k) {
+        (4, _) => [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y][k],
+        (3, _) => [Vec2::ZERO, Vec2::X, Vec2::Y][k],
+        _ => {
+            let a = std::f32::consts::TAU * k as f32 / n as f32;
+            Vec2::new(0.5 + 0.5 * a.cos(), 0.5 + 0.5 * a.sin())
+        }
+    }
+}
+
+/// A face as root-patch polygons: triangles and planar quads as they are, everything else
+/// (non-planar quads, faces with more than four corners) as a triangle fan.
+fn planar_pieces(corners: &[DVec3], uvs: &[DVec2]) -> Vec<(Vec<DVec3>, Vec<DVec2>)> {
+    let n = corners.len();
+    let planar_quad = n == 4 && {
+        let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+        let size = (corners[2] - corners[0]).length();
+        normal.length() > 0.0
+            && (corners[3] - corners[0]).dot(normal.normalize()).abs() <= PLANARITY_TOLERANCE * size
+    };
+    if n == 3 || planar_quad {
+        return vec![(corners.to_vec(), uvs.to_vec())];
+    }
+    (1..n - 1)
+        .map(|k| {
+            (
+                vec![corners[0], corners[k], corners[k + 1]],
+                vec![uvs[0], uvs[k], uvs[k + 1]],
+            )
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Transform;
+    use crate::scene::{Material, Object};
+
+    fn square() -> Patch {
+        Patch::new(
+            &[
+                DVec3::ZERO,
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(2.0, 2.0, 0.0),
+                DVec3::new(0.0, 2.0, 0.0),
+            ],
+            &[DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn quad_has_area_normal_and_centroid() {
+        let p = square();
+        assert!((p.area - 4.0).abs() < 1e-15);
+        assert!((p.normal - DVec3::Z).length() < 1e-15);
+        assert!((p.centroid - DVec3::new(1.0, 1.0, 0.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn trapezoid_centroid_is_the_area_centroid_not_the_vertex_mean() {
+        // Trapezoid with parallel sides 2 (y=0) and 1 (y=1): centroid y = (2·1+1)/(3·3)·1 = 4/9.
+        let p = Patch::new(
+            &[
+                DVec3::ZERO,
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(1.5, 1.0, 0.0),
+                DVec3::new(0.5, 1.0, 0.0),
+            ],
+            &[DVec2::ZERO; 4],
+        )
+        .unwrap();
+        assert!((p.centroid.y - 4.0 / 9.0).abs() < 1e-14);
+        assert!((p.area - 1.5).abs() < 1e-14);
+    }
+
+    #[test]
+    fn degenerate_polygons_are_rejected() {
+        let line = [DVec3::ZERO, DVec3::X, DVec3::X * 2.0];
+        assert!(Patch::new(&line, &[DVec2::ZERO; 3]).is_none());
+        assert!(Patch::new(&[DVec3::ZERO, DVec3::X], &[DVec2::ZERO; 2]).is_none());
+    }
+
+    #[test]
+    fn children_tile_the_parent_and_inherit_midpoint_uvs() {
+        let mut mesh = PatchMesh::default();
+        let root = mesh.push(square());
+        mesh.roots.push(root);
+        let kids = mesh.subdivide(root);
+        let total: f64 = kids.iter().map(|&k| mesh.patch(k).area).sum();
+        assert!((total - 4.0).abs() < 1e-14);
+        let first = mesh.patch(kids[0]);
+        assert_eq!(first.uvs()[2], DVec2::new(0.5, 0.5));
+        assert_eq!(first.corners()[2], DVec3::new(1.0, 1.0, 0.0));
+        assert_eq!(first.depth, 1);
+        assert_eq!(first.parent, Some(root));
+        assert_eq!(
+            mesh.subdivide(root),
+            kids,
+            "splitting twice keeps the children"
+        );
+    }
+
+    #[test]
+    fn triangle_splits_into_four_triangles_of_equal_area() {
+        let mut mesh = PatchMesh::default();
+        let tri = Patch::new(
+            &[DVec3::ZERO, DVec3::X, DVec3::Y],
+            &[DVec2::ZERO, DVec2::X, DVec2::Y],
+        )
+        .unwrap();
+        let root = mesh.push(tri);
+        for k in mesh.subdivide(root) {
+            let child = mesh.patch(k);
+            assert!(child.is_triangle());
+            assert!((child.area - 0.125).abs() < 1e-15);
+            assert!((child.normal - DVec3::Z).length() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn uniform_levels_give_four_to_the_n_leaves() {
+        let mut scene = Scene::empty("t");
+        let m = scene.add_material(Material::default());
+        scene.add_object(
+            "box",
+            Shape::Box {
+                min: Vec3::ZERO,
+                max: Vec3::ONE,
+            },
+            m,
+        );
+        let options = MeshOptions {
+            segments: 8,
+            size: MeshSize::Levels(2),
+        };
+        let mesh = PatchMesh::from_scene(&scene, &options).unwrap();
+        assert_eq!(mesh.roots.len(), 6);
+        let leaves = mesh.leaves();
+        assert_eq!(leaves.len(), 6 * 16);
+        let area: f64 = leaves.iter().map(|&l| mesh.patch(l).area).sum();
+        assert!((area - 6.0).abs() < 1e-6);
+        // Box faces point out of the box.
+        for &r in &mesh.roots {
+            let p = mesh.patch(r);
+            assert!((p.centroid - DVec3::splat(0.5)).dot(p.normal) > 0.49);
+        }
+    }
+
+    #[test]
+    fn max_edge_refines_until_edges_are_short_enough() {
+        let mut mesh = PatchMesh::default();
+        let root = mesh.push(square());
+        mesh.roots.push(root);
+        mesh.subdivide_uniformly(root, MeshSize::MaxEdge(0.6));
+        let leaves = mesh.leaves();
+        assert_eq!(leaves.len(), 16, "edge 2 → 0.5 after two levels");
+        assert!(leaves.iter().all(|&l| mesh.patch(l).longest_edge() <= 0.6));
+    }
+
+    #[test]
+    fn mirrored_transform_keeps_the_normal_on_the_winding_side() {
+        let mut scene = Scene::empty("t");
+        let m = scene.add_material(Material::default());
+        scene.objects.push(Object {
+            name: None,
+            shape: Shape::Parallelogram {
+                origin: Vec3::ZERO,
+                edge_u: Vec3::X,
+                edge_v: Vec3::Y,
+            },
+            transform: Transform::scale(Vec3::new(-1.0, 1.0, 1.0)).unwrap(),
+            material: m,
+            per_face: false,
+        });
+        let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
+        // The mirrored parallelogram's front (edge_u × edge_v = +z) stays +z.
+        assert!((mesh.patch(0).normal - DVec3::Z).length() < 1e-12);
+    }
+
+    #[test]
+    fn non_planar_quads_and_pentagons_become_triangles() {
+        let bent = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.3), DVec3::Y];
+        assert_eq!(planar_pieces(&bent, &[DVec2::ZERO; 4]).len(), 2);
+        let pentagon: Vec<DVec3> = (0..5)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 5.0;
+                DVec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect();
+        assert_eq!(planar_pieces(&pentagon, &[DVec2::ZERO; 5]).len(), 3);
+    }
+
+    #[test]
+    fn mesh_size_parses_levels_and_edge_lengths() {
+        assert_eq!("levels:4".parse(), Ok(MeshSize::Levels(4)));
+        assert_eq!("0.25".parse(), Ok(MeshSize::MaxEdge(0.25)));
+        assert!("-1".parse::<MeshSize>().is_err());
+        assert!("levels:x".parse::<MeshSize>().is_err());
+    }
+}

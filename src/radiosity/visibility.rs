@@ -1,0 +1,500 @@
+//! Visibility between two patches (seed 000 §4.3, §4.4): the fraction of rays between
+//! stratified, jittered points on both patches that reach the other patch unblocked.
+//!
+//! Each patch gets an `m × m` grid of strata with one jittered point per stratum; the points
+//! of the two grids are paired by a random permutation, so every stratum of each patch sends
+//! exactly one ray. The jitter and the pairing come from a generator seeded with
+//! `(seed, lower patch id, higher patch id)`: the result is deterministic and symmetric.
+//!
+//! Occluders: a shaft (Haines & Wallace) between the patches' bounding boxes discards the
+//! clusters of primitives that cannot block any ray; when few primitives survive, the rays
+//! test only those, otherwise the scene's BVH is used. Surfaces lying in either patch's plane
+//! cannot block a ray leaving that plane and are skipped; a ray between two faces of the
+//! same convex object is still blocked by its other faces. Curved analytic objects the
+//! patches were tessellated from are ignored for the rays of their own patches (the facets
+//! lie inside the true surface); self-shadowing within one curved object is not seen.
+
+use super::clip::{Plane, SideCounts};
+use super::mesh::{Patch, PatchId, PatchMesh};
+use super::shaft::{Bounds, Shaft};
+use crate::accel::PrimitiveSet;
+use crate::geometry::{Ray, offset_origin, surface_offset};
+use crate::scene::Shape;
+use crate::trace::World;
+use glam::DVec3;
+use rand::{RngExt, SeedableRng};
+use rand_pcg::Pcg64Mcg;
+use std::fmt;
+use std::str::FromStr;
+
+/// Rays per axis for each unit of `√A_max / d` in adaptive mode.
+const ADAPTIVE_RAYS_PER_RATIO: f64 = 4.0;
+/// Largest adaptive grid per axis (64 rays).
+const ADAPTIVE_MAX_PER_AXIS: u32 = 8;
+/// Consecutive primitives of one object grouped under one bounding box for the shaft test.
+const CLUSTER_SIZE: usize = 16;
+/// Above this many surviving primitives the rays go through the scene's BVH.
+const DIRECT_TEST_LIMIT: usize = 48;
+/// How many hits on ignored objects one ray may step past before it counts as unblocked.
+const MAX_IGNORED_HITS: usize = 32;
+
+/// How many visibility rays per patch pair (`--vis-rays N|adaptive`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VisRays {
+    /// At least `N` rays: an `m × m` grid with `m = ⌈√N⌉`.
+    Fixed(u32),
+    /// `m = clamp(⌈4·√A_max / d⌉, 1, 8)` per axis, where `A_max` is the larger patch area
+    /// and `d` the centroid distance: unchanged when the scene is scaled uniformly.
+    Adaptive,
+}
+
+impl Default for VisRays {
+    /// Adaptive.
+    fn default() -> Self {
+        VisRays::Adaptive
+    }
+}
+
+impl fmt::Display for VisRays {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            VisRays::Fixed(n) => write!(f, "{n}"),
+            VisRays::Adaptive => f.write_str("adaptive"),
+        }
+    }
+}
+
+impl FromStr for VisRays {
+    type Err = String;
+
+    /// `adaptive` or a positive ray count.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if s.eq_ignore_ascii_case("adaptive") {
+            return Ok(VisRays::Adaptive);
+        }
+        match s.parse::<u32>() {
+            Ok(n) if n > 0 => Ok(VisRays::Fixed(n)),
+            _ => Err(format!(
+                "visibility rays '{s}': expected a positive count or 'adaptive'"
+            )),
+        }
+    }
+}
+
+/// Settings of the visibility test.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VisibilityOptions {
+    /// Ray count per pair.
+    pub rays: VisRays,
+    /// Cull occluders with the shaft before casting rays (off: every ray uses the BVH).
+    pub shaft_culling: bool,
+    /// Seed of the jitter and pairing.
+    pub seed: u64,
+}
+
+impl Default for VisibilityOptions {
+    /// Adaptive rays, shaft culling on, seed 0.
+    fn default() -> Self {
+        VisibilityOptions {
+            rays: VisRays::Adaptive,
+            shaft_culling: true,
+            seed: 0,
+        }
+    }
+}
+
+/// Consecutive primitives of one object under one box.
+#[derive(Clone, Debug)]
+struct Cluster {
+    bounds: Bounds,
+    first: u32,
+    end: u32,
+}
+
+/// Visibility queries against a traced world.
+pub struct Visibility<'w> {
+    world: &'w World,
+    clusters: Vec<Cluster>,
+    /// Per object: true for curved analytic shapes (their patches are facets of them).
+    curved: Vec<bool>,
+    options: VisibilityOptions,
+}
+
+/// Where the occluders of one pair are looked for.
+enum Occluders {
+    /// Nothing can block: every ray arrives.
+    None,
+    /// Only these primitives.
+    Listed(Vec<u32>),
+    /// The whole scene through its BVH.
+    Scene,
+}
+
+impl<'w> Visibility<'w> {
+    /// Prepares visibility queries on `world` (whose scene the patch mesh was built from).
+    pub fn new(world: &'w World, options: VisibilityOptions) -> Visibility<'w> {
+        let geometry = &world.geometry;
+        let mut clusters: Vec<Cluster> = Vec::new();
+        for prim in 0..geometry.len() as u32 {
+            let b = PrimitiveSet::bounds(geometry, prim);
+            let bounds = Bounds {
+                min: b.min.as_dvec3(),
+                max: b.max.as_dvec3(),
+            };
+            let object = geometry.owner(prim).0;
+            match clusters.last_mut() {
+                Some(c)
+                    if geometry.owner(c.first).0 == object
+                        && ((c.end - c.first) as usize) < CLUSTER_SIZE =>
+                {
+                    c.bounds = c.bounds.union(bounds);
+                    c.end = prim + 1;
+                }
+                _ => clusters.push(Cluster {
+                    bounds,
+                    first: prim,
+                    end: prim + 1,
+                }),
+            }
+        }
+        let curved = world
+            .scene
+            .objects
+            .iter()
+            .map(|o| {
+                o.shape.is_analytic() && !matches!(o.shape, Shape::Box { .. } | Shape::Plane { .. })
+            })
+            .collect();
+        Visibility {
+            world,
+            clusters,
+            curved,
+            options,
+        }
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &VisibilityOptions {
+        &self.options
+    }
+
+    /// Rays per axis for the pair (`m`; `m²` rays are cast).
+    pub fn rays_per_axis(&self, a: &Patch, b: &Patch) -> u32 {
+        match self.options.rays {
+            VisRays::Fixed(n) => (n as f64).sqrt().ceil().max(1.0) as u32,
+            VisRays::Adaptive => {
+                let d = a.centroid.distance(b.centroid);
+                let size = a.area.max(b.area).sqrt();
+                if d <= 0.0 {
+                    return ADAPTIVE_MAX_PER_AXIS;
+                }
+                let m = (ADAPTIVE_RAYS_PER_RATIO * size / d).ceil();
+                m.clamp(1.0, ADAPTIVE_MAX_PER_AXIS as f64) as u32
+            }
+        }
+    }
+
+    /// The visible fraction in `[0, 1]` between patches `a` and `b` of `mesh`: 1 when nothing
+    /// blocks, 0 when everything does. Symmetric in `a` and `b` and deterministic for a
+    /// fixed seed.
+    pub fn between(&self, mesh: &PatchMesh, a: PatchId, b: PatchId) -> f64 {
+        let (lo, hi) = (a.min(b), a.max(b));
+        let (p, q) = (mesh.patch(lo), mesh.patch(hi));
+        let ignored = [p.object, q.object].map(|o| self.curved.get(o as usize) == Some(&true));
+        let ignored: Vec<u32> = [p.object, q.object]
+            .into_iter()
+            .zip(ignored)
+            .filter_map(|(o, skip)| skip.then_some(o))
+            .collect();
+        let occluders = self.occluders(p, q, &ignored);
+        if matches!(occluders, Occluders::None) {
+            return 1.0;
+        }
+        let m = self.rays_per_axis(p, q);
+        let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, lo, hi));
+        let from = jittered_points(p, m, &mut rng);
+        let mut to = jittered_points(q, m, &mut rng);
+        for i in (1..to.len()).rev() {
+            let j = rng.random_range(0..=i);
+            to.swap(i, j);
+        }
+        let arrived = from
+            .iter()
+            .zip(&to)
+            .filter(|&(&x, &y)| !self.blocked(x, p.normal, y, q.normal, &occluders, &ignored))
+            .count();
+        arrived as f64 / from.len() as f64
+    }
+
+    /// The primitives that may block rays between `a` and `b` after shaft culling, or `None`
+    /// when shaft culling is off. Primitives in either patch's plane are left out.
+    pub fn candidates(&self, a: &Patch, b: &Patch) -> Option<Vec<u32>> {
+        self.options
+            .shaft_culling
+            .then(|| self.shaft_survivors(a, b))
+    }
+
+    fn shaft_survivors(&self, a: &Patch, b: &Patch) -> Vec<u32> {
+        let shaft = Shaft::new(
+            Bounds::from_points(a.corners().iter().copied()),
+            Bounds::from_points(b.corners().iter().copied()),
+        );
+        let planes = [Plane::of_patch(a), Plane::of_patch(b)];
+        let geometry = &self.world.geometry;
+        self.clusters
+            .iter()
+            .filter(|c| shaft.may_intersect(&c.bounds))
+            .flat_map(|c| c.first..c.end)
+            .filter(|&prim| {
+                let bounds = PrimitiveSet::bounds(geometry, prim);
+                let bounds = Bounds {
+                    min: bounds.min.as_dvec3(),
+                    max: bounds.max.as_dvec3(),
+                };
+                shaft.may_intersect(&bounds)
+                    && !geometry.triangle(prim).is_some_and(|t| {
+                        let corners = t.vertices().map(|v| v.as_dvec3());
+                        planes.iter().any(|plane| {
+                            let s = SideCounts::of(plane, &corners);
+                            s.front == 0 && s.back == 0
+                        })
+                    })
+            })
+            .collect()
+    }
+
+    fn occluders(&self, a: &Patch, b: &Patch, ignored: &[u32]) -> Occluders {
+        if !self.options.shaft_culling {
+            return Occluders::Scene;
+        }
+        let geometry = &self.world.geometry;
+        let survivors: Vec<u32> = self
+            .shaft_survivors(a, b)
+            .into_iter()
+            .filter(|&prim| !ignored.contains(&geometry.owner(prim).0))
+            .collect();
+        if survivors.is_empty() {
+            Occluders::None
+        } else if survivors.len() > DIRECT_TEST_LIMIT {
+            Occluders::Scene
+        } else {
+            Occluders::Listed(survivors)
+        }
+    }
+
+    /// Whether the segment between surface points `x` (normal `nx`) and `y` (normal `ny`) is
+    /// blocked; both ends are moved off their surfaces first.
+    fn blocked(
+        &self,
+        x: DVec3,
+        nx: DVec3,
+        y: DVec3,
+        ny: DVec3,
+        occluders: &Occluders,
+        ignored: &[u32],
+    ) -> bool {
+        let (xf, yf) = (x.as_vec3(), y.as_vec3());
+        let start = offset_origin(xf, nx.as_vec3(), yf - xf);
+        let end = offset_origin(yf, ny.as_vec3(), xf - yf);
+        let d = end - start;
+        let length = d.length();
+        if !(length > 0.0) {
+            return false;
+        }
+        let ray = Ray::new(start, d / length);
+        match occluders {
+            Occluders::None => false,
+            Occluders::Listed(prims) => prims
+                .iter()
+                .any(|&prim| self.world.geometry.intersect(prim, &ray, length).is_some()),
+            Occluders::Scene => occluded_except(self.world, ray, length, ignored),
+        }
+    }
+}
+
+/// Whether anything but the `ignored` objects blocks `ray` for `t ∈ (0, t_max]`, stepping
+/// past hits on ignored objects.
+pub fn occluded_except(world: &World, mut ray: Ray, mut t_max: f32, ignored: &[u32]) -> bool {
+    if ignored.is_empty() {
+        return world.occluded(&ray, t_max);
+    }
+    for _ in 0..MAX_IGNORED_HITS {
+        let Some(hit) = world.accel.closest_hit(&world.geometry, &ray, t_max) else {
+            return false;
+        };
+        if !ignored.contains(&world.geometry.owner(hit.prim).0) {
+            return true;
+        }
+        let p = ray.at(hit.t);
+        let step = hit.t + surface_offset(p);
+        ray = Ray::new(ray.at(step), ray.dir);
+        t_max -= step;
+        if t_max <= 0.0 {
+            return false;
+        }
+    }
+    false
+}
+
+/// One jittered point per stratum of an `m × m` grid over `patch`.
+fn jittered_points(patch: &Patch, m: u32, rng: &mut Pcg64Mcg) -> Vec<DVec3> {
+    let step = 1.0 / m as f64;
+    let mut points = Vec::with_capacity((m * m) as usize);
+    for i in 0..m {
+        for j in 0..m {
+            let s = (i as f64 + rng.random::<f64>()) * step;
+            let t = (j as f64 + rng.random::<f64>()) * step;
+            points.push(patch.point_at(s, t));
+        }
+    }
+    points
+}
+
+/// A well-mixed generator seed from the user seed and an ordered patch pair (SplitMix64
+/// finaliser).
+fn pair_key(seed: u64, lo: PatchId, hi: PatchId) -> u64 {
+    let mut z = seed ^ ((lo as u64) << 32 | hi as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::AccelKind;
+    use crate::radiosity::mesh::MeshOptions;
+    use crate::scene::{Material, Scene};
+    use glam::Vec3;
+
+    /// Two unit squares facing each other at z = 0 and z = 1 (scaled by `scale`), and an
+    /// optional blocker plate at z = 0.5 covering `x ∈ [x0, x1]`, `y ∈ [-1, 2]`.
+    fn pair_scene(blocker: Option<(f32, f32)>, scale: f32) -> Scene {
+        let mut scene = Scene::empty("pair");
+        let m = scene.add_material(Material::default());
+        let s = scale;
+        scene.add_object(
+            "bottom",
+            Shape::Parallelogram {
+                origin: Vec3::ZERO,
+                edge_u: Vec3::X * s,
+                edge_v: Vec3::Y * s,
+            },
+            m,
+        );
+        scene.add_object(
+            "top",
+            Shape::Parallelogram {
+                origin: Vec3::Z * s,
+                edge_u: Vec3::Y * s,
+                edge_v: Vec3::X * s,
+            },
+            m,
+        );
+        if let Some((x0, x1)) = blocker {
+            scene.add_object(
+                "blocker",
+                Shape::Parallelogram {
+                    origin: Vec3::new(x0, -1.0, 0.5) * s,
+                    edge_u: Vec3::X * (x1 - x0) * s,
+                    edge_v: Vec3::Y * 3.0 * s,
+                },
+                m,
+            );
+        }
+        scene
+    }
+
+    fn visibility_of(scene: Scene, options: VisibilityOptions) -> f64 {
+        let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
+        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let vis = Visibility::new(&world, options);
+        let v = vis.between(&mesh, 0, 1);
+        assert_eq!(v, vis.between(&mesh, 1, 0), "symmetric");
+        v
+    }
+
+    fn fixed(n: u32, shaft_culling: bool) -> VisibilityOptions {
+        VisibilityOptions {
+            rays: VisRays::Fixed(n),
+            shaft_culling,
+            seed: 7,
+        }
+    }
+
+    #[test]
+    fn unblocked_blocked_and_half_blocked_pairs() {
+        for culling in [true, false] {
+            assert_eq!(
+                visibility_of(pair_scene(None, 1.0), fixed(64, culling)),
+                1.0
+            );
+            assert_eq!(
+                visibility_of(pair_scene(Some((-1.0, 2.0)), 1.0), fixed(64, culling)),
+                0.0
+            );
+            // The plate covers x < 0.5 at mid-height: a ray from x₀ to x₁ is blocked when
+            // (x₀ + x₁)/2 < 0.5, which is half of the pairs by symmetry.
+            let half = visibility_of(pair_scene(Some((-1.0, 0.5)), 1.0), fixed(1024, culling));
+            assert!((half - 0.5).abs() < 0.03, "{half}");
+        }
+    }
+
+    #[test]
+    fn scaling_the_scene_by_1000_changes_nothing() {
+        for rays in [VisRays::Fixed(256), VisRays::Adaptive] {
+            let options = VisibilityOptions {
+                rays,
+                ..fixed(0, true)
+            };
+            let small = visibility_of(pair_scene(Some((-1.0, 0.5)), 1.0), options);
+            let large = visibility_of(pair_scene(Some((-1.0, 0.5)), 1000.0), options);
+            assert_eq!(small, large, "{rays}");
+        }
+    }
+
+    #[test]
+    fn adaptive_ray_count_depends_on_size_over_distance_only() {
+        let build = |scale: f32| {
+            let scene = pair_scene(None, scale);
+            PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap()
+        };
+        let world = World::new(pair_scene(None, 1.0), AccelKind::Bvh).unwrap();
+        let vis = Visibility::new(&world, VisibilityOptions::default());
+        let (small, large) = (build(1.0), build(1000.0));
+        let m_small = vis.rays_per_axis(small.patch(0), small.patch(1));
+        let m_large = vis.rays_per_axis(large.patch(0), large.patch(1));
+        assert_eq!(m_small, 4, "⌈4·√1 / 1⌉");
+        assert_eq!(m_small, m_large);
+    }
+
+    #[test]
+    fn shaft_keeps_the_blocker_and_drops_the_patches_own_planes() {
+        let scene = pair_scene(Some((2.5, 3.0)), 1.0);
+        let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
+        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let vis = Visibility::new(&world, VisibilityOptions::default());
+        // The plate at x ∈ [2.5, 3] is outside the shaft between the squares.
+        let survivors = vis.candidates(mesh.patch(0), mesh.patch(1)).unwrap();
+        assert!(survivors.is_empty(), "{survivors:?}");
+        let scene = pair_scene(Some((0.2, 0.3)), 1.0);
+        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let vis = Visibility::new(&world, VisibilityOptions::default());
+        let survivors = vis.candidates(mesh.patch(0), mesh.patch(1)).unwrap();
+        let owners: Vec<u32> = survivors
+            .iter()
+            .map(|&p| world.geometry.owner(p).0)
+            .collect();
+        assert!(
+            !owners.is_empty() && owners.iter().all(|&o| o == 2),
+            "{owners:?}"
+        );
+    }
+
+    #[test]
+    fn vis_rays_parse() {
+        assert_eq!("adaptive".parse(), Ok(VisRays::Adaptive));
+        assert_eq!("16".parse(), Ok(VisRays::Fixed(16)));
+        assert!("0".parse::<VisRays>().is_err());
+    }
+}

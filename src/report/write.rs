@@ -1,0 +1,199 @@
+//! Writing reports: JSON (the full schema) or CSV, chosen by the file extension.
+//!
+//! CSV has one row per report entry and these columns, arrays flattened per channel:
+//! `name, face, area, incident_power_{r,g,b}, absorbed_power_{r,g,b}, emitted_power_{r,g,b},
+//! reflected_power_{r,g,b}, irradiance_{r,g,b}, radiosity_{r,g,b}, illuminance_lux,
+//! luminous_flux_lm`. Empty cells stand for absent values (no face; unbounded area). The
+//! scene name, solver, units, statistics and totals are in the JSON form only.
+
+use super::schema::{Report, Rgb64};
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+/// Report file formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReportFormat {
+    /// The full report as pretty-printed JSON.
+    Json,
+    /// One row per entry (objects only; see the module documentation).
+    Csv,
+}
+
+/// Error while writing a report.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// The extension is neither `.json` nor `.csv`.
+    #[error("{path}: a report file must end in .json or .csv")]
+    UnknownFormat {
+        /// The path given.
+        path: String,
+    },
+    /// The file could not be written.
+    #[error("cannot write {path}: {source}")]
+    Io {
+        /// The path given.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// CSV encoding failed.
+    #[error("cannot write {path}: {source}")]
+    Csv {
+        /// The path given.
+        path: String,
+        /// The cause.
+        source: csv::Error,
+    },
+}
+
+impl ReportFormat {
+    /// The format named by the extension of `path` (`.json` or `.csv`, any case).
+    pub fn from_path(path: &Path) -> Result<Self, ReportError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("json") => Ok(ReportFormat::Json),
+            Some("csv") => Ok(ReportFormat::Csv),
+            _ => Err(ReportError::UnknownFormat {
+                path: path.display().to_string(),
+            }),
+        }
+    }
+}
+
+/// Writes `report` to `path` in the format its extension names.
+pub fn write_report(report: &Report, path: &Path) -> Result<(), ReportError> {
+    let format = ReportFormat::from_path(path)?;
+    let name = || path.display().to_string();
+    let io = |source| ReportError::Io {
+        path: name(),
+        source,
+    };
+    let file = File::create(path).map_err(io)?;
+    let mut out = BufWriter::new(file);
+    match format {
+        ReportFormat::Json => {
+            serde_json::to_writer_pretty(&mut out, report)
+                .map_err(|e| io(std::io::Error::other(e)))?;
+            writeln!(out).map_err(io)?;
+        }
+        ReportFormat::Csv => write_csv(report, &mut out).map_err(|source| ReportError::Csv {
+            path: name(),
+            source,
+        })?,
+    }
+    out.flush().map_err(io)
+}
+
+/// Column names of the CSV form.
+pub(crate) fn csv_header() -> Vec<String> {
+    let mut h = vec!["name".to_string(), "face".into(), "area".into()];
+    for q in [
+        "incident_power",
+        "absorbed_power",
+        "emitted_power",
+        "reflected_power",
+        "irradiance",
+        "radiosity",
+    ] {
+        for c in ["r", "g", "b"] {
+            h.push(format!("{q}_{c}"));
+        }
+    }
+    h.push("illuminance_lux".into());
+    h.push("luminous_flux_lm".into());
+    h
+}
+
+/// Writes the CSV form of `report` to `out`.
+fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
+    w.write_record(csv_header())?;
+    let num = |v: f64| v.to_string();
+    let opt = |v: Option<f64>| v.map(num).unwrap_or_default();
+    let rgb = |row: &mut Vec<String>, v: Option<Rgb64>| match v {
+        Some(c) => row.extend(c.map(num)),
+        None => row.extend([String::new(), String::new(), String::new()]),
+    };
+    for o in &report.objects {
+        let mut row = vec![
+            o.name.clone(),
+            o.face.map(|f| f.to_string()).unwrap_or_default(),
+            opt(o.area),
+        ];
+        for v in [
+            o.incident_power,
+            o.absorbed_power,
+            o.emitted_power,
+            o.reflected_power,
+        ] {
+            rgb(&mut row, Some(v));
+        }
+        rgb(&mut row, o.irradiance);
+        rgb(&mut row, o.radiosity);
+        row.push(opt(o.illuminance_lux));
+        row.push(num(o.luminous_flux_lm));
+        w.write_record(&row)?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::schema::{ObjectReport, PowerBalance, Stats, Totals, Units};
+    use super::*;
+
+    fn sample() -> Report {
+        let p = PowerBalance {
+            incident: [1.0, 2.0, 3.0],
+            ..PowerBalance::default()
+        };
+        Report {
+            scene: "s".into(),
+            solver: "light-trace".into(),
+            units: Units::default(),
+            stats: Stats::default(),
+            objects: vec![
+                ObjectReport::new("leaf, big".into(), Some(1), 0.5, &p),
+                ObjectReport::new("ground".into(), None, f64::INFINITY, &p),
+            ],
+            totals: Totals::default(),
+        }
+    }
+
+    #[test]
+    fn csv_has_one_row_per_entry_and_flattened_columns() {
+        let mut buf = Vec::new();
+        write_csv(&sample(), &mut buf).unwrap();
+        let text = String::from_utf8(buf).unwrap();
+        let mut reader = csv::Reader::from_reader(text.as_bytes());
+        let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+        assert_eq!(header, csv_header());
+        assert_eq!(header.len(), 23);
+        let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+        assert_eq!(rows.len(), 2);
+        assert_eq!(&rows[0][0], "leaf, big");
+        assert_eq!(&rows[0][1], "1");
+        assert_eq!(&rows[0][2], "0.5");
+        assert_eq!(&rows[0][15], "2"); // irradiance_r = 1 / 0.5
+        assert_eq!(&rows[1][2], "");
+        assert_eq!(&rows[1][15], "");
+    }
+
+    #[test]
+    fn format_follows_the_extension() {
+        assert_eq!(
+            ReportFormat::from_path(Path::new("a/OUT.CSV")).unwrap(),
+            ReportFormat::Csv
+        );
+        assert_eq!(
+            ReportFormat::from_path(Path::new("o.json")).unwrap(),
+            ReportFormat::Json
+        );
+        assert!(ReportFormat::from_path(Path::new("o.txt")).is_err());
+    }
+}

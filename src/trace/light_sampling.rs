@@ -1,0 +1,280 @@
+//! Next-event estimation: choosing one light in proportion to its power and sampling a
+//! direction toward it.
+//!
+//! Power estimates (luminance, watts) used only to choose lights:
+//! - area light: [`super::AreaLight::power`], π·L·A per emitting side (texture mean applied);
+//! - point light: 4π·I;
+//! - spot light: I·2π(1 − cos θ_m), θ_m the mean of the inner and outer cone angles;
+//! - directional light: E·πr², r the radius of the bounding sphere of the bounded geometry;
+//! - sky: π·L·πr² (the radiance through the scene's cross-section from one hemisphere).
+//!
+//! Area lights are sampled uniformly by area and their density turned into solid angle,
+//! `pdf_ω = pdf_A·d²/|cos θ_y|`; the sky is sampled cosine-weighted about the shading normal.
+
+use super::bsdf::emitted_toward;
+use super::sampling::cosine_hemisphere;
+use super::{SceneGeometry, World};
+use crate::color::Rgb;
+use crate::geometry::Frame;
+use crate::scene::LightKind;
+use glam::{Vec2, Vec3};
+use std::f32::consts::{FRAC_1_PI, PI};
+
+/// Where a shadow ray toward a light sample ends.
+#[derive(Clone, Copy, Debug)]
+pub enum ShadowTarget {
+    /// At this point (world).
+    Point(Vec3),
+    /// At infinity.
+    Infinity,
+}
+
+/// Light arriving at a shading point from one sampled light.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample {
+    /// Unit direction toward the light.
+    pub wi: Vec3,
+    /// Incident radiance divided by the sampling density (solid-angle density times the
+    /// probability of choosing the light); for delta lights the normal irradiance divided by
+    /// the choice probability. Multiply by `f·cos θ`.
+    pub radiance_over_pdf: Rgb,
+    /// Solid-angle density (1/sr) including the choice probability, for multiple importance
+    /// sampling; 0 for delta lights.
+    pub pdf: f32,
+    /// Where the shadow ray ends.
+    pub target: ShadowTarget,
+}
+
+/// One entry of the light-choice distribution.
+#[derive(Clone, Copy, Debug)]
+enum Choice {
+    Area(usize),
+    Delta(usize),
+    Sky,
+}
+
+/// Chooses lights in proportion to their power.
+#[derive(Clone, Debug, Default)]
+pub struct LightPicker {
+    choices: Vec<Choice>,
+    /// Cumulative probabilities of `choices` (last = 1).
+    cdf: Vec<f32>,
+    /// Probability of choosing each area light.
+    area_probability: Vec<f32>,
+    /// Probability of choosing the sky.
+    sky_probability: f32,
+}
+
+impl LightPicker {
+    /// The distribution over the lights of `world`.
+    pub fn new(world: &World) -> Self {
+        let lights = &world.lights;
+        let bounds = world.geometry.bounds();
+        let radius = if bounds.is_empty() {
+            1.0
+        } else {
+            0.5 * bounds.extent().length()
+        };
+        let cross_section = PI * radius * radius;
+        let mut choices = Vec::new();
+        let mut power = Vec::new();
+        for (i, l) in lights.area.iter().enumerate() {
+            choices.push(Choice::Area(i));
+            power.push(l.power.luminance());
+        }
+        for (i, l) in lights.delta.iter().enumerate() {
+            let p = match *l {
+                LightKind::Point { intensity, .. } => 4.0 * PI * intensity.luminance(),
+                LightKind::Spot {
+                    intensity,
+                    inner_degrees,
+                    outer_degrees,
+                    ..
+                } => {
+                    let mean_angle = (0.5 * (inner_degrees + outer_degrees)).to_radians();
+                    2.0 * PI * (1.0 - mean_angle.cos()) * intensity.luminance()
+                }
+                LightKind::Directional { irradiance, .. } => irradiance.luminance() * cross_section,
+                // The sky is kept apart from the delta lights (`LightSet::sky`).
+                LightKind::Sky { .. } => 0.0,
+            };
+            choices.push(Choice::Delta(i));
+            power.push(p);
+        }
+        if let Some(sky) = lights.sky {
+            choices.push(Choice::Sky);
+            power.push(PI * sky.luminance() * cross_section);
+        }
+        let power: Vec<f32> = power.into_iter().map(|p| p.max(0.0)).collect();
+        let total: f32 = power.iter().sum();
+        if total <= 0.0 || !total.is_finite() {
+            return LightPicker::default();
+        }
+        let mut cdf = Vec::with_capacity(power.len());
+        let mut acc = 0.0;
+        let mut area_probability = vec![0.0; lights.area.len()];
+        let mut sky_probability = 0.0;
+        for (c, p) in choices.iter().zip(&power) {
+            let probability = p / total;
+            acc += probability;
+            cdf.push(acc);
+            match *c {
+                Choice::Area(i) => area_probability[i] = probability,
+                Choice::Sky => sky_probability = probability,
+                Choice::Delta(_) => {}
+            }
+        }
+        if let Some(last) = cdf.last_mut() {
+            *last = 1.0;
+        }
+        LightPicker {
+            choices,
+            cdf,
+            area_probability,
+            sky_probability,
+        }
+    }
+
+    /// True when there is no light to sample.
+    pub fn is_empty(&self) -> bool {
+        self.choices.is_empty()
+    }
+
+    /// Solid-angle density (1/sr, choice probability included) with which [`Self::sample`]
+    /// picks the point `p` (unit front normal `n_light`) of area light `light`, as seen from
+    /// `x`.
+    pub fn area_pdf(&self, world: &World, light: usize, x: Vec3, p: Vec3, n_light: Vec3) -> f32 {
+        let d = p - x;
+        let dist2 = d.length_squared();
+        let cos_y = n_light.dot(d).abs() / dist2.sqrt();
+        if cos_y <= 0.0 {
+            return 0.0;
+        }
+        self.area_probability[light] / world.lights.area[light].area * dist2 / cos_y
+    }
+
+    /// Solid-angle density (1/sr, choice probability included) of sampling the sky in
+    /// direction `wi` from a point with unit shading normal `n`.
+    pub fn sky_pdf(&self, n: Vec3, wi: Vec3) -> f32 {
+        self.sky_probability * n.dot(wi).max(0.0) * FRAC_1_PI
+    }
+
+    /// Samples one light for the shading point `x` with unit shading normal `n` (toward the
+    /// viewer), from uniform numbers `u_pick`, `u_prim` and `u`. `None` when the sample carries
+    /// no light (behind the point, back of a one-sided emitter, outside a spot cone).
+    pub fn sample(
+        &self,
+        world: &World,
+        x: Vec3,
+        n: Vec3,
+        u_pick: f32,
+        u_prim: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
+        let index = self
+            .cdf
+            .partition_point(|&c| c <= u_pick)
+            .min(self.cdf.len().checked_sub(1)?);
+        let probability = self.cdf[index] - if index == 0 { 0.0 } else { self.cdf[index - 1] };
+        if probability <= 0.0 {
+            return None;
+        }
+        match self.choices[index] {
+            Choice::Area(light) => {
+                let s = world.lights.sample_area(&world.geometry, light, u_prim, u);
+                let d = s.p - x;
+                let dist2 = d.length_squared();
+                if dist2 <= 0.0 {
+                    return None;
+                }
+                let wi = d / dist2.sqrt();
+                let cos_y = s.n.dot(-wi);
+                if cos_y == 0.0 || n.dot(wi) <= 0.0 {
+                    return None;
+                }
+                let le = area_emission(world, &world.geometry, s.prim, s.uv, cos_y > 0.0);
+                if le.is_black() {
+                    return None;
+                }
+                let pdf = probability * s.pdf_area * dist2 / cos_y.abs();
+                Some(LightSample {
+                    wi,
+                    radiance_over_pdf: le / pdf,
+                    pdf,
+                    target: ShadowTarget::Point(s.p),
+                })
+            }
+            Choice::Sky => {
+                let sky = world.lights.sky?;
+                let wi = Frame::from_normal(n).to_world(cosine_hemisphere(u));
+                let pdf = self.sky_pdf(n, wi);
+                if pdf <= 0.0 {
+                    return None;
+                }
+                Some(LightSample {
+                    wi,
+                    radiance_over_pdf: sky / pdf,
+                    pdf,
+                    target: ShadowTarget::Infinity,
+                })
+            }
+            Choice::Delta(light) => {
+                let (wi, irradiance, target) = match world.lights.delta[light] {
+                    LightKind::Point {
+                        position,
+                        intensity,
+                    } => {
+                        let d = position - x;
+                        let dist2 = d.length_squared();
+                        (
+                            d / dist2.sqrt(),
+                            intensity / dist2,
+                            ShadowTarget::Point(position),
+                        )
+                    }
+                    LightKind::Spot {
+                        position,
+                        direction,
+                        intensity,
+                        inner_degrees,
+                        outer_degrees,
+                    } => {
+                        let d = position - x;
+                        let dist2 = d.length_squared();
+                        let wi = d / dist2.sqrt();
+                        let falloff = LightKind::spot_falloff(
+                            -wi.dot(direction),
+                            inner_degrees,
+                            outer_degrees,
+                        );
+                        (
+                            wi,
+                            intensity * (falloff / dist2),
+                            ShadowTarget::Point(position),
+                        )
+                    }
+                    LightKind::Directional {
+                        direction,
+                        irradiance,
+                    } => (-direction, irradiance, ShadowTarget::Infinity),
+                    LightKind::Sky { .. } => return None,
+                };
+                if irradiance.is_black() || !wi.is_finite() || n.dot(wi) <= 0.0 {
+                    return None;
+                }
+                Some(LightSample {
+                    wi,
+                    radiance_over_pdf: irradiance / probability,
+                    pdf: 0.0,
+                    target,
+                })
+            }
+        }
+    }
+}
+
+/// Radiance emitted by primitive `prim` at texture coordinate `uv` toward its front or back.
+fn area_emission(world: &World, geometry: &SceneGeometry, prim: u32, uv: Vec2, front: bool) -> Rgb {
+    let material = &world.scene.materials[geometry.owner(prim).1 as usize];
+    emitted_toward(&world.scene, material, uv, front)
+}

@@ -1,0 +1,394 @@
+//! The light model (seed 002 §1.2, like the "enviro" light model of plant modelling): photons
+//! traced from all lights and the sky in proportion to their power, followed through
+//! reflections and transmissions with Russian roulette, accumulating per object (or per face)
+//! the incident, absorbed, emitted and reflected power.
+//!
+//! Estimator. Source s (power Φₛ, see [`super::photon_sources`]) sends exactly Nₛ of the N
+//! photons, Nₛ ≈ N·Φₛ/ΣΦ: photon i takes the source whose cumulative power interval holds
+//! the radical inverse (base 2) of i, so every prefix of the photon sequence, and so every
+//! partial run, is stratified over the sources. Each photon starts with power Φₛ/Nₛ (exactly
+//! so for untextured sources, so the emitted totals are exact), and scatters as
+//! [`super::photon_scatter`] describes. The error falls as 1/√N.
+//!
+//! Exact bookkeeping. Powers are tallied in 128-bit fixed point (2⁶² units for the total
+//! emitted power), and at every hit `absorbed = incident − carried on` in those units, so
+//! Σ absorbed + escaped = Σ emitted holds exactly per photon, and integer sums do not depend
+//! on the order of addition: a fixed seed gives identical reports for any thread count.
+//! Each photon draws its random numbers from its own stream (seed, photon index).
+//!
+//! Photons stop after `max_bounces` scattering events (the last hit absorbs them; counted as
+//! `truncated_paths`), which only matters for scenes of near-perfect mirrors.
+
+use super::World;
+use super::photon_scatter::scatter_photon;
+use super::photon_sources::PhotonSources;
+use super::render::ProgressListener;
+use super::sampler::{Sampler, SequenceKind};
+use crate::geometry::spawn_ray;
+use crate::report::{PowerAccumulator, Report, Rgb64, Stats, SurfaceTable};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// Fixed-point units of the total emitted power (largest channel).
+const FIXED_POINT_TOTAL: f64 = (1u64 << 62) as f64;
+/// Photons per progress step are at least this many.
+const MIN_BATCH: u64 = 4096;
+/// Number of progress steps of a run (at most).
+const BATCHES: u64 = 200;
+/// Memory budget of the per-worker tallies, bytes.
+const TALLY_BUDGET: usize = 256 << 20;
+
+/// Settings of a light-tracing run.
+#[derive(Clone, Debug)]
+pub struct LightTraceSettings {
+    /// Photons to trace.
+    pub photons: u64,
+    /// Seed of all random numbers.
+    pub seed: u64,
+    /// Scattering events after which a photon is absorbed where it is.
+    pub max_bounces: u32,
+}
+
+impl Default for LightTraceSettings {
+    /// One million photons, seed 0, at most 1000 bounces.
+    fn default() -> Self {
+        LightTraceSettings {
+            photons: 1_000_000,
+            seed: 0,
+            max_bounces: 1000,
+        }
+    }
+}
+
+/// Why light tracing cannot run.
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+pub enum LightTraceError {
+    /// No light with positive power.
+    #[error("the scene has no light with positive power")]
+    NoLights,
+    /// Zero photons asked for.
+    #[error("at least one photon is needed")]
+    NoPhotons,
+}
+
+/// The result of a light-tracing run.
+#[derive(Clone, Debug)]
+pub struct LightTraceOutput {
+    /// Per-surface and scene-wide power, W, scaled to the full photon count when the run was
+    /// cancelled early.
+    pub power: PowerAccumulator,
+    /// Photons asked for.
+    pub photons: u64,
+    /// Photons traced (less than `photons` when cancelled).
+    pub photons_traced: u64,
+    /// Closest-hit ray queries.
+    pub rays: u64,
+    /// Photons that left the scene.
+    pub escaped_photons: u64,
+    /// Photons stopped by the bounce limit.
+    pub truncated_paths: u64,
+    /// Sources that received no photon (too little power for the photon count).
+    pub unsampled_sources: usize,
+    /// Number of photon sources.
+    pub sources: usize,
+    /// Wall-clock seconds of the run.
+    pub seconds: f64,
+    /// The settings used.
+    pub settings: LightTraceSettings,
+}
+
+impl LightTraceOutput {
+    /// True when every photon asked for was traced.
+    pub fn complete(&self) -> bool {
+        self.photons_traced == self.photons
+    }
+
+    /// The report of this run for the scene called `scene` (solver `light-trace`).
+    pub fn report(&self, scene: &str) -> Report {
+        let mut stats = Stats {
+            seconds: self.seconds,
+            rays: self.rays,
+            ..Stats::default()
+        };
+        let mut put = |k: &str, v: serde_json::Value| {
+            stats.extra.insert(k.to_string(), v);
+        };
+        put("photons", self.photons.into());
+        put("photons_traced", self.photons_traced.into());
+        put("complete", self.complete().into());
+        put("seed", self.settings.seed.into());
+        put("max_bounces", self.settings.max_bounces.into());
+        put("escaped_photons", self.escaped_photons.into());
+        put("truncated_paths", self.truncated_paths.into());
+        put("sources", self.sources.into());
+        put("unsampled_sources", self.unsampled_sources.into());
+        self.power.report(scene, "light-trace", stats)
+    }
+}
+
+/// Fixed-point power triple.
+type Fixed = [i128; 3];
+
+/// Per-entry quantities in a tally.
+#[derive(Clone, Copy, Default)]
+struct FixedBalance {
+    incident: Fixed,
+    absorbed: Fixed,
+    emitted: Fixed,
+    reflected: Fixed,
+}
+
+/// What one worker has accumulated.
+#[derive(Clone)]
+struct Tally {
+    entries: Vec<FixedBalance>,
+    light_emission: Fixed,
+    escaped: Fixed,
+    rays: u64,
+    escaped_photons: u64,
+    truncated_paths: u64,
+}
+
+fn add_fixed(a: &mut Fixed, b: Fixed) {
+    a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
+}
+
+impl Tally {
+    fn new(entries: usize) -> Self {
+        Tally {
+            entries: vec![FixedBalance::default(); entries],
+            light_emission: [0; 3],
+            escaped: [0; 3],
+            rays: 0,
+            escaped_photons: 0,
+            truncated_paths: 0,
+        }
+    }
+
+    fn merge(&mut self, o: &Tally) {
+        for (a, b) in self.entries.iter_mut().zip(&o.entries) {
+            add_fixed(&mut a.incident, b.incident);
+            add_fixed(&mut a.absorbed, b.absorbed);
+            add_fixed(&mut a.emitted, b.emitted);
+            add_fixed(&mut a.reflected, b.reflected);
+        }
+        add_fixed(&mut self.light_emission, o.light_emission);
+        add_fixed(&mut self.escaped, o.escaped);
+        self.rays += o.rays;
+        self.escaped_photons += o.escaped_photons;
+        self.truncated_paths += o.truncated_paths;
+    }
+}
+
+/// Everything a worker needs to trace photon `i`.
+struct Tracer<'a> {
+    world: &'a World,
+    sources: PhotonSources,
+    /// Cumulative power fractions of the sources (last = 1).
+    cdf: Vec<f64>,
+    /// Photons per source over the whole run.
+    counts: Vec<u64>,
+    table: &'a SurfaceTable,
+    /// Fixed-point units per watt.
+    scale: f64,
+    settings: LightTraceSettings,
+}
+
+/// Radical inverse in base 2 of `i`, in `[0, 1)`.
+fn radical_inverse(i: u64) -> f64 {
+    i.reverse_bits() as f64 * (1.0 / 18_446_744_073_709_551_616.0)
+}
+
+impl Tracer<'_> {
+    fn source_of(&self, photon: u64) -> usize {
+        let u = radical_inverse(photon);
+        self.cdf
+            .partition_point(|&c| c <= u)
+            .min(self.cdf.len() - 1)
+    }
+
+    fn quantize(&self, p: Rgb64) -> Fixed {
+        p.map(|c| (c * self.scale).round() as i128)
+    }
+
+    fn watts(&self, q: Fixed) -> Rgb64 {
+        q.map(|c| c as f64 / self.scale)
+    }
+
+    fn trace_photon(&self, index: u64, tally: &mut Tally) {
+        let world = self.world;
+        let mut sampler = Sampler::new(SequenceKind::Random, self.settings.seed, index, 0);
+        let source = self.source_of(index);
+        let photon = self.sources.emit(world, source, &mut sampler);
+        let count = self.counts[source] as f64;
+        let mut q = self.quantize(photon.power.to_f64().map(|c| c / count));
+        match photon.surface {
+            Some((object, face)) => {
+                let e = self.table.entry(object, face);
+                add_fixed(&mut tally.entries[e].emitted, q);
+            }
+            None => add_fixed(&mut tally.light_emission, q),
+        }
+        let mut ray = photon.ray;
+        let mut bounces = 0;
+        loop {
+            tally.rays += 1;
+            let Some(hit) = world.intersect(&ray) else {
+                add_fixed(&mut tally.escaped, q);
+                tally.escaped_photons += 1;
+                return;
+            };
+            let entry = &mut tally.entries[self.table.entry(hit.object, hit.face)];
+            add_fixed(&mut entry.incident, q);
+            let scattered = if bounces < self.settings.max_bounces {
+                scatter_photon(&world.scene, &hit, ray.dir, self.watts(q), &mut sampler)
+            } else {
+                tally.truncated_paths += 1;
+                None
+            };
+            let out = scattered.map(|s| (s.dir, self.quantize(s.power)));
+            match out {
+                Some((dir, q_out)) if q_out != [0; 3] => {
+                    add_fixed(&mut entry.absorbed, [0, 1, 2].map(|c| q[c] - q_out[c]));
+                    add_fixed(&mut entry.reflected, q_out);
+                    q = q_out;
+                    ray = spawn_ray(hit.p, hit.ng, dir);
+                    bounces += 1;
+                }
+                _ => {
+                    add_fixed(&mut entry.absorbed, q);
+                    return;
+                }
+            }
+        }
+    }
+}
+
+/// Photons per source for a run of `photons`: how many photon indices fall in each source's
+/// interval of the cumulative power.
+fn photons_per_source(cdf: &[f64], photons: u64) -> Vec<u64> {
+    let chunk = 1u64 << 16;
+    (0..photons.div_ceil(chunk))
+        .into_par_iter()
+        .map(|c| {
+            let mut counts = vec![0u64; cdf.len()];
+            for i in c * chunk..((c + 1) * chunk).min(photons) {
+                let u = radical_inverse(i);
+                counts[cdf.partition_point(|&x| x <= u).min(cdf.len() - 1)] += 1;
+            }
+            counts
+        })
+        .reduce(
+            || vec![0u64; cdf.len()],
+            |mut a, b| {
+                a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
+                a
+            },
+        )
+}
+
+/// Traces `settings.photons` photons through `world` on the current rayon pool. Progress is
+/// reported in photons; when `cancel` becomes true the run stops after the current batch and
+/// the result is scaled to the full photon count.
+pub fn trace_light(
+    world: &World,
+    settings: &LightTraceSettings,
+    progress: &dyn ProgressListener,
+    cancel: &AtomicBool,
+) -> Result<LightTraceOutput, LightTraceError> {
+    let start = Instant::now();
+    if settings.photons == 0 {
+        return Err(LightTraceError::NoPhotons);
+    }
+    let sources = PhotonSources::new(world);
+    if sources.sources.is_empty() {
+        return Err(LightTraceError::NoLights);
+    }
+    let weights: Vec<f64> = sources
+        .sources
+        .iter()
+        .map(|s| s.power.to_f64().iter().sum())
+        .collect();
+    let total: f64 = weights.iter().sum();
+    let mut cdf: Vec<f64> = weights
+        .iter()
+        .scan(0.0, |acc, w| {
+            *acc += w / total;
+            Some(*acc)
+        })
+        .collect();
+    if let Some(last) = cdf.last_mut() {
+        *last = 1.0;
+    }
+    let counts = photons_per_source(&cdf, settings.photons);
+    let largest_channel = sources
+        .sources
+        .iter()
+        .map(|s| s.power)
+        .sum::<crate::color::Rgb>()
+        .max_channel() as f64;
+    let table = SurfaceTable::new(&world.scene, &world.geometry);
+    let tracer = Tracer {
+        world,
+        cdf,
+        counts,
+        table: &table,
+        scale: FIXED_POINT_TOTAL / largest_channel,
+        settings: settings.clone(),
+        sources,
+    };
+    let workers = rayon::current_num_threads().max(1) * 4;
+    let per_tally = table.len().max(1) * std::mem::size_of::<FixedBalance>();
+    let slots = workers.min(TALLY_BUDGET / per_tally).max(1);
+    let mut tallies = vec![Tally::new(table.len()); slots];
+    let batch = settings.photons.div_ceil(BATCHES).max(MIN_BATCH);
+    progress.start(settings.photons);
+    let mut done = 0u64;
+    while done < settings.photons && !cancel.load(Ordering::Relaxed) {
+        let end = (done + batch).min(settings.photons);
+        let span = end - done;
+        tallies
+            .par_iter_mut()
+            .enumerate()
+            .for_each(|(slot, tally)| {
+                let from = done + span * slot as u64 / slots as u64;
+                let to = done + span * (slot as u64 + 1) / slots as u64;
+                for i in from..to {
+                    tracer.trace_photon(i, tally);
+                }
+            });
+        progress.advance(span);
+        done = end;
+    }
+    progress.finish();
+    let mut sum = Tally::new(table.len());
+    for t in &tallies {
+        sum.merge(t);
+    }
+    let mut power = PowerAccumulator::new(table.clone());
+    for (e, b) in sum.entries.iter().enumerate() {
+        let out = power.balance_mut(e);
+        out.incident = tracer.watts(b.incident);
+        out.absorbed = tracer.watts(b.absorbed);
+        out.emitted = tracer.watts(b.emitted);
+        out.reflected = tracer.watts(b.reflected);
+    }
+    power.add_light_emission(tracer.watts(sum.light_emission));
+    power.add_escaped(tracer.watts(sum.escaped));
+    if done > 0 && done < settings.photons {
+        power.scale(settings.photons as f64 / done as f64);
+    }
+    Ok(LightTraceOutput {
+        power,
+        photons: settings.photons,
+        photons_traced: done,
+        rays: sum.rays,
+        escaped_photons: sum.escaped_photons,
+        truncated_paths: sum.truncated_paths,
+        unsampled_sources: tracer.counts.iter().filter(|&&c| c == 0).count(),
+        sources: tracer.counts.len(),
+        seconds: start.elapsed().as_secs_f64(),
+        settings: settings.clone(),
+    })
+}

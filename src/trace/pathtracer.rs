@@ -1,0 +1,292 @@
+//! Unbiased Monte Carlo path tracing (seed 002 §3.2): from each camera ray one path, or N
+//! branching paths at the first hit, continued by sampling the material's lobes; at every
+//! non-delta vertex one light is sampled (next-event estimation) and combined with the
+//! emission that BSDF sampling finds by multiple importance sampling (power heuristic).
+//! Russian roulette from bounce [`ROULETTE_START`] on, survival by throughput luminance
+//! capped at [`ROULETTE_MAX_SURVIVAL`].
+//!
+//! Path length counts scattering events: with `max_depth = 0` only emitters seen directly
+//! contribute, with 1 direct light only, and so on; `u32::MAX` leaves the length to roulette.
+
+use super::bsdf::emitted;
+use super::bsdf_sampling::{LobeChoice, ViewSide, sample_bsdf};
+use super::direct::ShadingPoint;
+use super::light_sampling::{LightPicker, ShadowTarget};
+use super::sampler::Sampler;
+use super::{Integrator, SurfaceHit, World};
+use crate::color::Rgb;
+use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
+use glam::{Vec2, Vec3};
+
+/// First bounce (counted from 0 at the first hit) at which Russian roulette may end a path.
+pub const ROULETTE_START: u32 = 5;
+/// Largest survival probability of Russian roulette.
+pub const ROULETTE_MAX_SURVIVAL: f32 = 0.95;
+
+/// The path tracer; build it for a world with [`PathTracer::new`].
+#[derive(Clone, Debug)]
+pub struct PathTracer {
+    /// Maximum number of scattering events per path (`u32::MAX`: unbounded, ended by Russian
+    /// roulette).
+    pub max_depth: u32,
+    /// Paths branching from the first hit (seed 002 §3.2: N paths from the first hit, one
+    /// path after that); at least 1.
+    pub first_hit_paths: u32,
+    lights: LightPicker,
+}
+
+/// How the path arrived at the vertex being shaded: what multiple importance sampling of
+/// emission found there needs.
+#[derive(Clone, Copy, Debug)]
+struct Arrival {
+    /// The previous vertex.
+    from: Vec3,
+    /// Unit shading normal at the previous vertex, toward its viewer.
+    normal: Vec3,
+    /// Density (1/sr) of the direction under BSDF sampling; unused for delta lobes.
+    pdf: f32,
+    /// Arrived by a delta lobe or from the camera: emission counts in full.
+    delta: bool,
+}
+
+impl Arrival {
+    /// The camera ray: nothing to weigh against.
+    const CAMERA: Arrival = Arrival {
+        from: Vec3::ZERO,
+        normal: Vec3::ZERO,
+        pdf: 0.0,
+        delta: true,
+    };
+}
+
+/// The uniform numbers one bounce uses, always drawn in the same order so that every
+/// sample index uses the same Sobol dimension for the same decision.
+struct BounceNumbers {
+    light_pick: f32,
+    light_prim: f32,
+    light_point: Vec2,
+    lobe: f32,
+    direction: Vec2,
+    roulette: f32,
+}
+
+impl BounceNumbers {
+    fn draw(sampler: &mut Sampler) -> Self {
+        BounceNumbers {
+            light_pick: sampler.next_1d(),
+            light_prim: sampler.next_1d(),
+            light_point: sampler.next_2d(),
+            lobe: sampler.next_1d(),
+            direction: sampler.next_2d(),
+            roulette: sampler.next_1d(),
+        }
+    }
+}
+
+/// Power heuristic (β = 2) weight of the strategy with density `a` against one with `b`.
+fn power_heuristic(a: f32, b: f32) -> f32 {
+    let (a2, b2) = (a * a, b * b);
+    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
+}
+
+impl PathTracer {
+    /// A path tracer for `world` with at most `max_depth` scattering events per path and
+    /// `first_hit_paths` branches at the first hit (0 is taken as 1).
+    pub fn new(world: &World, max_depth: u32, first_hit_paths: u32) -> Self {
+        PathTracer {
+            max_depth,
+            first_hit_paths: first_hit_paths.max(1),
+            lights: LightPicker::new(world),
+        }
+    }
+
+    /// Multiple-importance weight of emission found by BSDF sampling at `hit`.
+    fn emission_weight(&self, world: &World, arrival: &Arrival, hit: &SurfaceHit) -> f32 {
+        if arrival.delta {
+            return 1.0;
+        }
+        match world.lights.area_light_of(hit.prim) {
+            Some(light) => {
+                let light_pdf = self
+                    .lights
+                    .area_pdf(world, light, arrival.from, hit.p, hit.ng);
+                power_heuristic(arrival.pdf, light_pdf)
+            }
+            None => 1.0,
+        }
+    }
+
+    /// Multiple-importance weight of sky radiance found by BSDF sampling along `dir`.
+    fn sky_weight(&self, arrival: &Arrival, dir: Vec3) -> f32 {
+        if arrival.delta {
+            1.0
+        } else {
+            power_heuristic(arrival.pdf, self.lights.sky_pdf(arrival.normal, dir))
+        }
+    }
+
+    /// Radiance reflected toward the viewer at `sp` from one sampled light, weighted against
+    /// BSDF sampling.
+    fn next_event(
+        &self,
+        world: &World,
+        sp: &ShadingPoint,
+        choice: &LobeChoice,
+        numbers: &BounceNumbers,
+    ) -> Rgb {
+        let Some(ls) = self.lights.sample(
+            world,
+            sp.hit.p,
+            sp.n,
+            numbers.light_pick,
+            numbers.light_prim,
+            numbers.light_point,
+        ) else {
+            return Rgb::BLACK;
+        };
+        if sp.ng.dot(ls.wi) <= 0.0 {
+            return Rgb::BLACK;
+        }
+        let f = sp.material.eval(sp.n, sp.wo, ls.wi);
+        if f.is_black() {
+            return Rgb::BLACK;
+        }
+        let blocked = match ls.target {
+            ShadowTarget::Point(p) => {
+                let (ray, t_max) = spawn_ray_to(sp.hit.p, sp.ng, p);
+                world.occluded(&ray, t_max)
+            }
+            ShadowTarget::Infinity => {
+                world.occluded(&spawn_ray(sp.hit.p, sp.ng, ls.wi), f32::INFINITY)
+            }
+        };
+        if blocked {
+            return Rgb::BLACK;
+        }
+        let weight = if ls.pdf > 0.0 {
+            power_heuristic(ls.pdf, choice.pdf(&sp.material, sp.n, sp.wo, ls.wi))
+        } else {
+            1.0
+        };
+        f * ls.radiance_over_pdf * (sp.n.dot(ls.wi) * weight)
+    }
+
+    /// Radiance carried back along `ray` by a path with throughput `beta` that has scattered
+    /// `bounce` times so far and arrived as `arrival` says.
+    fn follow(
+        &self,
+        world: &World,
+        mut ray: Ray,
+        mut beta: Rgb,
+        mut bounce: u32,
+        mut arrival: Arrival,
+        sampler: &mut Sampler,
+    ) -> Rgb {
+        let mut radiance = Rgb::BLACK;
+        loop {
+            let Some(hit) = world.intersect(&ray) else {
+                if let Some(sky) = world.lights.sky {
+                    radiance += beta * sky * self.sky_weight(&arrival, ray.dir);
+                }
+                return radiance;
+            };
+            let le = emitted(&world.scene, &hit);
+            if !le.is_black() {
+                radiance += beta * le * self.emission_weight(world, &arrival, &hit);
+            }
+            if bounce >= self.max_depth {
+                return radiance;
+            }
+            let sp = ShadingPoint::new(world, hit, ray.dir);
+            if sp.material.is_black_from(hit.front_face) {
+                return radiance;
+            }
+            let choice = LobeChoice::new(&sp.material);
+            if choice.is_black() {
+                return radiance;
+            }
+            let branches = if bounce == 0 { self.first_hit_paths } else { 1 };
+            if branches > 1 {
+                let mut sum = Rgb::BLACK;
+                for _ in 0..branches {
+                    sum += self.scatter(world, &sp, &choice, beta, bounce, sampler);
+                }
+                return radiance + sum / branches as f32;
+            }
+            let numbers = BounceNumbers::draw(sampler);
+            if choice.has_density() {
+                radiance += beta * self.next_event(world, &sp, &choice, &numbers);
+            }
+            let Some(next) = self.continue_path(&sp, &choice, beta, bounce, &numbers) else {
+                return radiance;
+            };
+            (ray, beta, arrival) = next;
+            bounce += 1;
+        }
+    }
+
+    /// One branch from the shading point `sp`: light sampling there plus the path continued
+    /// by BSDF sampling.
+    fn scatter(
+        &self,
+        world: &World,
+        sp: &ShadingPoint,
+        choice: &LobeChoice,
+        beta: Rgb,
+        bounce: u32,
+        sampler: &mut Sampler,
+    ) -> Rgb {
+        let numbers = BounceNumbers::draw(sampler);
+        let mut radiance = Rgb::BLACK;
+        if choice.has_density() {
+            radiance += beta * self.next_event(world, sp, choice, &numbers);
+        }
+        if let Some((ray, beta, arrival)) = self.continue_path(sp, choice, beta, bounce, &numbers) {
+            radiance += self.follow(world, ray, beta, bounce + 1, arrival, sampler);
+        }
+        radiance
+    }
+
+    /// The scattered ray, its throughput after Russian roulette and how it leaves `sp`;
+    /// `None` when the path ends here.
+    fn continue_path(
+        &self,
+        sp: &ShadingPoint,
+        choice: &LobeChoice,
+        beta: Rgb,
+        bounce: u32,
+        numbers: &BounceNumbers,
+    ) -> Option<(Ray, Rgb, Arrival)> {
+        let side = ViewSide {
+            n: sp.n,
+            ng: sp.ng,
+            wo: sp.wo,
+            front_face: sp.hit.front_face,
+        };
+        let bs = sample_bsdf(&sp.material, choice, &side, numbers.lobe, numbers.direction)?;
+        let mut beta = beta * bs.weight;
+        if beta.is_black() {
+            return None;
+        }
+        if bounce + 1 >= ROULETTE_START {
+            let survival = beta.luminance().min(ROULETTE_MAX_SURVIVAL);
+            if survival <= 0.0 || numbers.roulette >= survival {
+                return None;
+            }
+            beta /= survival;
+        }
+        let arrival = Arrival {
+            from: sp.hit.p,
+            normal: sp.n,
+            pdf: bs.pdf,
+            delta: bs.delta,
+        };
+        Some((spawn_ray(sp.hit.p, sp.ng, bs.wi), beta, arrival))
+    }
+}
+
+impl Integrator for PathTracer {
+    fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
+        self.follow(world, *ray, Rgb::WHITE, 0, Arrival::CAMERA, sampler)
+    }
+}

@@ -1,0 +1,211 @@
+//! What happens to a photon at a surface: absorbed, or scattered by one of the material's
+//! parts (Lambert, normalised Phong, ideal mirror, smooth dielectric with Fresnel), chosen at
+//! random so that the expected outgoing power is exactly the material's.
+//!
+//! The part k is chosen with probability `pₖ = Σ_c Φ_c·wₖ_c / Σ_c Φ_c` (Φ the photon's RGB
+//! power, wₖ the part's RGB weight) and the photon continues with `Φ·wₖ/pₖ`; with probability
+//! `1 − Σₖ pₖ` it is absorbed (Russian roulette by the material's albedo). The channel sum
+//! of the power is kept by every choice except the Phong part, whose sampled direction
+//! carries the factor `(s+2)/(s+1)·cos θ` (normalised lobe over its sampling density).
+//! Diffuse directions are cosine-distributed about the geometric normal; mirror, Phong and
+//! refraction directions use the shading normal, and a direction that would leave on the
+//! wrong side of the geometric normal is absorbed.
+
+use super::SurfaceHit;
+use super::bsdf::{SurfaceMaterial, fresnel_dielectric, reflect, refract};
+use super::sampler::Sampler;
+use super::sampling::cosine_hemisphere;
+use crate::color::Rgb;
+use crate::geometry::Frame;
+use crate::scene::Scene;
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// A photon leaving a surface.
+#[derive(Clone, Copy, Debug)]
+pub struct Scattered {
+    /// Unit direction away from the surface.
+    pub dir: Vec3,
+    /// Power it carries on, W per channel.
+    pub power: [f64; 3],
+}
+
+/// The fate of a photon of power `power` (W per channel) arriving along the unit direction
+/// `dir` at `hit`: `None` when absorbed.
+pub fn scatter_photon(
+    scene: &Scene,
+    hit: &SurfaceHit,
+    dir: Vec3,
+    power: [f64; 3],
+    sampler: &mut Sampler,
+) -> Option<Scattered> {
+    let m = SurfaceMaterial::at(scene, hit);
+    if m.is_black_from(hit.front_face) {
+        return None;
+    }
+    let total: f64 = power.iter().sum();
+    if total <= 0.0 {
+        return None;
+    }
+    let side = if hit.front_face { 1.0 } else { -1.0 };
+    let n = hit.ns * side;
+    let ng = hit.ng * side;
+    let wo = -dir;
+    let parts = [m.diffuse, m.specular, m.mirror, m.transmission];
+    let choice =
+        |w: Rgb| (power[0] * w.r as f64 + power[1] * w.g as f64 + power[2] * w.b as f64) / total;
+    let u = sampler.next_1d() as f64;
+    let mut cumulative = 0.0;
+    let mut chosen = None;
+    for (k, &w) in parts.iter().enumerate() {
+        let p = choice(w);
+        cumulative += p;
+        if p > 0.0 && u < cumulative {
+            chosen = Some((k, w, p));
+            break;
+        }
+    }
+    let (k, w, p) = chosen?;
+    let u2 = sampler.next_2d();
+    let (out, factor) = match k {
+        0 => (Frame::from_normal(ng).to_world(cosine_hemisphere(u2)), 1.0),
+        1 => phong_direction(n, wo, m.shininess, u2)?,
+        2 => (reflect(wo, n), 1.0),
+        _ => (
+            dielectric_direction(n, wo, hit.front_face, m.ior, sampler.next_1d()),
+            1.0,
+        ),
+    };
+    let transmitted = k == 3 && out.dot(ng) < 0.0;
+    if (out.dot(ng) <= 0.0) != transmitted {
+        return None;
+    }
+    let scale = factor as f64 / p;
+    Some(Scattered {
+        dir: out,
+        power: [
+            power[0] * w.r as f64 * scale,
+            power[1] * w.g as f64 * scale,
+            power[2] * w.b as f64 * scale,
+        ],
+    })
+}
+
+/// A direction from the normalised Phong lobe about the mirror direction of `wo`, sampled
+/// with density `(s+1)/(2π)·cosˢα`, and the lobe's weight factor `(s+2)/(s+1)·cos θ`;
+/// `None` below the surface.
+fn phong_direction(n: Vec3, wo: Vec3, shininess: f32, u: Vec2) -> Option<(Vec3, f32)> {
+    let cos_alpha = u.x.powf(1.0 / (shininess + 1.0));
+    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    let local = Vec3::new(sin_alpha * phi.cos(), sin_alpha * phi.sin(), cos_alpha);
+    let wi = Frame::from_normal(reflect(wo, n)).to_world(local);
+    let cos = wi.dot(n);
+    (cos > 0.0).then(|| (wi, (shininess + 2.0) / (shininess + 1.0) * cos))
+}
+
+/// Reflection or refraction at a smooth dielectric (ior behind the front face), chosen with
+/// the Fresnel reflectance from the uniform number `u`.
+fn dielectric_direction(n: Vec3, wo: Vec3, front_face: bool, ior: f32, u: f32) -> Vec3 {
+    let eta = if front_face { 1.0 / ior } else { ior };
+    let fresnel = fresnel_dielectric(wo.dot(n), eta);
+    match refract(wo, n, eta) {
+        Some(t) if u >= fresnel => t,
+        _ => reflect(wo, n),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Material, Shape};
+    use crate::trace::SceneGeometry;
+    use crate::trace::sampler::SequenceKind;
+
+    /// The hit of a ray coming straight down onto an upward unit quad with material `m`.
+    fn hit_on_quad(m: Material) -> (Scene, SurfaceHit) {
+        let mut scene = Scene::empty("q");
+        let id = scene.add_material(m);
+        scene.add_object(
+            "quad",
+            Shape::Parallelogram {
+                origin: Vec3::new(-0.5, 0.0, 0.5),
+                edge_u: Vec3::X,
+                edge_v: Vec3::NEG_Z,
+            },
+            id,
+        );
+        let g = SceneGeometry::new(&scene).unwrap();
+        let mut hit = g.point_on_triangle(0, 0.25, 0.25);
+        hit.front_face = true;
+        (scene, hit)
+    }
+
+    #[test]
+    fn mean_outgoing_power_equals_the_albedo() {
+        let m = Material {
+            diffuse: Rgb::new(0.5, 0.2, 0.1),
+            specular: Rgb::new(0.1, 0.1, 0.1),
+            shininess: 20.0,
+            mirror: Rgb::new(0.1, 0.3, 0.2),
+            ..Material::default()
+        };
+        let (scene, hit) = hit_on_quad(m);
+        let n = 200_000;
+        let mut sum = [0.0f64; 3];
+        let mut sum_sq = [0.0f64; 3];
+        for i in 0..n {
+            let mut s = Sampler::new(SequenceKind::Random, 3, i, 0);
+            if let Some(out) = scatter_photon(&scene, &hit, -Vec3::Y, [1.0, 1.0, 1.0], &mut s) {
+                assert!(out.dir.y > 0.0);
+                for c in 0..3 {
+                    sum[c] += out.power[c];
+                    sum_sq[c] += out.power[c] * out.power[c];
+                }
+            }
+        }
+        // At normal incidence the Phong factor (s+2)/(s+1)·cos α has mean 1 under the
+        // sampling density ∝ cosˢα (E[cos α] = (s+1)/(s+2)): the lobe reflects its weight.
+        let phong = 1.0;
+        let expected = [
+            0.5 + 0.1 * phong + 0.1,
+            0.2 + 0.1 * phong + 0.3,
+            0.1 + 0.1 * phong + 0.2,
+        ];
+        for c in 0..3 {
+            let mean = sum[c] / n as f64;
+            let sigma = ((sum_sq[c] / n as f64 - mean * mean) / n as f64).sqrt();
+            assert!(
+                (mean - expected[c]).abs() < 5.0 * sigma,
+                "{c}: {mean} vs {}",
+                expected[c]
+            );
+        }
+    }
+
+    #[test]
+    fn glass_reflects_the_fresnel_fraction_and_refracts_the_rest() {
+        let m = Material {
+            diffuse: Rgb::BLACK,
+            transmission: Rgb::WHITE,
+            ior: 1.5,
+            ..Material::default()
+        };
+        let (scene, hit) = hit_on_quad(m);
+        let n = 100_000;
+        let mut reflected = 0;
+        for i in 0..n {
+            let mut s = Sampler::new(SequenceKind::Random, 5, i, 0);
+            let out = scatter_photon(&scene, &hit, -Vec3::Y, [1.0, 2.0, 3.0], &mut s).unwrap();
+            assert!((out.power[0] - 1.0).abs() < 1e-12 && (out.power[2] - 3.0).abs() < 1e-12);
+            if out.dir.y > 0.0 {
+                reflected += 1;
+            } else {
+                assert!((out.dir + Vec3::Y).length() < 1e-5);
+            }
+        }
+        // F = 0.04 at normal incidence; binomial σ = √(0.04·0.96/n) = 6.2e-4.
+        let f = reflected as f64 / n as f64;
+        assert!((f - 0.04).abs() < 5.0 * 6.2e-4, "{f}");
+    }
+}

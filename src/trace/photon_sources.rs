@@ -1,0 +1,309 @@
+//! Where light-tracing photons start: every light of a scene as a source of known power
+//! (watts of the scene's radiometric units) that emits photons with the right distribution.
+//!
+//! Powers and emission:
+//! - emissive surface: Φ = π·L·A per emitting side (emission texture mean applied); points
+//!   uniform by area, directions cosine-distributed about the emitting side's normal (a
+//!   random side when two-sided), each photon weighted by the (textured) radiance at its
+//!   point, so textured emitters are unbiased;
+//! - point light: Φ = 4π·I, isotropic;
+//! - spot light: Φ = I·∫ falloff dω = 2π·I·[(1 − cos θᵢ) + (cos θᵢ − cos θₒ)/2] for the
+//!   smoothstep falloff between the inner and outer cone (2π·I·(1 − cos θᵢ) when the inner
+//!   cone is the wider); directions exactly distributed as the falloff (rejection sampling);
+//! - directional light: Φ = E·πR², parallel photons from a disc of radius R perpendicular to
+//!   the light, covering the bounding sphere (radius R) of the bounded geometry;
+//! - sky of uniform radiance L: Φ = 4π²R²·L, the power entering the bounding sphere from
+//!   outside (πL per unit area of the sphere's surface 4πR², or equivalently, per direction,
+//!   L times the sphere's cross-section πR², over 4π sr): uniform directions, each with a
+//!   uniform point on the disc across the sphere.
+//!
+//! Unbounded shapes (infinite planes) are outside the bounding sphere's measure: they receive
+//! directional and sky light only where it falls inside the sphere's shadow cylinder.
+
+use super::World;
+use super::bsdf::emitted_toward;
+use super::sampler::Sampler;
+use super::sampling::{concentric_disk, cosine_hemisphere, uniform_sphere, uniform_triangle};
+use crate::color::Rgb;
+use crate::geometry::{Frame, Ray, spawn_ray};
+use crate::scene::LightKind;
+use glam::Vec3;
+use std::f32::consts::PI;
+
+/// Rejection-sampling attempts for a spot direction before falling back to the axis (each
+/// attempt succeeds with probability at least ½).
+const SPOT_ATTEMPTS: u32 = 64;
+
+/// What a source is.
+#[derive(Clone, Debug)]
+enum SourceKind {
+    /// Area light `light` of [`super::LightSet::area`], triangles chosen through `cdf`.
+    Surface {
+        light: usize,
+        cdf: Vec<f32>,
+        sides: f32,
+    },
+    /// Isotropic point light.
+    Point { position: Vec3 },
+    /// Spot light with its axis frame and the widest cone cosine that can emit.
+    Spot {
+        position: Vec3,
+        frame: Frame,
+        cos_min: f32,
+        inner_degrees: f32,
+        outer_degrees: f32,
+    },
+    /// Parallel light travelling along `frame.n`.
+    Directional { frame: Frame },
+    /// Uniform sky radiance.
+    Sky,
+}
+
+/// One light as a photon source.
+#[derive(Clone, Debug)]
+pub struct PhotonSource {
+    kind: SourceKind,
+    /// Emitted power, W per channel (for textured emitters an estimate from the texture mean).
+    pub power: Rgb,
+}
+
+/// A photon leaving a source.
+#[derive(Clone, Copy, Debug)]
+pub struct EmittedPhoton {
+    /// Where it starts and where it goes (unit direction).
+    pub ray: Ray,
+    /// Its power if it were the only photon of its source, W per channel; divide by the
+    /// number of photons the source sends.
+    pub power: Rgb,
+    /// The emitting surface `(object, face)`, or `None` for non-surface lights.
+    pub surface: Option<(u32, u32)>,
+}
+
+/// All photon sources of a scene.
+#[derive(Clone, Debug)]
+pub struct PhotonSources {
+    /// The sources with non-zero power.
+    pub sources: Vec<PhotonSource>,
+    /// Centre of the bounding sphere of the bounded geometry.
+    center: Vec3,
+    /// Its radius (1 when there is no bounded geometry).
+    radius: f32,
+}
+
+/// Integral of the spot falloff over the sphere of directions, sr (power = I × this).
+pub fn spot_solid_angle(inner_degrees: f32, outer_degrees: f32) -> f32 {
+    let ci = inner_degrees.to_radians().cos();
+    let co = outer_degrees.to_radians().cos();
+    if ci > co {
+        2.0 * PI * ((1.0 - ci) + 0.5 * (ci - co))
+    } else {
+        2.0 * PI * (1.0 - ci)
+    }
+}
+
+impl PhotonSources {
+    /// The sources of `world`'s lights.
+    pub fn new(world: &World) -> Self {
+        let bounds = world.geometry.bounds();
+        let (center, radius) = if bounds.is_empty() {
+            (Vec3::ZERO, 1.0)
+        } else {
+            let r = 0.5 * bounds.extent().length();
+            (bounds.center(), r * 1.001 + 1e-6)
+        };
+        let mut sources = Vec::new();
+        for (index, light) in world.lights.area.iter().enumerate() {
+            let mut cdf = Vec::with_capacity(light.prims.len());
+            let mut sum = 0.0f32;
+            for &prim in &light.prims {
+                sum += world.geometry.triangle(prim).map_or(0.0, |t| t.area());
+                cdf.push(sum);
+            }
+            cdf.iter_mut()
+                .for_each(|c| *c /= sum.max(f32::MIN_POSITIVE));
+            let material = world.geometry.owner(light.prims[0]).1;
+            let sides = if world.scene.materials[material as usize].two_sided {
+                2.0
+            } else {
+                1.0
+            };
+            sources.push(PhotonSource {
+                kind: SourceKind::Surface {
+                    light: index,
+                    cdf,
+                    sides,
+                },
+                power: light.power,
+            });
+        }
+        for light in &world.lights.delta {
+            let source = match *light {
+                LightKind::Point {
+                    position,
+                    intensity,
+                } => PhotonSource {
+                    kind: SourceKind::Point { position },
+                    power: intensity * (4.0 * PI),
+                },
+                LightKind::Spot {
+                    position,
+                    direction,
+                    intensity,
+                    inner_degrees,
+                    outer_degrees,
+                } => {
+                    let Some(axis) = direction.try_normalize() else {
+                        continue;
+                    };
+                    let cos_min = inner_degrees
+                        .max(outer_degrees)
+                        .min(180.0)
+                        .to_radians()
+                        .cos();
+                    PhotonSource {
+                        kind: SourceKind::Spot {
+                            position,
+                            frame: Frame::from_normal(axis),
+                            cos_min,
+                            inner_degrees,
+                            outer_degrees,
+                        },
+                        power: intensity * spot_solid_angle(inner_degrees, outer_degrees),
+                    }
+                }
+                LightKind::Directional {
+                    direction,
+                    irradiance,
+                } => {
+                    let Some(d) = direction.try_normalize() else {
+                        continue;
+                    };
+                    PhotonSource {
+                        kind: SourceKind::Directional {
+                            frame: Frame::from_normal(d),
+                        },
+                        power: irradiance * (PI * radius * radius),
+                    }
+                }
+                LightKind::Sky { .. } => continue,
+            };
+            sources.push(source);
+        }
+        if let Some(radiance) = world.lights.sky {
+            sources.push(PhotonSource {
+                kind: SourceKind::Sky,
+                power: radiance * (4.0 * PI * PI * radius * radius),
+            });
+        }
+        sources.retain(|s| s.power.is_finite() && s.power.max_channel() > 0.0);
+        PhotonSources {
+            sources,
+            center,
+            radius,
+        }
+    }
+
+    /// Radius of the bounding sphere used for directional and sky light, scene units.
+    pub fn radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// A photon from source `index`.
+    pub fn emit(&self, world: &World, index: usize, sampler: &mut Sampler) -> EmittedPhoton {
+        let source = &self.sources[index];
+        match &source.kind {
+            SourceKind::Surface { light, cdf, sides } => {
+                let l = &world.lights.area[*light];
+                let u_pick = sampler.next_1d();
+                let i = cdf.partition_point(|&c| c <= u_pick).min(cdf.len() - 1);
+                let (b1, b2) = uniform_triangle(sampler.next_2d());
+                let at = world.geometry.point_on_triangle(l.prims[i], b1, b2);
+                let front = *sides < 2.0 || sampler.next_1d() < 0.5;
+                let n = if front { at.ng } else { -at.ng };
+                let dir = Frame::from_normal(n).to_world(cosine_hemisphere(sampler.next_2d()));
+                let material = &world.scene.materials[at.material as usize];
+                let radiance = emitted_toward(&world.scene, material, at.uv, front);
+                EmittedPhoton {
+                    ray: spawn_ray(at.p, at.ng, dir),
+                    power: radiance * (PI * l.area * sides),
+                    surface: Some((at.object, at.face)),
+                }
+            }
+            SourceKind::Point { position } => EmittedPhoton {
+                ray: Ray::new(*position, uniform_sphere(sampler.next_2d())),
+                power: source.power,
+                surface: None,
+            },
+            SourceKind::Spot {
+                position,
+                frame,
+                cos_min,
+                inner_degrees,
+                outer_degrees,
+                ..
+            } => {
+                let mut local = Vec3::Z;
+                for _ in 0..SPOT_ATTEMPTS {
+                    let u = sampler.next_2d();
+                    let cos = 1.0 - u.x * (1.0 - cos_min);
+                    let falloff = LightKind::spot_falloff(cos, *inner_degrees, *outer_degrees);
+                    if sampler.next_1d() < falloff {
+                        let sin = (1.0 - cos * cos).max(0.0).sqrt();
+                        let phi = 2.0 * PI * u.y;
+                        local = Vec3::new(sin * phi.cos(), sin * phi.sin(), cos);
+                        break;
+                    }
+                }
+                EmittedPhoton {
+                    ray: Ray::new(*position, frame.to_world(local)),
+                    power: source.power,
+                    surface: None,
+                }
+            }
+            SourceKind::Directional { frame, .. } => EmittedPhoton {
+                ray: self.parallel_ray(frame, sampler),
+                power: source.power,
+                surface: None,
+            },
+            SourceKind::Sky => {
+                let frame = Frame::from_normal(uniform_sphere(sampler.next_2d()));
+                EmittedPhoton {
+                    ray: self.parallel_ray(&frame, sampler),
+                    power: source.power,
+                    surface: None,
+                }
+            }
+        }
+    }
+
+    /// A ray along `frame.n` through a uniform point of the bounding sphere's cross-section,
+    /// starting outside the sphere.
+    fn parallel_ray(&self, frame: &Frame, sampler: &mut Sampler) -> Ray {
+        let d = concentric_disk(sampler.next_2d()) * self.radius;
+        let origin = self.center + frame.s * d.x + frame.t * d.y - frame.n * (2.0 * self.radius);
+        Ray::new(origin, frame.n)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spot_solid_angle_matches_quadrature_of_the_falloff() {
+        for (inner, outer) in [(20.0, 40.0), (10.0, 10.0), (30.0, 15.0), (60.0, 120.0)] {
+            let steps = 200_000;
+            let mut sum = 0.0f64;
+            for i in 0..steps {
+                let cos = -1.0 + 2.0 * (i as f64 + 0.5) / steps as f64;
+                sum += LightKind::spot_falloff(cos as f32, inner, outer) as f64;
+            }
+            let quadrature = 2.0 * std::f64::consts::PI * sum * 2.0 / steps as f64;
+            let formula = spot_solid_angle(inner, outer) as f64;
+            assert!(
+                (quadrature - formula).abs() < 1e-4 * formula.max(1.0),
+                "{inner}/{outer}: {quadrature} vs {formula}"
+            );
+        }
+    }
+}

@@ -1,0 +1,173 @@
+//! Progressive rendering for Monte Carlo integrators: the whole image is rendered in passes
+//! of a few samples per pixel, accumulated into the film. A time limit stops after the last
+//! pass that fits, and cancellation (Ctrl-C) keeps every finished pass.
+//!
+//! Sample `k` of pixel `p` draws its numbers from the Owen-scrambled Sobol point `k` of the
+//! pixel's stream (the first two dimensions place it in the pixel, the integrator uses the
+//! rest), and each pixel's samples are summed in sample order, so the image depends neither
+//! on the thread count nor on how the samples were split into passes.
+
+use super::render::ProgressListener;
+use super::sampler::{Sampler, SequenceKind};
+use super::{Integrator, World};
+use crate::color::Rgb;
+use crate::image::Film;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// Pixel rows per parallel work item.
+const STRIP_ROWS: usize = 4;
+/// Largest number of samples per pixel in one pass.
+const MAX_PASS_SAMPLES: u32 = 8;
+
+/// Settings of a progressive render.
+#[derive(Clone, Debug)]
+pub struct ProgressiveSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples (paths) per pixel to render when not stopped earlier.
+    pub samples_per_pixel: u32,
+    /// Seed of all random numbers.
+    pub seed: u64,
+    /// Wall-clock budget: no pass is started that is not expected to end within it, and a
+    /// pass still running when it runs out is dropped (the first pass always completes).
+    pub time_limit: Option<Duration>,
+}
+
+/// The result of a progressive render.
+#[derive(Clone, Debug)]
+pub struct ProgressiveOutput {
+    /// Mean radiance per pixel over the finished passes (black when none finished).
+    pub film: Film,
+    /// Samples per pixel in `film`.
+    pub samples_per_pixel: u32,
+    /// Passes finished.
+    pub passes: u32,
+    /// True when all requested samples were rendered.
+    pub complete: bool,
+}
+
+/// Samples per pixel of pass `index` (counted from 0): 1, 1, 2, 4, 8, 8, … so that a time
+/// limit gets an image early and later passes amortise their overhead.
+fn pass_samples(index: u32) -> u32 {
+    match index {
+        0 => 1,
+        i => (1u32 << (i - 1).min(3)).min(MAX_PASS_SAMPLES),
+    }
+}
+
+/// What tracing one camera sample needs.
+struct SampleTracer<'a> {
+    world: &'a World,
+    integrator: &'a dyn Integrator,
+    camera: crate::scene::CameraRays,
+    seed: u64,
+    width: u32,
+}
+
+impl SampleTracer<'_> {
+    /// Radiance of sample `k` of pixel `(px, py)`.
+    fn sample(&self, px: u32, py: u32, k: u32) -> Rgb {
+        let stream = u64::from(py) * u64::from(self.width) + u64::from(px);
+        let mut sampler = Sampler::new(SequenceKind::Sobol, self.seed, stream, k);
+        let jitter = sampler.next_2d();
+        let ray = self.camera.ray(px as f32 + jitter.x, py as f32 + jitter.y);
+        let c = self.integrator.radiance(self.world, &ray, &mut sampler);
+        // A NaN or infinite sample would poison the pixel; drop it.
+        if c.is_finite() { c } else { Rgb::BLACK }
+    }
+}
+
+/// Renders the camera view of `world` with `integrator` progressively. `None` when the
+/// camera is degenerate.
+pub fn render_progressive(
+    world: &World,
+    integrator: &dyn Integrator,
+    settings: &ProgressiveSettings,
+    progress: &dyn ProgressListener,
+    cancel: &AtomicBool,
+) -> Option<ProgressiveOutput> {
+    let camera = world
+        .scene
+        .camera
+        .with_resolution(settings.width, settings.height)
+        .rays()?;
+    let (w, h) = (settings.width, settings.height);
+    let tracer = SampleTracer {
+        world,
+        integrator,
+        camera,
+        seed: settings.seed,
+        width: w,
+    };
+    let start = Instant::now();
+    let deadline = settings.time_limit.map(|limit| start + limit);
+    let target = settings.samples_per_pixel.max(1);
+    let mut sums = vec![Rgb::BLACK; w as usize * h as usize];
+    let mut done = 0u32;
+    let mut passes = 0u32;
+    let mut last_pass_seconds_per_sample = 0.0f64;
+    progress.start(u64::from(w) * u64::from(h) * u64::from(target));
+    while done < target && !cancel.load(Ordering::Relaxed) {
+        let count = pass_samples(passes).min(target - done);
+        if let Some(deadline) = deadline {
+            let expected = Duration::from_secs_f64(last_pass_seconds_per_sample * count as f64);
+            if passes > 0 && Instant::now() + expected > deadline {
+                break;
+            }
+        }
+        let pass_start = Instant::now();
+        let first = passes == 0;
+        let stop = |now: Instant| {
+            cancel.load(Ordering::Relaxed) || (!first && deadline.is_some_and(|d| now > d))
+        };
+        let mut next = sums.clone();
+        let finished = next
+            .par_chunks_mut(w as usize * STRIP_ROWS)
+            .enumerate()
+            .all(|(strip, pixels)| {
+                if stop(Instant::now()) {
+                    return false;
+                }
+                for (i, sum) in pixels.iter_mut().enumerate() {
+                    let px = (i % w as usize) as u32;
+                    let py = (strip * STRIP_ROWS + i / w as usize) as u32;
+                    for k in done..done + count {
+                        *sum += tracer.sample(px, py, k);
+                    }
+                }
+                progress.advance(pixels.len() as u64 * u64::from(count));
+                true
+            });
+        if !finished {
+            break;
+        }
+        sums = next;
+        done += count;
+        passes += 1;
+        last_pass_seconds_per_sample = pass_start.elapsed().as_secs_f64() / count as f64;
+    }
+    progress.finish();
+    let scale = if done > 0 { 1.0 / done as f32 } else { 0.0 };
+    let pixels = sums.into_iter().map(|s| s * scale).collect();
+    Some(ProgressiveOutput {
+        film: Film::from_pixels(w, h, pixels)?,
+        samples_per_pixel: done,
+        passes,
+        complete: done == target,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pass_sizes_grow_to_the_cap() {
+        let sizes: Vec<u32> = (0..7).map(pass_samples).collect();
+        assert_eq!(sizes, [1, 1, 2, 4, 8, 8, 8]);
+    }
+}

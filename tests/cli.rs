@@ -1,0 +1,138 @@
+//! The `strahl` binary as a user runs it: outputs, exit codes and one-line errors.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn strahl(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("strahl-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn scenes_lists_the_built_ins() {
+    let o = strahl(&["scenes"]);
+    assert!(o.status.success());
+    let out = String::from_utf8_lossy(&o.stdout);
+    for name in ["cornell", "cornell-textured", "spheres", "neon"] {
+        assert!(
+            out.lines().any(|l| l.starts_with(name)),
+            "{name} missing in {out}"
+        );
+    }
+}
+
+#[test]
+fn render_writes_png_exr_and_pfm() {
+    for ext in ["png", "exr", "pfm"] {
+        let path = temp(&format!("cornell.{ext}"));
+        let o = strahl(&[
+            "render",
+            "cornell",
+            "-o",
+            path.to_str().unwrap(),
+            "--width",
+            "24",
+            "--height",
+            "16",
+            "--quiet",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let film = strahl::image::load(&path).unwrap();
+        assert_eq!((film.width(), film.height()), (24, 16));
+        assert!(film.mean().luminance() > 0.0);
+    }
+}
+
+#[test]
+fn adaptive_antialiasing_writes_its_subdivision_map() {
+    let (img, map) = (temp("a.png"), temp("a-map.png"));
+    let o = strahl(&[
+        "render",
+        "cornell",
+        "-o",
+        img.to_str().unwrap(),
+        "--width",
+        "32",
+        "--height",
+        "32",
+        "--aa",
+        "adaptive",
+        "--aa-map",
+        map.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let m = strahl::image::load(&map).unwrap();
+    let max = m.pixels().iter().map(|c| c.r).fold(0.0, f32::max);
+    assert!(max > 0.9, "the most subdivided pixel is white");
+}
+
+#[test]
+fn bad_input_gives_one_line_error_and_failure() {
+    let out = temp("x.png");
+    let cases: Vec<Vec<&str>> = vec![
+        vec!["render", "no-such-scene", "-o", out.to_str().unwrap()],
+        vec!["render", "cornell", "-o", "image.bmp"],
+        vec!["render", "spheres:zero", "-o", out.to_str().unwrap()],
+        vec![
+            "render",
+            "cornell",
+            "-o",
+            out.to_str().unwrap(),
+            "--width",
+            "0",
+        ],
+        vec!["info", "/nonexistent/scene.toml"],
+    ];
+    for args in cases {
+        let o = strahl(&args);
+        assert!(!o.status.success(), "{args:?} should fail");
+        let e = stderr(&o);
+        assert_eq!(e.trim_end().lines().count(), 1, "{args:?}: {e}");
+        assert!(e.starts_with("error: "), "{args:?}: {e}");
+    }
+}
+
+#[test]
+fn scene_file_errors_name_file_line_and_field() {
+    let path = temp("broken.toml");
+    std::fs::write(
+        &path,
+        "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 1, 0]\nfov = 40\n\n[[objects]]\ntype = \"sphere\"\ncenter = [0, 1, 0]\nradius = -1\n",
+    )
+    .unwrap();
+    let o = strahl(&["info", path.to_str().unwrap()]);
+    assert!(!o.status.success());
+    let e = stderr(&o);
+    assert!(e.contains("broken.toml:9:"), "{e}");
+    assert!(e.contains("radius"), "{e}");
+}
+
+#[test]
+fn info_and_bench_report_statistics() {
+    let o = strahl(&["info", "spheres:50"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("50 sphere") && out.contains("5 point"),
+        "{out}"
+    );
+    let o = strahl(&["bench", "cornell", "--rays", "random", "--repeat", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["ray_count"], 1 << 20);
+    assert!(json["closest_hit"]["mrays_per_second"].as_f64().unwrap() > 0.0);
+    assert!(json["any_hit"]["hits"].as_u64().unwrap() > 0);
+}
