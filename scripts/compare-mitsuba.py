@@ -4,8 +4,10 @@
 Each renderer draws its own Cornell box at 256x256, 64 samples per pixel, path length
 unbounded with Russian roulette from bounce 5, on all cores. Timings are of the whole
 process (start-up, scene build, render, image write), several runs, median reported.
-Noise is the RMS difference to a high-sample reference of the same renderer, relative to the
-reference's mean (both renderers' own scenes, so the numbers compare estimator quality).
+Noise is the RMS difference of luminance to a high-sample reference of the same renderer,
+relative to the reference's mean luminance (each renderer's own Cornell box). Since variance
+falls as 1/samples, time × noise² compares the cost of reaching equal noise; the script prints
+the seconds each renderer would need for a relative RMS noise of 0.05.
 
 Needs: `pip install mitsuba` (and for `llvm_ad_rgb` Debian's libllvm19, found through
 DRJIT_LIBLLVM_PATH), a release build of strahl (`cargo build --release`), numpy.
@@ -18,6 +20,7 @@ import argparse
 import glob
 import json
 import os
+import re
 import statistics
 import subprocess
 import sys
@@ -42,13 +45,15 @@ mi.util.write_bitmap(sys.argv[2], image)
 
 
 def find_libllvm():
+    """The newest libLLVM shared library on the system (Dr.Jit needs LLVM 15 or newer)."""
     if os.environ.get("DRJIT_LIBLLVM_PATH"):
         return os.environ["DRJIT_LIBLLVM_PATH"]
-    for pattern in ("/usr/lib/llvm-*/lib/libLLVM.so*", "/usr/lib/*/libLLVM*.so*"):
-        found = sorted(glob.glob(pattern))
-        if found:
-            return found[-1]
-    return None
+    candidates = []
+    for path in glob.glob("/usr/lib/*/libLLVM*.so*") + glob.glob("/usr/lib/llvm-*/lib/libLLVM*.so*"):
+        match = re.search(r"(?:llvm-|libLLVM-|libLLVM\.so\.)(\d+)", path)
+        if match and int(match.group(1)) >= 15:
+            candidates.append((int(match.group(1)), path))
+    return max(candidates)[1] if candidates else None
 
 
 def timed(command, env=None):
@@ -89,7 +94,9 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--runs", type=int, default=5)
     parser.add_argument("--strahl", default="target/release/strahl")
-    parser.add_argument("--variants", default="llvm_ad_rgb,scalar_rgb")
+    parser.add_argument("--variants", default="llvm_ad_rgb,scalar_rgb",
+                        help="Mitsuba variants, comma-separated")
+    parser.add_argument("--no-strahl", action="store_true", help="time Mitsuba only")
     parser.add_argument("--reference-spp", type=int, default=1024)
     parser.add_argument("--out", default=None, help="keep images here")
     args = parser.parse_args()
@@ -100,7 +107,11 @@ def main():
     if llvm:
         env["DRJIT_LIBLLVM_PATH"] = llvm
 
-    renderers = [("strahl", lambda path, spp, seed: strahl_command(args.strahl, path, spp, seed))]
+    renderers = []
+    if not args.no_strahl:
+        renderers.append(
+            ("strahl", lambda path, spp, seed: strahl_command(args.strahl, path, spp, seed))
+        )
     for variant in filter(None, args.variants.split(",")):
         renderers.append(
             (f"mitsuba {variant}", lambda path, spp, seed, v=variant: mitsuba_command(v, path, spp, seed))
@@ -124,6 +135,11 @@ def main():
         }
         print(f"{name:24} median {statistics.median(times):6.2f} s  "
               f"runs {[round(t, 2) for t in times]}  relative RMS noise {noise:.4f}", flush=True)
+    # Variance falls as 1/samples, so time × noise² is the cost of reaching a fixed noise
+    # level (lower is better); scaled here to the seconds each would need for noise 0.05.
+    for name, r in results.items():
+        r["seconds_for_noise_0.05"] = r["median_seconds"] * (r["relative_rms_noise"] / 0.05) ** 2
+        print(f"{name:24} would need {r['seconds_for_noise_0.05']:6.2f} s for relative RMS noise 0.05")
     print(json.dumps({"size": SIZE, "spp": SPP, "results": results}, indent=2))
 
 

@@ -41,14 +41,25 @@ fn floor_scene() -> Scene {
 /// Radiance of the single pixel looking at the floor's origin.
 fn centre_radiance(scene: Scene, light_samples: u32, shadows: ShadowMode) -> Rgb {
     let world = World::new(scene, AccelKind::Bvh).unwrap();
-    let tracer = StandardRayTracer { max_depth: 0, light_samples, shadows };
+    let tracer = StandardRayTracer {
+        max_depth: 0,
+        light_samples,
+        shadows,
+    };
     let settings = RenderSettings {
         width: 1,
         height: 1,
         antialias: AntialiasMode::None,
         ..Default::default()
     };
-    let out = render(&world, &tracer, &settings, &NoProgress, &AtomicBool::new(false)).unwrap();
+    let out = render(
+        &world,
+        &tracer,
+        &settings,
+        &NoProgress,
+        &AtomicBool::new(false),
+    )
+    .unwrap();
     out.film.get(0, 0)
 }
 
@@ -64,9 +75,17 @@ fn assert_rel(got: f32, want: f32, tol: f32, what: &str) {
 fn point_spot_and_directional_lights_follow_the_cosine_law() {
     // Point light of 10 W/sr at height 2, offset 1.5: E = I cosθ / d² with d = 2.5, cosθ = 0.8.
     let mut s = floor_scene();
-    s.lights.push(light(LightKind::Point { position: Vec3::new(1.5, 2.0, 0.0), intensity: Rgb::splat(10.0) }));
+    s.lights.push(light(LightKind::Point {
+        position: Vec3::new(1.5, 2.0, 0.0),
+        intensity: Rgb::splat(10.0),
+    }));
     let e = 10.0 * 0.8 / 6.25;
-    assert_rel(centre_radiance(s, 1, ShadowMode::On).g, RHO / PI * e, 1e-4, "point");
+    assert_rel(
+        centre_radiance(s, 1, ShadowMode::On).g,
+        RHO / PI * e,
+        1e-4,
+        "point",
+    );
 
     // A spot aimed at the point is the same inside its inner cone, dark outside its outer cone.
     let mut s = floor_scene();
@@ -78,7 +97,12 @@ fn point_spot_and_directional_lights_follow_the_cosine_law() {
         inner_degrees: 10.0,
         outer_degrees: 20.0,
     }));
-    assert_rel(centre_radiance(s, 1, ShadowMode::On).g, RHO / PI * e, 1e-4, "spot");
+    assert_rel(
+        centre_radiance(s, 1, ShadowMode::On).g,
+        RHO / PI * e,
+        1e-4,
+        "spot",
+    );
     let mut s = floor_scene();
     s.lights.push(light(LightKind::Spot {
         position: pos,
@@ -87,7 +111,11 @@ fn point_spot_and_directional_lights_follow_the_cosine_law() {
         inner_degrees: 10.0,
         outer_degrees: 20.0,
     }));
-    assert_eq!(centre_radiance(s, 1, ShadowMode::On), Rgb::BLACK, "outside the spot cone");
+    assert_eq!(
+        centre_radiance(s, 1, ShadowMode::On),
+        Rgb::BLACK,
+        "outside the spot cone"
+    );
 
     // Directional light of 3 W/m² arriving at 60° from the normal: E = 3 cos 60°.
     let mut s = floor_scene();
@@ -96,7 +124,12 @@ fn point_spot_and_directional_lights_follow_the_cosine_law() {
         direction: Vec3::new(a.sin(), -a.cos(), 0.0),
         irradiance: Rgb::splat(3.0),
     }));
-    assert_rel(centre_radiance(s, 1, ShadowMode::On).g, RHO / PI * 1.5, 1e-4, "directional");
+    assert_rel(
+        centre_radiance(s, 1, ShadowMode::On).g,
+        RHO / PI * 1.5,
+        1e-4,
+        "directional",
+    );
 }
 
 #[test]
@@ -104,8 +137,15 @@ fn open_sky_gives_rho_times_l() {
     // Unoccluded uniform sky L: E = πL, so the reflected radiance is ρ·L (exact for cosine
     // sampling of a Lambertian surface).
     let mut s = floor_scene();
-    s.lights.push(light(LightKind::Sky { radiance: Rgb::splat(2.0) }));
-    assert_rel(centre_radiance(s, 16, ShadowMode::On).g, RHO * 2.0, 1e-4, "sky");
+    s.lights.push(light(LightKind::Sky {
+        radiance: Rgb::splat(2.0),
+    }));
+    assert_rel(
+        centre_radiance(s, 16, ShadowMode::On).g,
+        RHO * 2.0,
+        1e-4,
+        "sky",
+    );
 }
 
 #[test]
@@ -140,9 +180,19 @@ fn rectangular_area_light_matches_the_analytic_form_factor() {
 #[test]
 fn shadows_off_ignores_occluders_but_not_facing() {
     let mut s = floor_scene();
-    s.lights.push(light(LightKind::Point { position: Vec3::new(0.0, 2.0, 0.0), intensity: Rgb::splat(4.0) }));
+    s.lights.push(light(LightKind::Point {
+        position: Vec3::new(0.0, 2.0, 0.0),
+        intensity: Rgb::splat(4.0),
+    }));
     let m = s.material_id("floor").unwrap();
-    s.add_object("blocker", Shape::Sphere { center: Vec3::new(0.0, 1.0, 0.0), radius: 0.2 }, m);
+    s.add_object(
+        "blocker",
+        Shape::Sphere {
+            center: Vec3::new(0.0, 1.0, 0.0),
+            radius: 0.2,
+        },
+        m,
+    );
     s.camera.position = Vec3::new(0.0, 0.5, 0.01);
     assert_eq!(centre_radiance(s.clone(), 1, ShadowMode::On), Rgb::BLACK);
     let lit = centre_radiance(s.clone(), 1, ShadowMode::Off).g;
@@ -150,6 +200,9 @@ fn shadows_off_ignores_occluders_but_not_facing() {
     // A light below the floor stays dark even with shadows off (self-shadowing by facing).
     // The camera looks at the top side; the light is under it.
     let mut below = floor_scene();
-    below.lights.push(light(LightKind::Point { position: Vec3::new(0.0, -2.0, 0.0), intensity: Rgb::splat(4.0) }));
+    below.lights.push(light(LightKind::Point {
+        position: Vec3::new(0.0, -2.0, 0.0),
+        intensity: Rgb::splat(4.0),
+    }));
     assert_eq!(centre_radiance(below, 1, ShadowMode::Off), Rgb::BLACK);
 }

@@ -8,7 +8,6 @@ use glam::Vec3;
 use std::f64::consts::PI;
 use std::sync::Arc;
 use std::sync::atomic::AtomicBool;
-use std::time::Instant;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb;
 use strahl::report::{ObjectReport, Report};
@@ -469,7 +468,7 @@ fn per_face_output_splits_a_mesh_and_adds_up() {
 }
 
 #[test]
-fn ten_thousand_leaves_are_traced_quickly_and_conserve_energy() {
+fn ten_thousand_leaves_conserve_energy_and_almost_all_receive_light() {
     // 100 × 100 small tilted leaves under a sky and a sun.
     let mut scene = Scene::empty("canopy");
     let leaf = scene.add_material(Material {
@@ -506,9 +505,7 @@ fn ten_thousand_leaves_are_traced_quickly_and_conserve_energy() {
             irradiance: Rgb::splat(500.0),
         },
     });
-    let start = Instant::now();
     let report = solve(scene, 200_000, 12);
-    let seconds = start.elapsed().as_secs_f64();
     assert_eq!(report.objects.len(), 10_000);
     let t = &report.totals;
     for c in 0..3 {
@@ -521,6 +518,83 @@ fn ten_thousand_leaves_are_traced_quickly_and_conserve_energy() {
         .filter(|o| o.incident_power[1] > 0.0)
         .count();
     assert!(lit > 9_000, "{lit} leaves lit");
-    // Generous bound for an unoptimised test build on a shared machine.
-    assert!(seconds < 120.0, "{seconds} s");
+}
+
+/// Asks the run to stop at its first progress report.
+struct StopAtFirstBatch<'a>(&'a AtomicBool);
+
+impl strahl::trace::render::ProgressListener for StopAtFirstBatch<'_> {
+    fn start(&self, _total: u64) {}
+    fn advance(&self, _units: u64) {
+        self.0.store(true, std::sync::atomic::Ordering::SeqCst);
+    }
+    fn finish(&self) {}
+}
+
+#[test]
+fn cancelled_run_keeps_its_photons_scaled_to_the_full_count() {
+    let world = World::new(furnace(0.5), AccelKind::Bvh).unwrap();
+    let settings = LightTraceSettings {
+        photons: 1_000_000,
+        seed: 1,
+        ..LightTraceSettings::default()
+    };
+    let cancel = AtomicBool::new(false);
+    let out = trace_light(&world, &settings, &StopAtFirstBatch(&cancel), &cancel).unwrap();
+    assert!(!out.complete());
+    // One batch of N/200 photons.
+    assert_eq!(out.photons_traced, 5_000);
+    let report = out.report("furnace");
+    assert_eq!(report.stats.extra["complete"], false);
+    // The radical-inverse source order keeps the prefix stratified: the van der Corput
+    // star discrepancy bound n·D* ≤ log₂(n)/3 + 1 ≈ 5.1 at n = 5000 puts each face's count
+    // within 2 × 5.1 of its 833.3 photons, so the scaled emission is within 1.3% of 1 W.
+    for o in &report.objects {
+        assert!(
+            (o.emitted_power[0] - 1.0).abs() < 0.013,
+            "{:?}",
+            o.emitted_power
+        );
+    }
+}
+
+#[test]
+fn textured_emitter_emits_its_texture_weighted_power() {
+    // A 1 m² lamp of L = 2 with a texture white on the left quarter, black elsewhere: the
+    // emitted power is π·A·L·(area mean of the texture), the mean taken here on a fine grid
+    // of the texture as sampled. Per photon the power is π·A·L·c(uv), c ∈ [0, 1], so
+    // σ ≤ π·A·L·0.5/√N.
+    use strahl::scene::Texture;
+    let texture = Texture::from_fn("quarter", 8, 8, |x, _| {
+        if x < 2 {
+            [1.0; 4]
+        } else {
+            [0.0, 0.0, 0.0, 1.0]
+        }
+    });
+    let mut mean = 0.0;
+    let m = 400;
+    for i in 0..m {
+        for j in 0..m {
+            let uv = glam::Vec2::new((i as f32 + 0.5) / m as f32, (j as f32 + 0.5) / m as f32);
+            mean += texture.color(uv).r as f64 / (m * m) as f64;
+        }
+    }
+    let mut scene = Scene::empty("textured");
+    let tex = scene.add_texture(texture);
+    let lamp = scene.add_material(Material {
+        emission_texture: Some(tex),
+        ..Material::emitter("lamp", Rgb::BLACK, Rgb::splat(2.0))
+    });
+    scene.add_object("lamp", quad(Vec3::ZERO, Vec3::X, Vec3::NEG_Z), lamp);
+    let n = 100_000u64;
+    let report = solve(scene, n, 6);
+    let expected = PI * 2.0 * mean;
+    let sigma = PI * 2.0 * 0.5 / (n as f64).sqrt();
+    let got = object(&report, "lamp").emitted_power[0];
+    assert!(mean > 0.15 && mean < 0.35, "{mean}");
+    assert!(
+        (got - expected).abs() < 4.0 * sigma,
+        "{got} vs {expected} ± {sigma}"
+    );
 }

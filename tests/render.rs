@@ -26,6 +26,15 @@ fn settings(width: u32, height: u32, antialias: AntialiasMode) -> RenderSettings
 }
 
 fn render_with(world: &World, settings: &RenderSettings, threads: usize) -> RenderOutput {
+    render_with_tracer(world, settings, threads, &StandardRayTracer::default())
+}
+
+fn render_with_tracer(
+    world: &World,
+    settings: &RenderSettings,
+    threads: usize,
+    tracer: &StandardRayTracer,
+) -> RenderOutput {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
@@ -33,7 +42,7 @@ fn render_with(world: &World, settings: &RenderSettings, threads: usize) -> Rend
     pool.install(|| {
         render(
             world,
-            &StandardRayTracer::default(),
+            tracer,
             settings,
             &NoProgress,
             &AtomicBool::new(false),
@@ -48,21 +57,38 @@ fn render_with(world: &World, settings: &RenderSettings, threads: usize) -> Rend
 fn cornell_matches_stored_reference_for_every_accelerator() {
     let reference_path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cornell_standard_48.pfm");
+    // Many shadow rays per pixel keep the soft shadows' noise well below the tolerance, so
+    // the comparison measures the renderer rather than its random numbers.
+    let tracer = StandardRayTracer {
+        light_samples: 256,
+        ..Default::default()
+    };
     let s = settings(48, 48, AntialiasMode::None);
     if std::env::var_os("STRAHL_WRITE_REFERENCE").is_some() {
-        let out = render_with(&world("cornell", AccelKind::Bvh), &s, 2);
+        let out = render_with_tracer(&world("cornell", AccelKind::Bvh), &s, 2, &tracer);
         image::save(&out.film, &reference_path, &Default::default()).unwrap();
     }
     let reference = image::load(&reference_path).unwrap();
     let mean = reference.mean().luminance() as f64;
     assert!(mean > 0.01, "the reference image is black");
+    // The noise floor: the same render with another seed differs by this much.
+    let other_seed = RenderSettings {
+        seed: 99,
+        ..s.clone()
+    };
+    let noise = render_with_tracer(&world("cornell", AccelKind::Bvh), &other_seed, 2, &tracer)
+        .film
+        .rms_difference(&reference)
+        .unwrap()
+        / mean;
+    assert!(noise < 0.01, "noise floor {noise}");
     for accel in [AccelKind::Bvh, AccelKind::Octree, AccelKind::Naive] {
-        let out = render_with(&world("cornell", accel), &s, 2);
+        let out = render_with_tracer(&world("cornell", accel), &s, 2, &tracer);
         assert!(out.complete);
-        let rms = out.film.rms_difference(&reference).unwrap();
-        // Relative RMS over the image; the render is deterministic, so any real change of
-        // geometry, lighting or sampling shows far above this.
-        assert!(rms / mean < 1e-3, "{accel:?}: relative RMS {}", rms / mean);
+        let rms = out.film.rms_difference(&reference).unwrap() / mean;
+        // Deterministic, so normally 0; a change in sampling order may move it up to the
+        // noise floor, a real change of geometry or lighting far beyond 2 %.
+        assert!(rms < 0.02, "{accel:?}: relative RMS {rms}");
     }
 }
 

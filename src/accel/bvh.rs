@@ -7,7 +7,7 @@
 //! Unbounded primitives (infinite planes) are kept outside the tree and tested by every ray.
 
 use super::{AccelStats, Accelerator, PrimHit, PrimitiveSet, keep_closest};
-use crate::geometry::{Aabb, Ray};
+use crate::geometry::{Aabb, Ray, Triangle, Triangle4};
 use glam::{Vec3, Vec4};
 
 /// Build options of the BVH.
@@ -74,6 +74,9 @@ const MAX_BINARY_DEPTH: usize = 64;
 const STACK_SIZE: usize = 3 * MAX_BINARY_DEPTH + 4;
 /// `count` of an unused child slot.
 const EMPTY: u32 = u32::MAX;
+/// Flag in a leaf's `count`: its primitives are plain triangles packed four to a block, and
+/// `child` is the first block.
+const PACKED: u32 = 1 << 30;
 
 /// A 4-wide node: the boxes of up to four children as structure-of-arrays lanes.
 #[derive(Clone, Copy, Debug)]
@@ -162,6 +165,9 @@ impl WideRay {
 pub struct Bvh {
     nodes: Vec<WideNode>,
     refs: Vec<u32>,
+    /// Leaves of plain triangles, four per block, with the primitive index of each lane
+    /// (`u32::MAX` for padding).
+    blocks: Vec<(Triangle4, [u32; 4])>,
     unbounded: Vec<u32>,
     max_depth: usize,
 }
@@ -205,9 +211,11 @@ impl Bvh {
             builder.build_node(0, builder.refs.len(), 0);
             collapse(&builder.nodes, 0, 0, &mut nodes, &mut max_depth);
         }
+        let blocks = pack_plain_triangles(prims, &mut nodes, &builder.refs);
         Bvh {
             nodes,
             refs: builder.refs,
+            blocks,
             unbounded,
             max_depth,
         }
@@ -240,7 +248,30 @@ impl Bvh {
         let mut current: Entry = (0, 0, 0.0);
         loop {
             let (child, count, _) = current;
-            if count > 0 {
+            if count & PACKED != 0 {
+                let n = (count & !PACKED) as usize;
+                let first = child as usize;
+                for (block, lanes) in &self.blocks[first..first + n.div_ceil(4)] {
+                    let hits = block.intersect(ray, limit);
+                    let mut mask = hits.mask;
+                    while mask != 0 {
+                        let lane = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        let hit = PrimHit {
+                            t: hits.t[lane],
+                            prim: lanes[lane],
+                            local: [hits.b1[lane], hits.b2[lane]],
+                        };
+                        if any {
+                            return Some(hit);
+                        }
+                        if best.is_none_or(|b| hit.is_closer_than(&b)) {
+                            best = Some(hit);
+                            limit = hit.t;
+                        }
+                    }
+                }
+            } else if count > 0 {
                 let first = child as usize;
                 for &prim in &self.refs[first..first + count as usize] {
                     if let Some(hit) = prims.intersect(prim, ray, limit) {
@@ -298,6 +329,41 @@ impl Bvh {
             }
         }
     }
+}
+
+/// Packs every leaf whose primitives are all plain triangles into four-wide blocks and marks
+/// it `PACKED`; returns the blocks.
+fn pack_plain_triangles<P: PrimitiveSet>(
+    prims: &P,
+    nodes: &mut [WideNode],
+    refs: &[u32],
+) -> Vec<(Triangle4, [u32; 4])> {
+    let mut blocks = Vec::new();
+    for node in nodes.iter_mut() {
+        for slot in 0..4 {
+            let count = node.count[slot];
+            if count == 0 || count == EMPTY {
+                continue;
+            }
+            let first = node.child[slot] as usize;
+            let leaf = &refs[first..first + count as usize];
+            let Some(tris) = leaf
+                .iter()
+                .map(|&p| prims.plain_triangle(p))
+                .collect::<Option<Vec<Triangle>>>()
+            else {
+                continue;
+            };
+            node.child[slot] = blocks.len() as u32;
+            node.count[slot] = count | PACKED;
+            for (chunk, ids) in tris.chunks(4).zip(leaf.chunks(4)) {
+                let mut lanes = [u32::MAX; 4];
+                lanes[..ids.len()].copy_from_slice(ids);
+                blocks.push((Triangle4::new(chunk), lanes));
+            }
+        }
+    }
+    blocks
 }
 
 /// A child waiting for traversal: (wide node or first reference, reference count (0 for an
@@ -447,18 +513,17 @@ impl Builder<'_> {
                 if left_n == 0 || right_count[split] == 0 {
                     continue;
                 }
-                let cost = left_b.surface_area() * left_n as f32
-                    + right_area[split] * right_count[split] as f32;
+                let cost = left_b.surface_area() * leaf_cost(left_n as usize)
+                    + right_area[split] * leaf_cost(right_count[split] as usize);
                 if best.is_none_or(|(c, _, _)| cost < c) {
                     best = Some((cost, axis, split));
                 }
             }
         }
         let (cost, axis, split) = best?;
-        let count = (end - start) as f32;
         let area = bounds.surface_area().max(f32::MIN_POSITIVE);
         let split_cost = self.options.traversal_cost + cost / area;
-        if split_cost >= count && end - start <= self.options.max_leaf_size {
+        if split_cost >= leaf_cost(end - start) && end - start <= self.options.max_leaf_size {
             return None;
         }
         let lo = centroid_bounds.min[axis];
@@ -483,6 +548,12 @@ impl Builder<'_> {
         });
         Some(start + mid)
     }
+}
+
+/// SAH cost of testing a leaf of `n` primitives, relative to visiting a node: triangles are
+/// tested four at a time.
+fn leaf_cost(n: usize) -> f32 {
+    n.div_ceil(4) as f32 * 1.5
 }
 
 /// Moves the elements satisfying `pred` to the front; returns how many there are.

@@ -12,7 +12,7 @@ pub use bvh::{Bvh, BvhOptions};
 pub use naive::Naive;
 pub use octree::{Octree, OctreeOptions};
 
-use crate::geometry::{Aabb, Ray};
+use crate::geometry::{Aabb, Ray, Triangle};
 
 /// First-stage result of a ray query: where and what was hit, without the hit description.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,6 +56,12 @@ pub trait PrimitiveSet: Sync {
     fn bounds(&self, prim: u32) -> Aabb;
     /// First-stage intersection: the hit with `t ∈ (0, t_max]`, if any.
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit>;
+    /// Primitive `prim` as a plain triangle, when [`PrimitiveSet::intersect`] for it is exactly
+    /// [`Triangle::intersect`] (no cut-outs) with barycentrics as `local`. Accelerators may then
+    /// store it inline and test four at once.
+    fn plain_triangle(&self, _prim: u32) -> Option<Triangle> {
+        None
+    }
 }
 
 /// Statistics of a built accelerator.

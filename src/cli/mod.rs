@@ -3,6 +3,7 @@
 mod bench;
 mod info;
 mod progress;
+mod radiosity;
 mod render;
 mod solve;
 mod source;

@@ -1,7 +1,8 @@
 //! `strahl solve`: compute the light on every object of a scene and report it per object
 //! (or per face) as JSON or CSV.
 
-use super::{progress, source, with_threads};
+use super::radiosity::{RadiosityArgs, RadiositySolver, print_convergence};
+use super::{progress, radiosity, source, with_threads};
 use crate::accel::AccelKind;
 use crate::report::{ObjectReport, Report, ReportFormat, luminance, write_report};
 use crate::trace::World;
@@ -15,6 +16,10 @@ use std::path::PathBuf;
 pub enum Solver {
     /// The light model: photons traced from all lights and the sky, Monte Carlo.
     LightTrace,
+    /// Radiosity: full form-factor matrix, Jacobi or Gauss-Seidel.
+    Matrix,
+    /// Radiosity: progressive refinement.
+    Progressive,
 }
 
 /// Options of the light-trace solver.
@@ -59,12 +64,18 @@ pub struct SolveArgs {
     /// Light-trace options.
     #[command(flatten)]
     pub light_trace: LightTraceArgs,
+    /// Radiosity options.
+    #[command(flatten)]
+    pub radiosity: RadiosityArgs,
 }
 
 /// Runs `strahl solve`.
 pub fn run(args: &SolveArgs) -> Result<()> {
     if let Some(path) = &args.report {
         ReportFormat::from_path(path)?;
+    }
+    if let Some(path) = &args.radiosity.export {
+        crate::radiosity::solve::ExportFormat::from_path(path)?;
     }
     let scene = source::load(&args.scene)?;
     let name = scene.name.clone();
@@ -96,6 +107,26 @@ pub fn run(args: &SolveArgs) -> Result<()> {
                 );
             }
             out.report(&name)
+        }
+        Solver::Matrix | Solver::Progressive => {
+            let solver = match args.solver {
+                Solver::Matrix => RadiositySolver::Matrix,
+                _ => RadiositySolver::Progressive,
+            };
+            let tone = crate::image::ToneMapping::default();
+            let (system, solution) = radiosity::solve(
+                &world,
+                &args.radiosity,
+                solver,
+                args.seed,
+                args.threads,
+                args.quiet,
+                &tone,
+            )?;
+            if args.verbose {
+                print_convergence(&solution);
+            }
+            crate::radiosity::solve::radiosity_report(&system, &solution, &name)
         }
     };
     if !args.quiet {

@@ -9,6 +9,7 @@ pub mod form_factor;
 pub mod light_links;
 pub mod mesh;
 pub mod shaft;
+pub mod solve;
 pub mod visibility;
 
 pub use clip::{Facing, Plane, Polygon, SplitPolygon, facing, needs_split, split};

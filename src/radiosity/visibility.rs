@@ -35,6 +35,9 @@ const ADAPTIVE_MAX_PER_AXIS: u32 = 8;
 const CLUSTER_SIZE: usize = 16;
 /// Above this many surviving primitives the rays go through the scene's BVH.
 const DIRECT_TEST_LIMIT: usize = 48;
+/// Pairs with fewer rays than this skip the shaft (one or two BVH rays cost less than
+/// building and testing the shaft).
+const SHAFT_MIN_RAYS: u32 = 4;
 /// How many hits on ignored objects one ray may step past before it counts as unblocked.
 const MAX_IGNORED_HITS: usize = 32;
 
@@ -206,11 +209,15 @@ impl<'w> Visibility<'w> {
             .zip(ignored)
             .filter_map(|(o, skip)| skip.then_some(o))
             .collect();
-        let occluders = self.occluders(p, q, &ignored);
+        let m = self.rays_per_axis(p, q);
+        let occluders = if m * m < SHAFT_MIN_RAYS {
+            Occluders::Scene
+        } else {
+            self.occluders(p, q, &ignored)
+        };
         if matches!(occluders, Occluders::None) {
             return 1.0;
         }
-        let m = self.rays_per_axis(p, q);
         let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, lo, hi));
         let from = jittered_points(p, m, &mut rng);
         let mut to = jittered_points(q, m, &mut rng);
@@ -298,7 +305,7 @@ impl<'w> Visibility<'w> {
         let end = offset_origin(yf, ny.as_vec3(), xf - yf);
         let d = end - start;
         let length = d.length();
-        if !(length > 0.0) {
+        if length.is_nan() || length <= 0.0 {
             return false;
         }
         let ray = Ray::new(start, d / length);

@@ -272,7 +272,6 @@ mod tests {
         };
         let choice = LobeChoice::new(&m);
         assert!(!choice.has_density());
-        let n = Vec3::Z;
         let wo = Vec3::new(0.6, 0.0, 0.8);
         let fresnel = fresnel_dielectric(0.8, 1.0 / 1.5);
         let count = 4096;

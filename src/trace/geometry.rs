@@ -442,6 +442,12 @@ impl PrimitiveSet for SceneGeometry {
         }
     }
 
+    fn plain_triangle(&self, prim: u32) -> Option<Triangle> {
+        let tri = self.triangles.get(prim as usize)?;
+        let material = self.attributes[prim as usize].material as usize;
+        self.alpha[material].is_none().then_some(*tri)
+    }
+
     #[inline(always)]
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit> {
         let index = prim as usize;

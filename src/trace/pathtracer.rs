@@ -2,8 +2,15 @@
 //! branching paths at the first hit, continued by sampling the material's lobes; at every
 //! non-delta vertex one light is sampled (next-event estimation) and combined with the
 //! emission that BSDF sampling finds by multiple importance sampling (power heuristic).
-//! Russian roulette from bounce [`ROULETTE_START`] on, survival by throughput luminance
+//! Russian roulette after [`ROULETTE_START`] scattering events, survival by throughput luminance
 //! capped at [`ROULETTE_MAX_SURVIVAL`].
+//!
+//! Random numbers: the camera sample's Owen-scrambled Sobol sampler drives the pixel position
+//! and the continuous decisions at the first hit (light point, lobe, direction), where
+//! stratification pays most; the discrete choices there and all deeper bounces draw from a
+//! PCG stream keyed by one further Sobol dimension of the same sample, which costs a
+//! fraction of a Sobol draw per number and keeps every sample a deterministic function of
+//! seed, pixel and sample index.
 //!
 //! Path length counts scattering events: with `max_depth = 0` only emitters seen directly
 //! contribute, with 1 direct light only, and so on; `u32::MAX` leaves the length to roulette.
@@ -12,13 +19,14 @@ use super::bsdf::emitted;
 use super::bsdf_sampling::{LobeChoice, ViewSide, sample_bsdf};
 use super::direct::ShadingPoint;
 use super::light_sampling::{LightPicker, ShadowTarget};
-use super::sampler::Sampler;
+use super::sampler::{Sampler, SequenceKind, hash64};
 use super::{Integrator, SurfaceHit, World};
 use crate::color::Rgb;
 use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
 use glam::{Vec2, Vec3};
 
-/// First bounce (counted from 0 at the first hit) at which Russian roulette may end a path.
+/// Scattering events a path has had before Russian roulette may end it (a path continuing
+/// from its fifth hit is the first to face roulette, like Mitsuba's `rr_depth = 5`).
 pub const ROULETTE_START: u32 = 5;
 /// Largest survival probability of Russian roulette.
 pub const ROULETTE_MAX_SURVIVAL: f32 = 0.95;
@@ -71,14 +79,52 @@ struct BounceNumbers {
 }
 
 impl BounceNumbers {
-    fn draw(sampler: &mut Sampler) -> Self {
+    /// Draws the numbers that shape the bounce most (light point, lobe, direction) from
+    /// `shaping`, and the others (light and triangle choice, roulette) from `rest`.
+    fn draw(shaping: &mut Sampler, rest: &mut Sampler) -> Self {
         BounceNumbers {
-            light_pick: sampler.next_1d(),
-            light_prim: sampler.next_1d(),
-            light_point: sampler.next_2d(),
-            lobe: sampler.next_1d(),
-            direction: sampler.next_2d(),
-            roulette: sampler.next_1d(),
+            light_point: shaping.next_2d(),
+            lobe: shaping.next_1d(),
+            direction: shaping.next_2d(),
+            light_pick: rest.next_1d(),
+            light_prim: rest.next_1d(),
+            roulette: rest.next_1d(),
+        }
+    }
+}
+
+/// The random numbers of one camera sample: the caller's sampler for the first hit, a
+/// pseudo-random stream for all deeper bounces.
+struct PathNumbers<'a> {
+    first_hit: &'a mut Sampler,
+    deeper: Sampler,
+}
+
+impl<'a> PathNumbers<'a> {
+    /// Keys the deeper stream by one number drawn from `sampler` (distinct for every sample
+    /// index of a pixel: Sobol points of one dimension never repeat).
+    fn new(sampler: &'a mut Sampler) -> Self {
+        let key = sampler.next_1d().to_bits() as u64;
+        PathNumbers {
+            first_hit: sampler,
+            deeper: Sampler::new(SequenceKind::Random, hash64(key), 0, 0),
+        }
+    }
+
+    /// The numbers of the bounce at vertex `bounce` (0 = first hit).
+    fn bounce(&mut self, bounce: u32) -> BounceNumbers {
+        if bounce == 0 {
+            BounceNumbers::draw(self.first_hit, &mut self.deeper)
+        } else {
+            let deeper = &mut self.deeper;
+            BounceNumbers {
+                light_point: deeper.next_2d(),
+                lobe: deeper.next_1d(),
+                direction: deeper.next_2d(),
+                light_pick: deeper.next_1d(),
+                light_prim: deeper.next_1d(),
+                roulette: deeper.next_1d(),
+            }
         }
     }
 }
@@ -180,7 +226,7 @@ impl PathTracer {
         mut beta: Rgb,
         mut bounce: u32,
         mut arrival: Arrival,
-        sampler: &mut Sampler,
+        numbers: &mut PathNumbers,
     ) -> Rgb {
         let mut radiance = Rgb::BLACK;
         loop {
@@ -209,15 +255,15 @@ impl PathTracer {
             if branches > 1 {
                 let mut sum = Rgb::BLACK;
                 for _ in 0..branches {
-                    sum += self.scatter(world, &sp, &choice, beta, bounce, sampler);
+                    sum += self.scatter(world, &sp, &choice, beta, bounce, numbers);
                 }
                 return radiance + sum / branches as f32;
             }
-            let numbers = BounceNumbers::draw(sampler);
+            let u = numbers.bounce(bounce);
             if choice.has_density() {
-                radiance += beta * self.next_event(world, &sp, &choice, &numbers);
+                radiance += beta * self.next_event(world, &sp, &choice, &u);
             }
-            let Some(next) = self.continue_path(&sp, &choice, beta, bounce, &numbers) else {
+            let Some(next) = self.continue_path(&sp, &choice, beta, bounce, &u) else {
                 return radiance;
             };
             (ray, beta, arrival) = next;
@@ -234,15 +280,15 @@ impl PathTracer {
         choice: &LobeChoice,
         beta: Rgb,
         bounce: u32,
-        sampler: &mut Sampler,
+        numbers: &mut PathNumbers,
     ) -> Rgb {
-        let numbers = BounceNumbers::draw(sampler);
+        let u = numbers.bounce(bounce);
         let mut radiance = Rgb::BLACK;
         if choice.has_density() {
-            radiance += beta * self.next_event(world, sp, choice, &numbers);
+            radiance += beta * self.next_event(world, sp, choice, &u);
         }
-        if let Some((ray, beta, arrival)) = self.continue_path(sp, choice, beta, bounce, &numbers) {
-            radiance += self.follow(world, ray, beta, bounce + 1, arrival, sampler);
+        if let Some((ray, beta, arrival)) = self.continue_path(sp, choice, beta, bounce, &u) {
+            radiance += self.follow(world, ray, beta, bounce + 1, arrival, numbers);
         }
         radiance
     }
@@ -287,6 +333,7 @@ impl PathTracer {
 
 impl Integrator for PathTracer {
     fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
-        self.follow(world, *ray, Rgb::WHITE, 0, Arrival::CAMERA, sampler)
+        let mut numbers = PathNumbers::new(sampler);
+        self.follow(world, *ray, Rgb::WHITE, 0, Arrival::CAMERA, &mut numbers)
     }
 }

@@ -1,0 +1,90 @@
+//! Form factors per second on the Cornell box meshed 16 × 16 per root patch: the analytic
+//! form factor with visibility (adaptive rays), with and without shaft culling, over a fixed
+//! set of facing leaf pairs.
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use std::hint::black_box;
+use strahl::accel::AccelKind;
+use strahl::radiosity::{
+    Facing, FormFactorOptions, MeshOptions, MeshSize, PatchId, PatchMesh, VisRays, Visibility,
+    VisibilityOptions, facing, form_factor,
+};
+use strahl::scene::builtin;
+use strahl::trace::World;
+
+/// Facing leaf pairs taken at a fixed stride through all pairs.
+const PAIRS: usize = 2000;
+
+fn facing_pairs(mesh: &PatchMesh) -> Vec<(PatchId, PatchId)> {
+    let leaves = mesh.leaves();
+    let n = leaves.len();
+    let stride = 7919; // prime, so the pairs spread over all root combinations
+    (0..)
+        .map(|k: usize| {
+            let flat = k * stride % (n * n);
+            (leaves[flat / n], leaves[flat % n])
+        })
+        .filter(|&(i, j)| i != j && facing(mesh.patch(i), mesh.patch(j)) != Facing::Away)
+        .take(PAIRS)
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let scene = builtin::load("cornell")
+        .expect("built-in scene")
+        .expect("valid scene");
+    let mesh = PatchMesh::from_scene(
+        &scene,
+        &MeshOptions {
+            segments: 16,
+            size: MeshSize::Levels(4),
+        },
+    )
+    .expect("mesh");
+    let world = World::new(scene, AccelKind::Bvh).expect("world");
+    let pairs = facing_pairs(&mesh);
+    let ff = FormFactorOptions::default();
+    let mut group = c.benchmark_group("radiosity");
+    group.throughput(Throughput::Elements(pairs.len() as u64));
+    group.sample_size(10);
+    for (rays, culling) in [
+        (VisRays::Adaptive, true),
+        (VisRays::Adaptive, false),
+        (VisRays::Fixed(16), true),
+        (VisRays::Fixed(16), false),
+    ] {
+        let vis = Visibility::new(
+            &world,
+            VisibilityOptions {
+                rays,
+                shaft_culling: culling,
+                seed: 1,
+            },
+        );
+        let cull = if culling { "shaft" } else { "bvh_only" };
+        let name = format!("analytic_ff_with_visibility_{rays}_rays_{cull}");
+        group.bench_function(&name, |b| {
+            b.iter(|| {
+                pairs
+                    .iter()
+                    .map(|&(i, j)| {
+                        let f = form_factor(mesh.patch(i), mesh.patch(j), &ff);
+                        f * vis.between(&mesh, i, j)
+                    })
+                    .sum::<f64>()
+            })
+        });
+    }
+    group.bench_function("analytic_ff_only", |b| {
+        b.iter(|| {
+            pairs
+                .iter()
+                .map(|&(i, j)| form_factor(black_box(mesh.patch(i)), mesh.patch(j), &ff))
+                .sum::<f64>()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

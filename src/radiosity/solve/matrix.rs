@@ -1,0 +1,184 @@
+//! The full-matrix solver (seed 000 §5.1, seed 001): all couplings `F_ij V_ij` are assembled
+//! (rows in parallel), then `B = S + ρ ⊙ (F B)` is iterated by Jacobi or Gauss-Seidel sweeps
+//! until the change of one sweep, as a fraction of the source power ([`power_fraction`]),
+//! falls to the tolerance. Starting from `B = S`, a Jacobi sweep's change is exactly the
+//! light not yet reflected, so the measure matches the progressive solver's unshot power.
+
+use super::SolveError;
+use super::solution::{Solution, power_fraction};
+use super::system::{Couplings, RadiositySystem};
+use crate::report::Rgb64;
+use crate::trace::render::ProgressListener;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// Largest `patches²` the matrix solver accepts (at most 12 bytes per stored coupling).
+pub const MAX_MATRIX_ENTRIES: u64 = 200_000_000;
+
+/// The iteration scheme (`--iteration`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Iteration {
+    /// Every sweep uses only the previous sweep's radiosities.
+    Jacobi,
+    /// Every update uses the newest radiosities (converges in fewer sweeps).
+    #[default]
+    GaussSeidel,
+}
+
+/// Settings of the matrix solver.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MatrixSettings {
+    /// Jacobi or Gauss-Seidel.
+    pub iteration: Iteration,
+    /// Stop when a sweep changes radiosity by at most this fraction of the source power.
+    pub tolerance: f64,
+    /// Stop after this many sweeps at the latest.
+    pub max_iterations: u32,
+}
+
+impl Default for MatrixSettings {
+    /// Gauss-Seidel to 1e-4, at most 1000 sweeps.
+    fn default() -> Self {
+        MatrixSettings {
+            iteration: Iteration::GaussSeidel,
+            tolerance: 1e-4,
+            max_iterations: 1000,
+        }
+    }
+}
+
+/// Assembles the coupling matrix of `system` and iterates it. `progress` counts assembled
+/// rows, then sweeps; `cancel` stops either phase and keeps the state reached (an interrupted
+/// assembly leaves the radiosity at the source term).
+pub fn solve_matrix(
+    system: &RadiositySystem,
+    settings: &MatrixSettings,
+    progress: &dyn ProgressListener,
+    cancel: &AtomicBool,
+) -> Result<Solution, SolveError> {
+    let n = system.len();
+    if (n as u64) * (n as u64) > MAX_MATRIX_ENTRIES {
+        return Err(SolveError::MatrixTooLarge {
+            patches: n,
+            limit: MAX_MATRIX_ENTRIES,
+        });
+    }
+    let name = match settings.iteration {
+        Iteration::Jacobi => "matrix-jacobi",
+        Iteration::GaussSeidel => "matrix-gauss-seidel",
+    };
+    let mut solution = Solution::start(system, name);
+    let start = Instant::now();
+    progress.start(n as u64);
+    let rows: Vec<Option<Couplings>> = (0..n)
+        .into_par_iter()
+        .map(|i| {
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            let row = system.row(i);
+            progress.advance(1);
+            Some(row)
+        })
+        .collect();
+    progress.finish();
+    solution.seconds.form_factors = start.elapsed().as_secs_f64();
+    let Some(rows) = rows.into_iter().collect::<Option<Vec<Couplings>>>() else {
+        solution.interrupted = true;
+        return Ok(solution);
+    };
+    let start = Instant::now();
+    progress.start(settings.max_iterations as u64);
+    let source: Vec<Rgb64> = (0..n).map(|k| system.source(k)).collect();
+    let b = &mut solution.radiosity;
+    for _ in 0..settings.max_iterations {
+        if cancel.load(Ordering::Relaxed) {
+            solution.interrupted = true;
+            break;
+        }
+        let change = match settings.iteration {
+            Iteration::Jacobi => jacobi_sweep(system, &rows, &source, b),
+            Iteration::GaussSeidel => gauss_seidel_sweep(system, &rows, &source, b),
+        };
+        let residual = power_fraction(system, &change);
+        solution.convergence.push(residual);
+        progress.advance(1);
+        if residual <= settings.tolerance {
+            solution.converged = true;
+            break;
+        }
+    }
+    progress.finish();
+    solution.irradiance = (0..n)
+        .into_par_iter()
+        .map(|i| {
+            let g = gather(&rows[i], b);
+            let h = system.light_irradiance[i];
+            std::array::from_fn(|c| h[c] + g[c])
+        })
+        .collect();
+    solution.seconds.iterations = start.elapsed().as_secs_f64();
+    Ok(solution)
+}
+
+/// `Σ_j F_ij V_ij B_j` over one row, W·m⁻².
+fn gather(row: &Couplings, b: &[Rgb64]) -> Rgb64 {
+    let mut sum = [0.0; 3];
+    for (&j, &f) in row.leaves.iter().zip(&row.values) {
+        let bj = b[j as usize];
+        for c in 0..3 {
+            sum[c] += f * bj[c];
+        }
+    }
+    sum
+}
+
+/// `S_i + ρ_i Σ_j F_ij B_j` for leaf `i`.
+fn update(
+    system: &RadiositySystem,
+    rows: &[Couplings],
+    source: &[Rgb64],
+    b: &[Rgb64],
+    i: usize,
+) -> Rgb64 {
+    let g = gather(&rows[i], b);
+    let (s, r) = (source[i], system.reflectance[i]);
+    std::array::from_fn(|c| s[c] + r[c] * g[c])
+}
+
+/// One Jacobi sweep (rows in parallel); returns the change per leaf.
+fn jacobi_sweep(
+    system: &RadiositySystem,
+    rows: &[Couplings],
+    source: &[Rgb64],
+    b: &mut Vec<Rgb64>,
+) -> Vec<Rgb64> {
+    let next: Vec<Rgb64> = (0..b.len())
+        .into_par_iter()
+        .map(|i| update(system, rows, source, b, i))
+        .collect();
+    let change = next
+        .iter()
+        .zip(b.iter())
+        .map(|(x, y)| std::array::from_fn(|c| x[c] - y[c]))
+        .collect();
+    *b = next;
+    change
+}
+
+/// One Gauss-Seidel sweep in leaf order, in place; returns the change per leaf.
+fn gauss_seidel_sweep(
+    system: &RadiositySystem,
+    rows: &[Couplings],
+    source: &[Rgb64],
+    b: &mut [Rgb64],
+) -> Vec<Rgb64> {
+    (0..b.len())
+        .map(|i| {
+            let next = update(system, rows, source, b, i);
+            let old = std::mem::replace(&mut b[i], next);
+            std::array::from_fn(|c| next[c] - old[c])
+        })
+        .collect()
+}

@@ -1,0 +1,164 @@
+//! Progressive refinement (seed 000 §5.2, seed 004): repeatedly shoot the leaf with the
+//! largest unshot power `|ΔB|·A` (luminance) to every other leaf through one column of
+//! couplings, `ΔH_i = F_ij V_ij s`, `B_i += ρ_i ΔH_i`, `ΔB_i += ρ_i ΔH_i`, `ΔB_j −= s`.
+//!
+//! The shot `s` is the unshot radiosity `ΔB_j`, or with overshooting (negative radiosity)
+//! `ΔB_j + ρ_j × ambient`: the light the patch will still receive is sent ahead, leaving a
+//! negative unshot amount that later shots correct; the fixed point is unchanged. The ambient
+//! term (Cohen et al. 1988) is `R · Σ_k ΔB_k A_k / Σ_k A_k` with `R = 1 / (1 − ρ̄)` and `ρ̄`
+//! the area-averaged reflectance; it is kept in the solution for display.
+//!
+//! Columns already computed are cached up to [`COLUMN_CACHE_BYTES`]: a leaf shot again costs
+//! no form factors.
+
+use super::SolveError;
+use super::solution::{Solution, power_fraction};
+use super::system::{Couplings, RadiositySystem};
+use crate::report::{Rgb64, luminance};
+use crate::trace::render::ProgressListener;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+/// Memory for cached coupling columns, bytes.
+pub const COLUMN_CACHE_BYTES: usize = 512 << 20;
+
+/// Progress-bar units for the way from the first unshot fraction (1) down to the tolerance.
+const PROGRESS_UNITS: u64 = 1000;
+
+/// Settings of progressive refinement.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShootingSettings {
+    /// Stop when the unshot power is at most this fraction of the source power.
+    pub tolerance: f64,
+    /// Stop after this many shots at the latest.
+    pub max_shots: u64,
+    /// Shoot ahead the light a patch is still expected to receive (negative radiosity).
+    pub overshoot: bool,
+}
+
+impl Default for ShootingSettings {
+    /// Tolerance 1e-4, at most 1 000 000 shots, no overshooting.
+    fn default() -> Self {
+        ShootingSettings {
+            tolerance: 1e-4,
+            max_shots: 1_000_000,
+            overshoot: false,
+        }
+    }
+}
+
+/// Solves `system` by progressive refinement. `progress` advances on a log scale from the
+/// first unshot fraction to the tolerance; `cancel` stops after the current shot and keeps
+/// the state reached.
+pub fn solve_progressive(
+    system: &RadiositySystem,
+    settings: &ShootingSettings,
+    progress: &dyn ProgressListener,
+    cancel: &AtomicBool,
+) -> Result<Solution, SolveError> {
+    let n = system.len();
+    let mut solution = Solution::start(system, "progressive");
+    let mut unshot: Vec<Rgb64> = solution.radiosity.clone();
+    let mut cache: Vec<Option<Couplings>> = vec![None; n];
+    let mut cached_bytes = 0usize;
+    let total_area = system.total_area();
+    let mean_reflectance: Rgb64 = std::array::from_fn(|c| {
+        (0..n)
+            .map(|k| system.reflectance[k][c] * system.area[k])
+            .sum::<f64>()
+            / total_area
+    });
+    let interreflection = mean_reflectance.map(|r| 1.0 / (1.0 - r.min(0.999_999)));
+    let log_tolerance = settings.tolerance.max(1e-300).ln();
+    let mut shown = 0;
+    progress.start(PROGRESS_UNITS);
+    let started = Instant::now();
+    let mut form_factor_seconds = 0.0;
+    let mut fraction = power_fraction(system, &unshot);
+    solution.ambient = ambient(system, &unshot, total_area, interreflection);
+    while fraction > settings.tolerance && (solution.iterations() as u64) < settings.max_shots {
+        if cancel.load(Ordering::Relaxed) {
+            solution.interrupted = true;
+            break;
+        }
+        let j = brightest(system, &unshot);
+        let overshoot: Rgb64 = if settings.overshoot {
+            std::array::from_fn(|c| (system.reflectance[j][c] * solution.ambient[c]).max(0.0))
+        } else {
+            [0.0; 3]
+        };
+        let shot: Rgb64 = std::array::from_fn(|c| unshot[j][c] + overshoot[c]);
+        if cache[j].is_none() {
+            let t = Instant::now();
+            let column = system.column(j);
+            form_factor_seconds += t.elapsed().as_secs_f64();
+            if cached_bytes + column.bytes() <= COLUMN_CACHE_BYTES {
+                cached_bytes += column.bytes();
+                cache[j] = Some(column);
+            } else {
+                distribute(system, &column, shot, &mut solution, &mut unshot);
+            }
+        }
+        if let Some(column) = &cache[j] {
+            distribute(system, column, shot, &mut solution, &mut unshot);
+        }
+        unshot[j] = std::array::from_fn(|c| unshot[j][c] - shot[c]);
+        fraction = power_fraction(system, &unshot);
+        solution.ambient = ambient(system, &unshot, total_area, interreflection);
+        solution.convergence.push(fraction);
+        let reached = if fraction > 0.0 {
+            ((fraction.ln() / log_tolerance).clamp(0.0, 1.0) * PROGRESS_UNITS as f64) as u64
+        } else {
+            PROGRESS_UNITS
+        };
+        if reached > shown {
+            progress.advance(reached - shown);
+            shown = reached;
+        }
+    }
+    progress.finish();
+    solution.converged = fraction <= settings.tolerance;
+    solution.seconds.form_factors = form_factor_seconds;
+    solution.seconds.iterations = started.elapsed().as_secs_f64() - form_factor_seconds;
+    Ok(solution)
+}
+
+/// Adds a shot `s` from one leaf through its coupling column to every receiver.
+fn distribute(
+    system: &RadiositySystem,
+    column: &Couplings,
+    shot: Rgb64,
+    solution: &mut Solution,
+    unshot: &mut [Rgb64],
+) {
+    for (&i, &f) in column.leaves.iter().zip(&column.values) {
+        let i = i as usize;
+        let rho = system.reflectance[i];
+        for c in 0..3 {
+            let dh = f * shot[c];
+            solution.irradiance[i][c] += dh;
+            solution.radiosity[i][c] += rho[c] * dh;
+            unshot[i][c] += rho[c] * dh;
+        }
+    }
+}
+
+/// The leaf with the largest unshot power `Y(|ΔB|)·A` (the first of equals).
+fn brightest(system: &RadiositySystem, unshot: &[Rgb64]) -> usize {
+    let mut best = (0, f64::NEG_INFINITY);
+    for (k, d) in unshot.iter().enumerate() {
+        let power = luminance(d.map(f64::abs)) * system.area[k];
+        if power > best.1 {
+            best = (k, power);
+        }
+    }
+    best.0
+}
+
+/// The ambient radiosity `R · Σ ΔB_k A_k / Σ A_k` per channel.
+fn ambient(system: &RadiositySystem, unshot: &[Rgb64], total_area: f64, r: Rgb64) -> Rgb64 {
+    std::array::from_fn(|c| {
+        let sum: f64 = unshot.iter().zip(&system.area).map(|(d, a)| d[c] * a).sum();
+        r[c] * sum / total_area
+    })
+}

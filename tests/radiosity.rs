@@ -1,0 +1,298 @@
+//! Radiosity solvers end to end: the furnace, matrix against progressive on the Cornell box,
+//! Jacobi against Gauss-Seidel, light links, the report, display and export.
+
+use glam::Vec3;
+use std::sync::atomic::AtomicBool;
+use strahl::accel::AccelKind;
+use strahl::color::Rgb;
+use strahl::image::{ToneMap, ToneMapping};
+use strahl::radiosity::solve::{
+    DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
+    Solution, SystemOptions, export_solution, radiosity_report, render_solution, solve_matrix,
+    solve_progressive,
+};
+use strahl::radiosity::{MeshOptions, MeshSize};
+use strahl::report::luminance;
+use strahl::scene::{Light, LightKind, Material, Scene, Shape, builtin};
+use strahl::trace::World;
+use strahl::trace::render::NoProgress;
+
+const RHO: f32 = 0.5;
+const L: f32 = 2.0;
+
+/// The unit cube as six parallelograms facing inwards, all emitting `L` with reflectance ρ.
+fn furnace() -> World {
+    let mut scene = Scene::empty("furnace");
+    let m = scene.add_material(Material::emitter("glow", Rgb::splat(RHO), Rgb::splat(L)));
+    let faces = [
+        (Vec3::ZERO, Vec3::Z, Vec3::X),
+        (Vec3::Y, Vec3::X, Vec3::Z),
+        (Vec3::ZERO, Vec3::Y, Vec3::Z),
+        (Vec3::X, Vec3::Z, Vec3::Y),
+        (Vec3::ZERO, Vec3::X, Vec3::Y),
+        (Vec3::Z, Vec3::Y, Vec3::X),
+    ];
+    for (k, (origin, edge_u, edge_v)) in faces.into_iter().enumerate() {
+        let shape = Shape::Parallelogram {
+            origin,
+            edge_u,
+            edge_v,
+        };
+        scene.add_object(&format!("face{k}"), shape, m);
+    }
+    World::new(scene, AccelKind::Bvh).unwrap()
+}
+
+fn options(levels: u32) -> SystemOptions {
+    SystemOptions {
+        mesh: MeshOptions {
+            segments: 16,
+            size: MeshSize::Levels(levels),
+        },
+        ..SystemOptions::default()
+    }
+}
+
+fn matrix(system: &RadiositySystem, iteration: Iteration, tolerance: f64) -> Solution {
+    let settings = MatrixSettings {
+        iteration,
+        tolerance,
+        max_iterations: 10_000,
+    };
+    solve_matrix(system, &settings, &NoProgress, &AtomicBool::new(false)).unwrap()
+}
+
+fn progressive(system: &RadiositySystem, overshoot: bool, tolerance: f64) -> Solution {
+    let settings = ShootingSettings {
+        tolerance,
+        max_shots: 1_000_000,
+        overshoot,
+    };
+    solve_progressive(system, &settings, &NoProgress, &AtomicBool::new(false)).unwrap()
+}
+
+fn assert_furnace(solution: &Solution) {
+    let expected = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
+    assert!(solution.converged, "{}", solution.solver);
+    for b in &solution.radiosity {
+        for c in b {
+            assert!(
+                ((c - expected) / expected).abs() < 1e-4,
+                "{}: {c} vs {expected}",
+                solution.solver
+            );
+        }
+    }
+}
+
+#[test]
+fn furnace_gives_e_over_one_minus_rho_for_every_solver() {
+    let world = furnace();
+    let system = RadiositySystem::new(&world, options(2)).unwrap();
+    assert_eq!(system.len(), 96);
+    assert_furnace(&matrix(&system, Iteration::Jacobi, 1e-7));
+    assert_furnace(&matrix(&system, Iteration::GaussSeidel, 1e-7));
+    assert_furnace(&progressive(&system, false, 1e-7));
+    assert_furnace(&progressive(&system, true, 1e-7));
+}
+
+#[test]
+fn furnace_report_balances_emission_and_absorption() {
+    let world = furnace();
+    let system = RadiositySystem::new(&world, options(1)).unwrap();
+    let solution = matrix(&system, Iteration::GaussSeidel, 1e-9);
+    let report = radiosity_report(&system, &solution, "furnace");
+    assert_eq!(report.objects.len(), 6);
+    // Each face: area 1, H = B (closed box), incident = B, absorbed = (1 − ρ)·B = E.
+    let b = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
+    for o in &report.objects {
+        assert!((o.area.unwrap() - 1.0).abs() < 1e-6);
+        assert!((o.incident_power[1] - b).abs() / b < 1e-4, "{o:?}");
+        assert!((o.radiosity.unwrap()[0] - b).abs() / b < 1e-4);
+    }
+    let t = &report.totals;
+    let (emitted, absorbed) = (luminance(t.emitted_power), luminance(t.absorbed_power));
+    assert!((emitted - 6.0 * std::f64::consts::PI * L as f64).abs() < 1e-6);
+    assert!(
+        (absorbed - emitted).abs() / emitted < 1e-4,
+        "{absorbed} vs {emitted}"
+    );
+    assert_eq!(report.stats.extra["patches"], 24);
+}
+
+fn cornell() -> World {
+    let scene = builtin::load("cornell").unwrap().unwrap();
+    World::new(scene, AccelKind::Bvh).unwrap()
+}
+
+#[test]
+fn cornell_matrix_and_progressive_agree_per_object() {
+    let world = cornell();
+    let system = RadiositySystem::new(&world, options(2)).unwrap();
+    let m = matrix(&system, Iteration::GaussSeidel, 1e-6);
+    let p = progressive(&system, false, 1e-6);
+    let rm = radiosity_report(&system, &m, "cornell");
+    let rp = radiosity_report(&system, &p, "cornell");
+    for (a, b) in rm.objects.iter().zip(&rp.objects) {
+        let (x, y) = (luminance(a.incident_power), luminance(b.incident_power));
+        assert!(x > 0.0, "{} receives light", a.name);
+        assert!((x - y).abs() / x < 0.005, "{}: {x} vs {y}", a.name);
+    }
+    // Overshooting converges to the same solution.
+    let o = progressive(&system, true, 1e-6);
+    let ro = radiosity_report(&system, &o, "cornell");
+    for (a, b) in rm.objects.iter().zip(&ro.objects) {
+        let (x, y) = (luminance(a.incident_power), luminance(b.incident_power));
+        assert!((x - y).abs() / x < 0.005, "{}: {x} vs {y}", a.name);
+    }
+}
+
+#[test]
+fn gauss_seidel_needs_fewer_sweeps_than_jacobi() {
+    let world = cornell();
+    let system = RadiositySystem::new(&world, options(1)).unwrap();
+    let jacobi = matrix(&system, Iteration::Jacobi, 1e-6);
+    let gs = matrix(&system, Iteration::GaussSeidel, 1e-6);
+    assert!(jacobi.converged && gs.converged);
+    assert!(
+        gs.iterations() < jacobi.iterations(),
+        "{} vs {}",
+        gs.iterations(),
+        jacobi.iterations()
+    );
+    // Residuals fall monotonically for Jacobi on a non-negative system.
+    assert!(
+        jacobi
+            .convergence
+            .windows(2)
+            .all(|w| w[1] <= w[0] * 1.000_001)
+    );
+}
+
+#[test]
+fn point_light_link_gives_rho_i_cos_over_d_squared() {
+    let mut scene = Scene::empty("lamp");
+    let m = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
+    scene.add_object(
+        "floor",
+        Shape::Parallelogram {
+            origin: Vec3::ZERO,
+            edge_u: Vec3::Z,
+            edge_v: Vec3::X,
+        },
+        m,
+    );
+    // Light 2 above and 2 to the side of the centroid (0.5, 0, 0.5): cosθ = 1/√2, d² = 8.
+    scene.lights.push(Light {
+        name: None,
+        kind: LightKind::Point {
+            position: Vec3::new(2.5, 2.0, 0.5),
+            intensity: Rgb::splat(8.0),
+        },
+    });
+    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let mut opts = options(0);
+    opts.link_samples = 1;
+    let system = RadiositySystem::new(&world, opts).unwrap();
+    let h = 8.0 * std::f64::consts::FRAC_1_SQRT_2 / 8.0;
+    for solution in [
+        matrix(&system, Iteration::Jacobi, 1e-9),
+        progressive(&system, false, 1e-9),
+    ] {
+        assert!((solution.radiosity[0][0] - 0.5 * h).abs() < 1e-6);
+        let report = radiosity_report(&system, &solution, "lamp");
+        let floor = &report.objects[0];
+        assert!((floor.irradiance.unwrap()[2] - h).abs() < 1e-6);
+        assert!((floor.absorbed_power[1] - 0.5 * h).abs() < 1e-6);
+        // The light only sends: its power into the mesh is the floor's incident power.
+        assert!((report.totals.emitted_power[0] - h).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn display_renders_light_and_flat_and_smooth_have_equal_means() {
+    let world = cornell();
+    let system = RadiositySystem::new(&world, options(2)).unwrap();
+    let solution = matrix(&system, Iteration::GaussSeidel, 1e-5);
+    let render = |shading, wireframe| {
+        let settings = DisplaySettings {
+            width: 48,
+            height: 48,
+            shading,
+            wireframe,
+            samples_per_axis: 2,
+        };
+        let camera = &world.scene.camera;
+        render_solution(
+            &system,
+            &solution,
+            camera,
+            &settings,
+            &NoProgress,
+            &AtomicBool::new(false),
+        )
+        .unwrap()
+    };
+    let flat = render(Shading::Flat, false);
+    let smooth = render(Shading::Smooth, false);
+    let wire = render(Shading::Smooth, true);
+    let (f, s, w) = (
+        flat.mean().luminance(),
+        smooth.mean().luminance(),
+        wire.mean().luminance(),
+    );
+    assert!(f > 0.0);
+    assert!((f - s).abs() / f < 0.05, "{f} vs {s}");
+    assert!(flat.rms_difference(&smooth).unwrap() > 1e-4);
+    assert!(w < s, "wireframe lines darken the image: {w} vs {s}");
+    // Almost every pixel sees the lit room (the open front shows at the rim).
+    let dark = flat
+        .pixels()
+        .iter()
+        .filter(|p| p.luminance() <= 0.0)
+        .count();
+    assert!(dark < flat.pixels().len() / 10, "{dark} black pixels");
+}
+
+#[test]
+fn exports_parse_as_gltf_and_ply() {
+    let world = furnace();
+    let system = RadiositySystem::new(&world, options(1)).unwrap();
+    let solution = matrix(&system, Iteration::GaussSeidel, 1e-6);
+    let dir = std::env::temp_dir().join(format!("strahl-radiosity-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let tone = ToneMapping {
+        operator: ToneMap::Auto,
+        exposure_ev: 0.0,
+    };
+    let glb = dir.join("furnace.glb");
+    export_solution(&system, &solution, &tone, &glb).unwrap();
+    let gltf_path = dir.join("furnace.gltf");
+    export_solution(&system, &solution, &tone, &gltf_path).unwrap();
+    for path in [&glb, &gltf_path] {
+        let (doc, buffers, _) = gltf::import(path).unwrap();
+        let primitive = doc.meshes().next().unwrap().primitives().next().unwrap();
+        let colors = primitive.get(&gltf::Semantic::Colors(0)).expect("COLOR_0");
+        assert_eq!(colors.count(), 24 * 4);
+        let reader = primitive.reader(|b| Some(&buffers[b.index()]));
+        assert_eq!(reader.read_indices().unwrap().into_u32().count(), 24 * 6);
+        // Uniform radiosity: one tone-mapped colour everywhere (to rounding), inside [0, 1].
+        let rgb: Vec<[f32; 3]> = reader.read_colors(0).unwrap().into_rgb_f32().collect();
+        assert!(
+            rgb.iter()
+                .all(|c| (c[0] - rgb[0][0]).abs() < 1e-5 && c[0] > 0.0 && c[0] <= 1.0)
+        );
+    }
+    let ply = dir.join("furnace.ply");
+    export_solution(&system, &solution, &tone, &ply).unwrap();
+    let text = std::fs::read_to_string(&ply).unwrap();
+    let (header, body) = text.split_once("end_header\n").unwrap();
+    assert!(header.starts_with("ply\nformat ascii 1.0\n"));
+    assert!(header.contains("element vertex 96\n") && header.contains("element face 24\n"));
+    let lines: Vec<&str> = body.lines().collect();
+    assert_eq!(lines.len(), 96 + 24);
+    let b: f64 = lines[0].split(' ').nth(9).unwrap().parse().unwrap();
+    let expected = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
+    assert!((b - expected).abs() / expected < 1e-4);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
