@@ -1,16 +1,21 @@
 //! Form factors per second on the Cornell box meshed 16 × 16 per root patch: the analytic
 //! form factor with visibility (adaptive rays), with and without shaft culling, over a fixed
-//! set of facing leaf pairs.
+//! set of facing leaf pairs; and the whole Cornell box solved to 1 % on a 32 × 32 mesh.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
+use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
+use strahl::radiosity::solve::{
+    RadiositySystem, ShootingSettings, SystemOptions, solve_progressive,
+};
 use strahl::radiosity::{
     Facing, FormFactorOptions, MeshOptions, MeshSize, PatchId, PatchMesh, VisRays, Visibility,
     VisibilityOptions, facing, form_factor,
 };
 use strahl::scene::builtin;
 use strahl::trace::World;
+use strahl::trace::render::NoProgress;
 
 /// Facing leaf pairs taken at a fixed stride through all pairs.
 const PAIRS: usize = 2000;
@@ -86,5 +91,39 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+/// The Cornell box meshed 32 × 32 per root face (`levels:5`) solved by progressive
+/// refinement until the unshot power is 1 % of the emitted power: meshing, light links,
+/// form factors with visibility and shooting, timed as one run.
+fn solve_cornell(c: &mut Criterion) {
+    let scene = builtin::load("cornell")
+        .expect("built-in scene")
+        .expect("valid scene");
+    let world = World::new(scene, AccelKind::Bvh).expect("world");
+    let options = SystemOptions {
+        mesh: MeshOptions {
+            segments: 16,
+            size: MeshSize::Levels(5),
+        },
+        ..SystemOptions::default()
+    };
+    let settings = ShootingSettings {
+        tolerance: 0.01,
+        ..ShootingSettings::default()
+    };
+    let mut group = c.benchmark_group("radiosity_solve");
+    group.sample_size(10);
+    group.bench_function("cornell_32x32_progressive_to_1_percent", |b| {
+        b.iter(|| {
+            let system = RadiositySystem::new(&world, options).expect("mesh");
+            let cancel = AtomicBool::new(false);
+            let solution =
+                solve_progressive(&system, &settings, &NoProgress, &cancel).expect("solve");
+            assert!(solution.converged);
+            black_box(solution.radiosity.len())
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, bench, solve_cornell);
 criterion_main!(benches);

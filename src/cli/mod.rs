@@ -5,6 +5,7 @@ mod info;
 mod progress;
 mod radiosity;
 mod render;
+mod render_radiosity;
 mod solve;
 mod source;
 

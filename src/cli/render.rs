@@ -23,6 +23,8 @@ pub enum Method {
     /// Unbiased Monte Carlo path tracing with next-event estimation and multiple importance
     /// sampling, rendered in progressive passes.
     Pathtrace,
+    /// Radiosity on the patch mesh, shown flat or smooth (`--solver`, `--shading`).
+    Radiosity,
 }
 
 /// Arguments of `strahl render`.
@@ -90,6 +92,9 @@ pub struct RenderArgs {
     /// No progress bar or summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Radiosity options.
+    #[command(flatten)]
+    pub radiosity: super::render_radiosity::RadiosityDisplayArgs,
 }
 
 /// Runs `strahl render`.
@@ -126,6 +131,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let output = match args.method {
         Method::Raytrace => render_standard(args, &world, width, height, &bar, &cancel)?,
         Method::Pathtrace => render_path_traced(args, &world, width, height, &bar, &cancel)?,
+        Method::Radiosity => {
+            let out = super::render_radiosity::render(args, &world, width, height, &bar, &cancel)?;
+            Rendered {
+                film: out.film,
+                subdivisions: Vec::new(),
+                summary: out.summary,
+                complete: out.complete,
+            }
+        }
     };
     let seconds = start.elapsed().as_secs_f64();
     let tone_mapping = ToneMapping {

@@ -52,7 +52,62 @@ pub enum LightKind {
     },
 }
 
+/// Light arriving at a point from a point, spot or directional light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Incidence {
+    /// Unit direction from the point toward the light.
+    pub wi: Vec3,
+    /// Distance to the light (infinite for directional lights).
+    pub distance: f32,
+    /// Irradiance on a surface facing the light (W·m⁻²); multiply by the cosine at the
+    /// receiver for any other orientation.
+    pub irradiance: Rgb,
+}
+
 impl LightKind {
+    /// How a point, spot or directional light reaches point `x` (ignoring occluders):
+    /// `I/d²` (times the spot falloff) or the directional irradiance. `None` for the sky, for
+    /// a point at the light's position, or for a spot pointing away.
+    pub fn incidence(&self, x: Vec3) -> Option<Incidence> {
+        let from_point = |position: Vec3, intensity: Rgb| {
+            let d = position - x;
+            let dist2 = d.length_squared();
+            (dist2 > 0.0).then(|| Incidence {
+                wi: d / dist2.sqrt(),
+                distance: dist2.sqrt(),
+                irradiance: intensity / dist2,
+            })
+        };
+        match *self {
+            LightKind::Point {
+                position,
+                intensity,
+            } => from_point(position, intensity),
+            LightKind::Spot {
+                position,
+                direction,
+                intensity,
+                inner_degrees,
+                outer_degrees,
+            } => {
+                let mut inc = from_point(position, intensity)?;
+                let falloff =
+                    Self::spot_falloff(-inc.wi.dot(direction), inner_degrees, outer_degrees);
+                inc.irradiance *= falloff;
+                (falloff > 0.0).then_some(inc)
+            }
+            LightKind::Directional {
+                direction,
+                irradiance,
+            } => Some(Incidence {
+                wi: -direction,
+                distance: f32::INFINITY,
+                irradiance,
+            }),
+            LightKind::Sky { .. } => None,
+        }
+    }
+
     /// Relative intensity of a spot light in a direction at angle θ from its axis, given
     /// `cos θ`: 1 inside the inner cone, 0 outside the outer cone, smoothstep in between.
     pub fn spot_falloff(cos_theta: f32, inner_degrees: f32, outer_degrees: f32) -> f32 {
@@ -72,6 +127,32 @@ impl LightKind {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn incidence_follows_the_inverse_square_law() {
+        let point = LightKind::Point {
+            position: Vec3::new(0.0, 2.0, 0.0),
+            intensity: Rgb::splat(8.0),
+        };
+        let inc = point.incidence(Vec3::ZERO).unwrap();
+        assert_eq!(inc.irradiance, Rgb::splat(2.0));
+        assert_eq!((inc.wi, inc.distance), (Vec3::Y, 2.0));
+        let spot = LightKind::Spot {
+            position: Vec3::new(0.0, 2.0, 0.0),
+            direction: Vec3::Y,
+            intensity: Rgb::splat(8.0),
+            inner_degrees: 10.0,
+            outer_degrees: 20.0,
+        };
+        assert!(spot.incidence(Vec3::ZERO).is_none(), "the spot points away");
+        assert!(
+            LightKind::Sky {
+                radiance: Rgb::WHITE
+            }
+            .incidence(Vec3::ZERO)
+            .is_none()
+        );
+    }
 
     #[test]
     fn spot_falloff_is_one_inside_zero_outside_monotone_between() {

@@ -14,7 +14,7 @@ mod texture;
 
 pub use camera::{Camera, CameraRays};
 pub use file::{SceneError, load, load_str};
-pub use light::{Light, LightKind};
+pub use light::{Incidence, Light, LightKind};
 pub use material::{Material, MaterialId};
 pub use mesh::PolygonMesh;
 pub use object::{AnalyticKind, Object, Shape};

@@ -7,7 +7,7 @@ use super::sampling::{cosine_hemisphere, stratified};
 use super::{SurfaceHit, World};
 use crate::color::Rgb;
 use crate::geometry::{Frame, Ray, spawn_ray, spawn_ray_to};
-use crate::scene::LightKind;
+use crate::scene::Incidence;
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -80,34 +80,13 @@ pub fn direct_light(
     let mut total = Rgb::BLACK;
     let x = sp.hit.p;
     for light in &world.lights.delta {
-        let (wi, dist, irradiance_normal) = match *light {
-            LightKind::Point {
-                position,
-                intensity,
-            } => {
-                let d = position - x;
-                let dist2 = d.length_squared();
-                (d / dist2.sqrt(), dist2.sqrt(), intensity / dist2)
-            }
-            LightKind::Spot {
-                position,
-                direction,
-                intensity,
-                inner_degrees,
-                outer_degrees,
-            } => {
-                let d = position - x;
-                let dist2 = d.length_squared();
-                let wi = d / dist2.sqrt();
-                let falloff =
-                    LightKind::spot_falloff(-wi.dot(direction), inner_degrees, outer_degrees);
-                (wi, dist2.sqrt(), intensity * (falloff / dist2))
-            }
-            LightKind::Directional {
-                direction,
-                irradiance,
-            } => (-direction, f32::INFINITY, irradiance),
-            LightKind::Sky { .. } => continue,
+        let Some(Incidence {
+            wi,
+            distance: dist,
+            irradiance: irradiance_normal,
+        }) = light.incidence(x)
+        else {
+            continue;
         };
         let cos = sp.n.dot(wi);
         if cos <= 0.0 || irradiance_normal.is_black() {

@@ -160,25 +160,28 @@ impl LightPicker {
     }
 
     /// Samples one light for the shading point `x` with unit shading normal `n` (toward the
-    /// viewer), from uniform numbers `u_pick`, `u_prim` and `u`. `None` when the sample carries
-    /// no light (behind the point, back of a one-sided emitter, outside a spot cone).
+    /// viewer), from uniform numbers `u_pick` (chooses the light; what remains of it after the
+    /// choice, rescaled to `[0, 1)`, chooses the light's triangle) and `u` (the point). `None`
+    /// when the sample carries no light (behind the point, back of a one-sided emitter,
+    /// outside a spot cone).
     pub fn sample(
         &self,
         world: &World,
         x: Vec3,
         n: Vec3,
         u_pick: f32,
-        u_prim: f32,
         u: Vec2,
     ) -> Option<LightSample> {
         let index = self
             .cdf
             .partition_point(|&c| c <= u_pick)
             .min(self.cdf.len().checked_sub(1)?);
-        let probability = self.cdf[index] - if index == 0 { 0.0 } else { self.cdf[index - 1] };
+        let below = if index == 0 { 0.0 } else { self.cdf[index - 1] };
+        let probability = self.cdf[index] - below;
         if probability <= 0.0 {
             return None;
         }
+        let u_prim = ((u_pick - below) / probability).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
         match self.choices[index] {
             Choice::Area(light) => {
                 let s = world.lights.sample_area(&world.geometry, light, u_prim, u);

@@ -6,8 +6,8 @@
 //! capped at [`ROULETTE_MAX_SURVIVAL`].
 //!
 //! Random numbers: the camera sample's Owen-scrambled Sobol sampler drives the pixel position
-//! and the continuous decisions at the first hit (light point, lobe, direction), where
-//! stratification pays most; the discrete choices there and all deeper bounces draw from a
+//! and every decision at the first hit but roulette (light choice, light point, lobe,
+//! direction), where stratification pays most; roulette and all deeper bounces draw from a
 //! PCG stream keyed by one further Sobol dimension of the same sample, which costs a
 //! fraction of a Sobol draw per number and keeps every sample a deterministic function of
 //! seed, pixel and sample index.
@@ -71,7 +71,6 @@ impl Arrival {
 /// sample index uses the same Sobol dimension for the same decision.
 struct BounceNumbers {
     light_pick: f32,
-    light_prim: f32,
     light_point: Vec2,
     lobe: f32,
     direction: Vec2,
@@ -79,15 +78,14 @@ struct BounceNumbers {
 }
 
 impl BounceNumbers {
-    /// Draws the numbers that shape the bounce most (light point, lobe, direction) from
-    /// `shaping`, and the others (light and triangle choice, roulette) from `rest`.
+    /// Draws the numbers that shape the bounce (light choice, light point, lobe, direction)
+    /// from `shaping`, and the roulette number from `rest`.
     fn draw(shaping: &mut Sampler, rest: &mut Sampler) -> Self {
         BounceNumbers {
+            light_pick: shaping.next_1d(),
             light_point: shaping.next_2d(),
             lobe: shaping.next_1d(),
             direction: shaping.next_2d(),
-            light_pick: rest.next_1d(),
-            light_prim: rest.next_1d(),
             roulette: rest.next_1d(),
         }
     }
@@ -118,11 +116,10 @@ impl<'a> PathNumbers<'a> {
         } else {
             let deeper = &mut self.deeper;
             BounceNumbers {
+                light_pick: deeper.next_1d(),
                 light_point: deeper.next_2d(),
                 lobe: deeper.next_1d(),
                 direction: deeper.next_2d(),
-                light_pick: deeper.next_1d(),
-                light_prim: deeper.next_1d(),
                 roulette: deeper.next_1d(),
             }
         }
@@ -185,7 +182,6 @@ impl PathTracer {
             sp.hit.p,
             sp.n,
             numbers.light_pick,
-            numbers.light_prim,
             numbers.light_point,
         ) else {
             return Rgb::BLACK;

@@ -136,13 +136,13 @@ fn build(system: &RadiositySystem, solution: &Solution, tone_mapping: &ToneMappi
         colors: Vec::new(),
         polygons: Vec::new(),
     };
-    for k in 0..system.len() {
+    for (k, values) in corners.iter().enumerate() {
         let patch = system.patch(k);
         let first = mesh.positions.len() as u32;
-        for (i, c) in patch.corners().iter().enumerate() {
+        for (c, &value) in patch.corners().iter().zip(values) {
             mesh.positions.push(c.as_vec3().to_array());
             mesh.normals.push(patch.normal.as_vec3().to_array());
-            mesh.radiosity.push(to_f32(corners[k][i]));
+            mesh.radiosity.push(to_f32(value));
         }
         mesh.polygons
             .push((first..first + patch.corners().len() as u32).collect());
