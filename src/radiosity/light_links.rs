@@ -36,64 +36,26 @@ pub fn light_irradiance(
 }
 
 /// Irradiance at surface point `x` with unit front normal `n` from a point, spot or
-/// directional light (black for a sky light or when blocked).
+/// directional light (black for a sky light, behind the surface, or when blocked).
 fn point_irradiance(world: &World, light: &LightKind, x: DVec3, n: DVec3) -> Rgb {
-    match *light {
-        LightKind::Point {
-            position,
-            intensity,
-        } => local_light(world, x, n, position.as_dvec3())
-            .map_or(Rgb::BLACK, |(geometry, _)| intensity * geometry as f32),
-        LightKind::Spot {
-            position,
-            direction,
-            intensity,
-            inner_degrees,
-            outer_degrees,
-        } => local_light(world, x, n, position.as_dvec3()).map_or(Rgb::BLACK, |(g, to_light)| {
-            let axis = direction.as_dvec3().normalize_or_zero();
-            let cos_axis = (-to_light).dot(axis) as f32;
-            intensity * (g as f32 * LightKind::spot_falloff(cos_axis, inner_degrees, outer_degrees))
-        }),
-        LightKind::Directional {
-            direction,
-            irradiance,
-        } => {
-            let to_light = -direction.as_dvec3().normalize_or_zero();
-            let cos = n.dot(to_light);
-            if cos <= 0.0 {
-                return Rgb::BLACK;
-            }
-            let origin = offset_origin(x.as_vec3(), n.as_vec3(), to_light.as_vec3());
-            let ray = Ray::new(origin, to_light.as_vec3());
-            if occluded_except(world, ray, f32::INFINITY, &[]) {
-                Rgb::BLACK
-            } else {
-                irradiance * cos as f32
-            }
-        }
-        LightKind::Sky { .. } => Rgb::BLACK,
+    let Some(inc) = light.incidence(x.as_vec3()) else {
+        return Rgb::BLACK;
+    };
+    let cos = n.as_vec3().dot(inc.wi);
+    if cos <= 0.0 {
+        return Rgb::BLACK;
     }
-}
-
-/// For a light at `position`: `cosθ/d²` at `x` (normal `n`) and the unit direction to the
-/// light, or `None` when the light is behind the surface or blocked.
-fn local_light(world: &World, x: DVec3, n: DVec3, position: DVec3) -> Option<(f64, DVec3)> {
-    let d = position - x;
-    let d2 = d.length_squared();
-    let cos = n.dot(d);
-    if d2 <= 0.0 || cos <= 0.0 {
-        return None;
+    let origin = offset_origin(x.as_vec3(), n.as_vec3(), inc.wi);
+    let t_max = if inc.distance.is_finite() {
+        (x.as_vec3() + inc.wi * inc.distance - origin).length()
+    } else {
+        f32::INFINITY
+    };
+    if occluded_except(world, Ray::new(origin, inc.wi), t_max, &[]) {
+        Rgb::BLACK
+    } else {
+        inc.irradiance * cos
     }
-    let dist = d2.sqrt();
-    let dir = d / dist;
-    let origin = offset_origin(x.as_vec3(), n.as_vec3(), dir.as_vec3());
-    let to = position.as_vec3() - origin;
-    let ray = Ray::new(origin, to.normalize());
-    if occluded_except(world, ray, to.length(), &[]) {
-        return None;
-    }
-    Some((cos / dist / d2, dir))
 }
 
 #[cfg(test)]
