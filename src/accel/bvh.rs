@@ -95,15 +95,17 @@ struct WideNode {
 }
 
 impl WideNode {
+    /// A node with four unused slots. An unused slot's box lies at +∞ on every axis, so no
+    /// ray with a finite parameter limit ever enters it and traversal needs no check.
     fn empty() -> Self {
         let inf = Vec4::splat(f32::INFINITY);
         WideNode {
             min_x: inf,
             min_y: inf,
             min_z: inf,
-            max_x: -inf,
-            max_y: -inf,
-            max_z: -inf,
+            max_x: inf,
+            max_y: inf,
+            max_z: inf,
             child: [0; 4],
             count: [EMPTY; 4],
         }
@@ -241,7 +243,8 @@ impl Bvh {
             return best;
         }
         let wide_ray = WideRay::new(ray);
-        let mut limit = best.map_or(t_max, |b| b.t);
+        // A finite limit keeps rays out of unused child slots (see `WideNode::empty`).
+        let mut limit = best.map_or(t_max, |b| b.t).min(f32::MAX);
         // Children waiting: (child, count, entry parameter); uninitialised beyond `sp`.
         let mut stack = [std::mem::MaybeUninit::<Entry>::uninit(); STACK_SIZE];
         let mut sp = 0usize;
@@ -293,9 +296,6 @@ impl Bvh {
                 while mask != 0 {
                     let slot = mask.trailing_zeros() as usize;
                     mask &= mask - 1;
-                    if node.count[slot] == EMPTY {
-                        continue;
-                    }
                     let entry = (node.child[slot], node.count[slot], near[slot]);
                     let mut k = n;
                     while k > 0 && hits[k - 1].2 < entry.2 {
@@ -553,7 +553,7 @@ impl Builder<'_> {
 /// SAH cost of testing a leaf of `n` primitives, relative to visiting a node: triangles are
 /// tested four at a time.
 fn leaf_cost(n: usize) -> f32 {
-    n.div_ceil(4) as f32 * 1.5
+    n.div_ceil(4) as f32
 }
 
 /// Moves the elements satisfying `pred` to the front; returns how many there are.
