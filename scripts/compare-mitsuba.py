@@ -13,7 +13,8 @@ Needs: `pip install mitsuba` (and for `llvm_ad_rgb` Debian's libllvm19, found th
 DRJIT_LIBLLVM_PATH), a release build of strahl (`cargo build --release`), numpy.
 
 Usage: scripts/compare-mitsuba.py [--runs 5] [--strahl target/release/strahl]
-           [--variants llvm_ad_rgb,scalar_rgb] [--reference-spp 1024] [--out DIR]
+           [--strahl-spp 64] [--variants llvm_ad_rgb,scalar_rgb] [--reference-spp 1024]
+           [--out DIR]
 """
 
 import argparse
@@ -97,6 +98,8 @@ def main():
     parser.add_argument("--variants", default="llvm_ad_rgb,scalar_rgb",
                         help="Mitsuba variants, comma-separated")
     parser.add_argument("--no-strahl", action="store_true", help="time Mitsuba only")
+    parser.add_argument("--strahl-spp", type=int, default=SPP,
+                        help="paths per pixel for strahl (fewer: compare at equal noise)")
     parser.add_argument("--reference-spp", type=int, default=1024)
     parser.add_argument("--out", default=None, help="keep images here")
     args = parser.parse_args()
@@ -110,31 +113,38 @@ def main():
     renderers = []
     if not args.no_strahl:
         renderers.append(
-            ("strahl", lambda path, spp, seed: strahl_command(args.strahl, path, spp, seed))
+            ("strahl", lambda path, spp, seed: strahl_command(
+                args.strahl, path, args.strahl_spp if spp == SPP else spp, seed))
         )
     for variant in filter(None, args.variants.split(",")):
         renderers.append(
             (f"mitsuba {variant}", lambda path, spp, seed, v=variant: mitsuba_command(v, path, spp, seed))
         )
 
+    # One untimed run each first warms file caches (and Mitsuba's kernel cache); the timed
+    # runs then alternate between renderers so that other load on the machine hits all alike.
+    images = {}
+    for name, command in renderers:
+        images[name] = os.path.join(out, f"{name.replace(' ', '_')}_{SPP}.exr")
+        timed(command(images[name], SPP, 1), env)
+    times = {name: [] for name, _ in renderers}
+    for run in range(args.runs):
+        for name, command in renderers:
+            times[name].append(timed(command(images[name], SPP, 1 + run), env))
     results = {}
     for name, command in renderers:
-        tag = name.replace(" ", "_")
-        image = os.path.join(out, f"{tag}_{SPP}.exr")
-        # One untimed run first warms file caches (and Mitsuba's kernel cache).
-        timed(command(image, SPP, 1), env)
-        times = [timed(command(image, SPP, 1 + run), env) for run in range(args.runs)]
-        reference = os.path.join(out, f"{tag}_{args.reference_spp}.exr")
+        reference = os.path.join(out, f"{name.replace(' ', '_')}_{args.reference_spp}.exr")
         if not os.path.exists(reference):
             timed(command(reference, args.reference_spp, 1000), env)
-        noise = relative_rms(load_linear(image), load_linear(reference))
+        noise = relative_rms(load_linear(images[name]), load_linear(reference))
+        median = statistics.median(times[name])
         results[name] = {
-            "median_seconds": statistics.median(times),
-            "seconds": [round(t, 3) for t in times],
+            "median_seconds": median,
+            "seconds": [round(t, 3) for t in times[name]],
             "relative_rms_noise": noise,
         }
-        print(f"{name:24} median {statistics.median(times):6.2f} s  "
-              f"runs {[round(t, 2) for t in times]}  relative RMS noise {noise:.4f}", flush=True)
+        print(f"{name:24} median {median:6.2f} s  runs {[round(t, 2) for t in times[name]]}  "
+              f"relative RMS noise {noise:.4f}", flush=True)
     # Variance falls as 1/samples, so time × noise² is the cost of reaching a fixed noise
     # level (lower is better); scaled here to the seconds each would need for noise 0.05.
     for name, r in results.items():

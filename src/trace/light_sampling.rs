@@ -222,52 +222,18 @@ impl LightPicker {
                 })
             }
             Choice::Delta(light) => {
-                let (wi, irradiance, target) = match world.lights.delta[light] {
-                    LightKind::Point {
-                        position,
-                        intensity,
-                    } => {
-                        let d = position - x;
-                        let dist2 = d.length_squared();
-                        (
-                            d / dist2.sqrt(),
-                            intensity / dist2,
-                            ShadowTarget::Point(position),
-                        )
-                    }
-                    LightKind::Spot {
-                        position,
-                        direction,
-                        intensity,
-                        inner_degrees,
-                        outer_degrees,
-                    } => {
-                        let d = position - x;
-                        let dist2 = d.length_squared();
-                        let wi = d / dist2.sqrt();
-                        let falloff = LightKind::spot_falloff(
-                            -wi.dot(direction),
-                            inner_degrees,
-                            outer_degrees,
-                        );
-                        (
-                            wi,
-                            intensity * (falloff / dist2),
-                            ShadowTarget::Point(position),
-                        )
-                    }
-                    LightKind::Directional {
-                        direction,
-                        irradiance,
-                    } => (-direction, irradiance, ShadowTarget::Infinity),
-                    LightKind::Sky { .. } => return None,
-                };
-                if irradiance.is_black() || !wi.is_finite() || n.dot(wi) <= 0.0 {
+                let inc = world.lights.delta[light].incidence(x)?;
+                if inc.irradiance.is_black() || n.dot(inc.wi) <= 0.0 {
                     return None;
                 }
+                let target = if inc.distance.is_finite() {
+                    ShadowTarget::Point(x + inc.wi * inc.distance)
+                } else {
+                    ShadowTarget::Infinity
+                };
                 Some(LightSample {
-                    wi,
-                    radiance_over_pdf: irradiance / probability,
+                    wi: inc.wi,
+                    radiance_over_pdf: inc.irradiance / probability,
                     pdf: 0.0,
                     target,
                 })

@@ -1,6 +1,6 @@
 //! Ray tracing: the scene flattened for ray queries ([`World`]), light sampling, the
-//! integrators (the standard ray tracer now; path tracing and light tracing build on the
-//! same pieces), antialiasing and the tiled, parallel image loop.
+//! integrators (the standard ray tracer and the path tracer), antialiasing, the tiled image
+//! loop and the progressive one for Monte Carlo integrators.
 
 pub mod antialias;
 pub mod bsdf;

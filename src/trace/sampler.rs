@@ -27,6 +27,9 @@ pub struct Sampler {
     scramble: u32,
     dimension: u32,
     rng: Pcg32,
+    /// The four Sobol dimensions of set `sobol_set` (computed together with SIMD).
+    sobol_block: [f32; 4],
+    sobol_set: u32,
 }
 
 /// Mixes integers into a well-distributed 64-bit value (SplitMix64 finaliser).
@@ -49,6 +52,8 @@ impl Sampler {
             scramble: (pixel_key >> 32) as u32,
             dimension: 0,
             rng: Pcg32::new(state, pixel_key | 1),
+            sobol_block: [0.0; 4],
+            sobol_set: u32::MAX,
         }
     }
 
@@ -60,7 +65,13 @@ impl Sampler {
             && dim < sobol_burley::NUM_DIMENSIONS
             && self.sample_index < SOBOL_MAX_SAMPLES
         {
-            return sobol_burley::sample(self.sample_index, dim, self.scramble);
+            // Four dimensions at a time: the same values as one by one, about 4× cheaper.
+            let set = dim / 4;
+            if set != self.sobol_set {
+                self.sobol_block = sobol_burley::sample_4d(self.sample_index, set, self.scramble);
+                self.sobol_set = set;
+            }
+            return self.sobol_block[(dim % 4) as usize];
         }
         // 24 random bits give every representable value in [0, 1) with equal spacing.
         (self.rng.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
@@ -98,6 +109,15 @@ mod tests {
         assert_eq!(a, b);
         assert_ne!(a, c);
         assert!(a.iter().all(|v| (0.0..1.0).contains(v)));
+    }
+
+    #[test]
+    fn sobol_values_come_from_the_sequence_dimension_by_dimension() {
+        let mut s = Sampler::new(SequenceKind::Sobol, 4, 7, 11);
+        let scramble = s.scramble;
+        for dim in 0..12 {
+            assert_eq!(s.next_1d(), sobol_burley::sample(11, dim, scramble));
+        }
     }
 
     #[test]
