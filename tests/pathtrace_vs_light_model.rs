@@ -1,0 +1,124 @@
+//! The path tracer and the light model are independent estimators of the same light: on a
+//! diffuse scene (the Cornell box) the path-traced radiance, averaged over an object by
+//! surface area and multiplied by π, equals the object's radiosity in the light model's report.
+
+use std::collections::HashMap;
+use std::f64::consts::PI;
+use std::sync::atomic::AtomicBool;
+use strahl::accel::AccelKind;
+use strahl::scene::builtin;
+use strahl::trace::lighttracer::{LightTraceSettings, trace_light};
+use strahl::trace::progressive::{ProgressiveSettings, render_progressive};
+use strahl::trace::render::NoProgress;
+use strahl::trace::{PathTracer, World};
+
+#[test]
+fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
+    // A wider view than the published camera, so the side walls are seen whole.
+    let mut scene = builtin::load("cornell").unwrap().unwrap();
+    scene.camera.fov_degrees = 60.0;
+    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let (w, h) = (256u32, 256u32);
+    let settings = ProgressiveSettings {
+        width: w,
+        height: h,
+        samples_per_pixel: 64,
+        seed: 3,
+        time_limit: None,
+    };
+    let tracer = PathTracer::new(&world, u32::MAX, 1);
+    let image = render_progressive(
+        &world,
+        &tracer,
+        &settings,
+        &NoProgress,
+        &AtomicBool::new(false),
+    )
+    .unwrap()
+    .film;
+    // Which object every pixel corner sees; pixels whose four corners see the same object lie
+    // inside it. Each such pixel stands for the surface area t²·Ω/|cos θ| it covers, with the
+    // pixel's solid angle Ω ∝ cos³α (α off the optical axis).
+    let camera = world.scene.camera.with_resolution(w, h).rays().unwrap();
+    let forward = (world.scene.camera.look_at - world.scene.camera.position).normalize();
+    let corner = |x: u32, y: u32| {
+        world
+            .intersect(&camera.ray(x as f32, y as f32))
+            .map(|hit| hit.object)
+    };
+    let mut sums: HashMap<u32, ([f64; 3], f64, usize)> = HashMap::new();
+    for py in 0..h {
+        for px in 0..w {
+            let c = corner(px, py);
+            if c.is_none()
+                || [
+                    corner(px + 1, py),
+                    corner(px, py + 1),
+                    corner(px + 1, py + 1),
+                ]
+                .iter()
+                .any(|&o| o != c)
+            {
+                continue;
+            }
+            let ray = camera.ray(px as f32 + 0.5, py as f32 + 0.5);
+            let hit = world.intersect(&ray).unwrap();
+            let cos_alpha = ray.dir.dot(forward) as f64;
+            let weight =
+                (hit.t as f64).powi(2) * cos_alpha.powi(3) / (ray.dir.dot(hit.ng).abs() as f64);
+            let e = sums.entry(hit.object).or_default();
+            let c = image.get(px, py);
+            for k in 0..3 {
+                e.0[k] += weight * c[k] as f64;
+            }
+            e.1 += weight;
+            e.2 += 1;
+        }
+    }
+    let photons = LightTraceSettings {
+        photons: 4_000_000,
+        seed: 9,
+        max_bounces: 1000,
+    };
+    let report = trace_light(&world, &photons, &NoProgress, &AtomicBool::new(false))
+        .unwrap()
+        .report("cornell");
+    // Objects the camera sees whole (the floor and the back wall are partly hidden by the
+    // blocks, whose radiosity differs from the area they hide).
+    for name in ["ceiling", "red_wall", "green_wall"] {
+        let index = world
+            .scene
+            .objects
+            .iter()
+            .position(|o| o.name.as_deref() == Some(name))
+            .unwrap() as u32;
+        let (sum, weight, pixels) = sums[&index];
+        assert!(pixels > 300, "{name}: only {pixels} pixels");
+        let entry = report.objects.iter().find(|o| o.name == name).unwrap();
+        let rho =
+            world.scene.materials[world.scene.objects[index as usize].material as usize].diffuse;
+        let area = entry.area.expect("finite area");
+        for k in 0..3 {
+            let from_image = PI * sum[k] / weight;
+            // The light model's radiosity, reflected power over area, and the same radiosity
+            // as ρ·E from its irradiance (every photon hit counts, so less noise than the
+            // reflected power of a channel with small ρ).
+            let reflected = entry.radiosity.expect("finite area")[k];
+            let from_irradiance = rho[k] as f64 * entry.incident_power[k] / area;
+            // Noise is far below 1 % for both. Measured differences: +1.2…+2.4 %. Most of it
+            // comes from leaving out the pixels on object boundaries (the walls' difference
+            // halves from 128² to 256² pixels); about 1.5 % on the ceiling, which sees only
+            // indirect light, is not explained yet and is why the bound is 3 %.
+            let d1 = from_image / from_irradiance - 1.0;
+            let d2 = from_image / reflected - 1.0;
+            assert!(
+                d1.abs() < 0.03,
+                "{name}[{k}]: image {from_image} vs ρE {from_irradiance} ({d1:+.4})"
+            );
+            assert!(
+                d2.abs() < 0.03,
+                "{name}[{k}]: image {from_image} vs radiosity {reflected} ({d2:+.4})"
+            );
+        }
+    }
+}

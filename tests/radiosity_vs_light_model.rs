@@ -1,0 +1,78 @@
+//! Radiosity and the light model (Monte Carlo light tracing) are independent methods for the
+//! same diffuse light transport. On the Cornell box the radiosity solution converges to the
+//! light model's per-object incident power as the patch mesh is refined: the discretisation
+//! error (constant radiosity per patch, form factors at patch centroids) roughly halves with
+//! every subdivision level, while the light model's noise at 4·10⁶ photons is about 0.1 %.
+
+use std::collections::HashMap;
+use std::sync::atomic::AtomicBool;
+use strahl::accel::AccelKind;
+use strahl::radiosity::mesh::{MeshOptions, MeshSize};
+use strahl::radiosity::solve::{
+    RadiositySystem, ShootingSettings, SystemOptions, radiosity_report, solve_progressive,
+};
+use strahl::report::Report;
+use strahl::scene::builtin;
+use strahl::trace::World;
+use strahl::trace::lighttracer::{LightTraceSettings, trace_light};
+use strahl::trace::render::NoProgress;
+
+fn cornell() -> World {
+    World::new(builtin::load("cornell").unwrap().unwrap(), AccelKind::Bvh).unwrap()
+}
+
+/// Incident power (green channel) per object name.
+fn incident(report: &Report) -> HashMap<String, f64> {
+    report
+        .objects
+        .iter()
+        .map(|o| (o.name.clone(), o.incident_power[1]))
+        .collect()
+}
+
+fn radiosity_at(world: &World, levels: u32) -> HashMap<String, f64> {
+    let options = SystemOptions {
+        mesh: MeshOptions {
+            size: MeshSize::Levels(levels),
+            ..MeshOptions::default()
+        },
+        ..SystemOptions::default()
+    };
+    let system = RadiositySystem::new(world, options).unwrap();
+    let settings = ShootingSettings {
+        tolerance: 1e-5,
+        ..Default::default()
+    };
+    let solution =
+        solve_progressive(&system, &settings, &NoProgress, &AtomicBool::new(false)).unwrap();
+    incident(&radiosity_report(&system, &solution, "cornell"))
+}
+
+#[test]
+fn radiosity_converges_to_the_light_model_as_the_mesh_is_refined() {
+    let world = cornell();
+    let settings = LightTraceSettings {
+        photons: 4_000_000,
+        seed: 5,
+        max_bounces: 1000,
+    };
+    let reference = incident(
+        &trace_light(&world, &settings, &NoProgress, &AtomicBool::new(false))
+            .unwrap()
+            .report("cornell"),
+    );
+    let worst: Vec<f64> = (2..=4)
+        .map(|levels| {
+            let r = radiosity_at(&world, levels);
+            reference
+                .iter()
+                .map(|(name, &e)| (r[name] / e - 1.0).abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    // Measured: 4.8 %, 2.6 %, 1.3 % — first-order convergence in the patch size.
+    for pair in worst.windows(2) {
+        assert!(pair[1] < 0.7 * pair[0], "no convergence: {worst:?}");
+    }
+    assert!(worst[2] < 0.02, "16 × 16 patches per face: {worst:?}");
+}
