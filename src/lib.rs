@@ -5,6 +5,8 @@
 //! otherwise; lengths in scene units (metres for photometric reports); colours are linear
 //! Rec.709 RGB; emission is radiance L in W·sr⁻¹·m⁻²; reflectance ρ ∈ [0, 1] per channel.
 
+#![warn(missing_docs)]
+
 pub mod accel;
 pub mod cli;
 pub mod color;
