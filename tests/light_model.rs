@@ -470,41 +470,7 @@ fn per_face_output_splits_a_mesh_and_adds_up() {
 #[test]
 fn ten_thousand_leaves_conserve_energy_and_almost_all_receive_light() {
     // 100 × 100 small tilted leaves under a sky and a sun.
-    let mut scene = Scene::empty("canopy");
-    let leaf = scene.add_material(Material {
-        transmission: Rgb::splat(0.1),
-        ior: 1.0,
-        ..Material::diffuse("leaf", Rgb::new(0.1, 0.4, 0.1))
-    });
-    for i in 0..100 {
-        for j in 0..100 {
-            let (x, z) = (i as f32 * 0.1, j as f32 * 0.1);
-            let y = ((i * 7 + j * 13) % 10) as f32 * 0.05;
-            let tilt = Vec3::new(0.02 * ((i + j) % 3) as f32, 0.03, 0.0);
-            scene.add_object(
-                &format!("leaf-{i}-{j}"),
-                quad(
-                    Vec3::new(x, y, z),
-                    Vec3::X * 0.06 + tilt,
-                    Vec3::NEG_Z * 0.06,
-                ),
-                leaf,
-            );
-        }
-    }
-    scene.lights.push(Light {
-        name: None,
-        kind: LightKind::Sky {
-            radiance: Rgb::splat(0.2),
-        },
-    });
-    scene.lights.push(Light {
-        name: None,
-        kind: LightKind::Directional {
-            direction: Vec3::new(0.3, -1.0, 0.2),
-            irradiance: Rgb::splat(500.0),
-        },
-    });
+    let scene = strahl::scene::builtin::load("canopy").unwrap().unwrap();
     let report = solve(scene, 200_000, 12);
     assert_eq!(report.objects.len(), 10_000);
     let t = &report.totals;

@@ -1,6 +1,7 @@
 //! Scenes built into the engine, loaded by name: `cornell`, `cornell-textured`, `spheres`
-//! (or `spheres:N`) and `neon`. Lengths are in metres.
+//! (or `spheres:N`), `neon` and `canopy` (or `canopy:N`). Lengths are in metres.
 
+pub mod canopy;
 pub mod cornell;
 pub mod cornell_textured;
 pub mod neon;
@@ -10,7 +11,7 @@ pub mod spheres;
 use super::Scene;
 
 /// The built-in scenes: name and one-line description.
-const NAMES: [(&str, &str); 4] = [
+const NAMES: [(&str, &str); 5] = [
     (
         "cornell",
         "the measured Cornell box (Cornell University data, metres, spectral colours)",
@@ -27,6 +28,10 @@ const NAMES: [(&str, &str); 4] = [
         "neon",
         "a dark room lit only by a neon sign (emissive texture, no lights)",
     ),
+    (
+        "canopy",
+        "canopy:N (default 10000) small leaves under sky and sun, for the light model",
+    ),
 ];
 
 /// The built-in scene names with a one-line description each.
@@ -35,7 +40,7 @@ pub fn names() -> &'static [(&'static str, &'static str)] {
 }
 
 /// Builds the built-in scene `spec`: a name from [`names`], optionally followed by `:` and a
-/// parameter (only `spheres:N` takes one). `None` when `spec` names no built-in scene;
+/// parameter (`spheres:N` and `canopy:N` take one). `None` when `spec` names no built-in scene;
 /// `Some(Err)` with a message for a bad parameter.
 pub fn load(spec: &str) -> Option<Result<Scene, String>> {
     let (name, parameter) = match spec.split_once(':') {
@@ -53,6 +58,7 @@ pub fn load(spec: &str) -> Option<Result<Scene, String>> {
         "cornell-textured" => no_parameter(cornell_textured::scene),
         "neon" => no_parameter(|| Ok(neon::scene())),
         "spheres" => spheres::parse_count(parameter).map(spheres::scene),
+        "canopy" => canopy::parse_count(parameter).map(canopy::scene),
         _ => return None,
     })
 }
@@ -65,7 +71,10 @@ mod tests {
     #[test]
     fn names_lists_every_builtin_and_each_loads_valid() {
         let listed: Vec<&str> = names().iter().map(|(n, _)| *n).collect();
-        assert_eq!(listed, ["cornell", "cornell-textured", "spheres", "neon"]);
+        assert_eq!(
+            listed,
+            ["cornell", "cornell-textured", "spheres", "neon", "canopy"]
+        );
         for (name, description) in names() {
             assert!(!description.is_empty());
             let scene = load(name).unwrap().unwrap();
