@@ -58,6 +58,7 @@ impl Sampler {
     }
 
     /// A uniform number in `[0, 1)`.
+    #[inline]
     pub fn next_1d(&mut self) -> f32 {
         let dim = self.dimension;
         self.dimension += 1;
@@ -78,6 +79,7 @@ impl Sampler {
     }
 
     /// A uniform point in `[0, 1)²`.
+    #[inline]
     pub fn next_2d(&mut self) -> Vec2 {
         Vec2::new(self.next_1d(), self.next_1d())
     }
