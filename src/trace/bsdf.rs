@@ -132,6 +132,7 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::trace::sampling::hemisphere_integral;
 
     #[test]
     fn fresnel_reference_values() {
@@ -158,22 +159,7 @@ mod tests {
         // ∫ lobe·cos dω ≤ 1 at normal incidence (numerical quadrature over the hemisphere).
         let n = Vec3::Z;
         for s in [1.0, 10.0, 100.0] {
-            let steps = 400;
-            let mut sum = 0.0;
-            for i in 0..steps {
-                let theta = (i as f32 + 0.5) / steps as f32 * PI / 2.0;
-                for j in 0..steps {
-                    let phi = (j as f32 + 0.5) / steps as f32 * 2.0 * PI;
-                    let wi = Vec3::new(
-                        theta.sin() * phi.cos(),
-                        theta.sin() * phi.sin(),
-                        theta.cos(),
-                    );
-                    let d_omega =
-                        theta.sin() * (PI / 2.0 / steps as f32) * (2.0 * PI / steps as f32);
-                    sum += phong_lobe(n, n, wi, s) * wi.z * d_omega;
-                }
-            }
+            let sum = hemisphere_integral(400, |wi| phong_lobe(n, n, wi, s) as f64);
             assert!(sum <= 1.0 + 1e-3 && sum > 0.5, "s={s}: {sum}");
         }
     }

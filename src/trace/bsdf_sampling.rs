@@ -189,6 +189,7 @@ pub fn sample_bsdf(
 mod tests {
     use super::*;
     use crate::trace::sampler::{Sampler, SequenceKind};
+    use crate::trace::sampling::hemisphere_integral;
 
     fn material(diffuse: f32, specular: f32, shininess: f32) -> SurfaceMaterial {
         SurfaceMaterial {
@@ -239,22 +240,7 @@ mod tests {
             let mean = sum / count as f64;
             let std_err = ((sum2 / count as f64 - mean * mean).max(0.0) / count as f64).sqrt();
             // Quadrature of ∫ f cos dω on a fine (θ, φ) grid.
-            let steps = 600;
-            let mut albedo = 0.0f64;
-            for i in 0..steps {
-                let theta = (i as f32 + 0.5) / steps as f32 * PI / 2.0;
-                for j in 0..steps {
-                    let phi = (j as f32 + 0.5) / steps as f32 * 2.0 * PI;
-                    let wi = Vec3::new(
-                        theta.sin() * phi.cos(),
-                        theta.sin() * phi.sin(),
-                        theta.cos(),
-                    );
-                    let d_omega =
-                        theta.sin() * (PI / 2.0 / steps as f32) * (2.0 * PI / steps as f32);
-                    albedo += (m.eval(n, wo, wi).r * wi.z * d_omega) as f64;
-                }
-            }
+            let albedo = hemisphere_integral(600, |wi| m.eval(n, wo, wi).r as f64);
             // 5 standard errors of the Monte Carlo mean plus 0.5 % for the quadrature.
             let tolerance = 5.0 * std_err + 0.005 * albedo;
             assert!(

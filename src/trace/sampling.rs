@@ -49,6 +49,27 @@ pub fn stratified(index: u32, n: u32, u: Vec2) -> Vec2 {
     (cell + u) / n as f32
 }
 
+/// `∫ f(ω)·cos θ dω` over the hemisphere about `+z`, by the midpoint rule on a `steps × steps`
+/// grid in (θ, φ); for checking reflectance functions in tests.
+#[cfg(test)]
+pub(crate) fn hemisphere_integral(steps: u32, f: impl Fn(Vec3) -> f64) -> f64 {
+    let (d_theta, d_phi) = (PI / 2.0 / steps as f32, 2.0 * PI / steps as f32);
+    let mut sum = 0.0f64;
+    for i in 0..steps {
+        let theta = (i as f32 + 0.5) * d_theta;
+        for j in 0..steps {
+            let phi = (j as f32 + 0.5) * d_phi;
+            let w = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.sin() * phi.sin(),
+                theta.cos(),
+            );
+            sum += f(w) * (w.z * theta.sin() * d_theta * d_phi) as f64;
+        }
+    }
+    sum
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
