@@ -290,28 +290,57 @@ impl Bvh {
             } else {
                 let node = &self.nodes[child as usize];
                 let (near, mut mask) = wide_ray.test(node, limit);
-                // The hit children, sorted farthest first.
-                let mut hits = [(0u32, 0u32, 0f32); 4];
-                let mut n = 0;
-                while mask != 0 {
-                    let slot = mask.trailing_zeros() as usize;
-                    mask &= mask - 1;
-                    let entry = (node.child[slot], node.count[slot], near[slot]);
-                    let mut k = n;
-                    while k > 0 && hits[k - 1].2 < entry.2 {
-                        hits[k] = hits[k - 1];
-                        k -= 1;
+                let near = near.to_array();
+                let entry = |slot: usize| (node.child[slot], node.count[slot], near[slot]);
+                // Number of children hit, 0 to 4, without a popcount instruction (not in the
+                // baseline x86-64 target).
+                let rest = mask & mask.wrapping_sub(1);
+                let hit_count = if mask == 0 {
+                    0
+                } else if rest == 0 {
+                    1
+                } else if rest & (rest - 1) == 0 {
+                    2
+                } else {
+                    3
+                };
+                match hit_count {
+                    0 => {}
+                    1 => {
+                        current = entry(mask.trailing_zeros() as usize);
+                        continue;
                     }
-                    hits[k] = entry;
-                    n += 1;
-                }
-                if n > 0 {
-                    for &entry in &hits[..n - 1] {
-                        stack[sp].write(entry);
+                    2 => {
+                        let a = entry(mask.trailing_zeros() as usize);
+                        let b = entry(31 - mask.leading_zeros() as usize);
+                        let (near_child, far_child) = if b.2 < a.2 { (b, a) } else { (a, b) };
+                        stack[sp].write(far_child);
                         sp += 1;
+                        current = near_child;
+                        continue;
                     }
-                    current = hits[n - 1];
-                    continue;
+                    _ => {
+                        // Three or four children: sort farthest first, visit the nearest.
+                        let mut hits = [(0u32, 0u32, 0f32); 4];
+                        let mut n = 0;
+                        while mask != 0 {
+                            let e = entry(mask.trailing_zeros() as usize);
+                            mask &= mask - 1;
+                            let mut k = n;
+                            while k > 0 && hits[k - 1].2 < e.2 {
+                                hits[k] = hits[k - 1];
+                                k -= 1;
+                            }
+                            hits[k] = e;
+                            n += 1;
+                        }
+                        for &e in &hits[..n - 1] {
+                            stack[sp].write(e);
+                            sp += 1;
+                        }
+                        current = hits[n - 1];
+                        continue;
+                    }
                 }
             }
             // Pop the nearest waiting child that still starts before the closest hit.
