@@ -306,6 +306,19 @@ impl SceneGeometry {
         }
     }
 
+    /// Point, unit front normal and texture coordinates at barycentrics `(b1, b2)` of
+    /// triangle `prim`: the part of [`SceneGeometry::point_on_triangle`] light sampling needs.
+    #[inline]
+    pub fn triangle_point(&self, prim: u32, b1: f32, b2: f32) -> (Vec3, Vec3, Vec2) {
+        let tri = &self.triangles[prim as usize];
+        let ng = tri.normal_area2().normalize();
+        (
+            tri.point(b1, b2),
+            ng,
+            self.triangle_uv(prim as usize, b1, b2),
+        )
+    }
+
     /// The surface description at barycentrics `(b1, b2)` of triangle `prim` (seen from its
     /// front side).
     pub fn point_on_triangle(&self, prim: u32, b1: f32, b2: f32) -> SurfaceHit {

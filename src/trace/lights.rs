@@ -141,11 +141,11 @@ impl LightSet {
             .min(l.prims.len() - 1);
         let prim = l.prims[i];
         let (b1, b2) = uniform_triangle(u);
-        let at = geometry.point_on_triangle(prim, b1, b2);
+        let (p, n, uv) = geometry.triangle_point(prim, b1, b2);
         AreaSample {
-            p: at.p,
-            n: at.ng,
-            uv: at.uv,
+            p,
+            n,
+            uv,
             prim,
             pdf_area: 1.0 / l.area,
         }
