@@ -4,6 +4,7 @@
 
 use crate::color::Rgb;
 use glam::Vec3;
+use std::f32::consts::PI;
 
 /// A light source.
 #[derive(Clone, Debug, PartialEq)]
@@ -104,6 +105,37 @@ impl LightKind {
                 distance: f32::INFINITY,
                 irradiance,
             }),
+            LightKind::Sky { .. } => None,
+        }
+    }
+
+    /// Integral of the spot falloff over the sphere of directions, sr (a spot's power is its
+    /// intensity times this).
+    pub fn spot_solid_angle(inner_degrees: f32, outer_degrees: f32) -> f32 {
+        let ci = inner_degrees.to_radians().cos();
+        let co = outer_degrees.to_radians().cos();
+        if ci > co {
+            2.0 * PI * ((1.0 - ci) + 0.5 * (ci - co))
+        } else {
+            2.0 * PI * (1.0 - ci)
+        }
+    }
+
+    /// Power (W) a point, spot or directional light sends into a scene bounded by a sphere of
+    /// `scene_radius`: 4π·I, I times the spot's solid angle, E·πR². `None` for the sky, whose
+    /// power depends on how it is sampled.
+    pub fn power(&self, scene_radius: f32) -> Option<Rgb> {
+        match *self {
+            LightKind::Point { intensity, .. } => Some(intensity * (4.0 * PI)),
+            LightKind::Spot {
+                intensity,
+                inner_degrees,
+                outer_degrees,
+                ..
+            } => Some(intensity * Self::spot_solid_angle(inner_degrees, outer_degrees)),
+            LightKind::Directional { irradiance, .. } => {
+                Some(irradiance * (PI * scene_radius * scene_radius))
+            }
             LightKind::Sky { .. } => None,
         }
     }

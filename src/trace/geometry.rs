@@ -269,6 +269,17 @@ impl SceneGeometry {
             .fold(Aabb::EMPTY, Aabb::union)
     }
 
+    /// Centre and radius of a sphere holding all bounded primitives (the unit sphere at the
+    /// origin when there are none).
+    pub fn bounding_sphere(&self) -> (Vec3, f32) {
+        let b = self.bounds();
+        if b.is_empty() {
+            (Vec3::ZERO, 1.0)
+        } else {
+            (b.center(), 0.5 * b.extent().length())
+        }
+    }
+
     fn triangle_uv(&self, prim: usize, b1: f32, b2: f32) -> Vec2 {
         let uv = &self.attributes[prim].uvs;
         uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2

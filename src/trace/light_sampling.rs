@@ -16,7 +16,6 @@ use super::sampling::cosine_hemisphere;
 use super::{SceneGeometry, World};
 use crate::color::Rgb;
 use crate::geometry::Frame;
-use crate::scene::LightKind;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 
@@ -69,12 +68,7 @@ impl LightPicker {
     /// The distribution over the lights of `world`.
     pub fn new(world: &World) -> Self {
         let lights = &world.lights;
-        let bounds = world.geometry.bounds();
-        let radius = if bounds.is_empty() {
-            1.0
-        } else {
-            0.5 * bounds.extent().length()
-        };
+        let (_, radius) = world.geometry.bounding_sphere();
         let cross_section = PI * radius * radius;
         let mut choices = Vec::new();
         let mut power = Vec::new();
@@ -83,21 +77,8 @@ impl LightPicker {
             power.push(l.power.luminance());
         }
         for (i, l) in lights.delta.iter().enumerate() {
-            let p = match *l {
-                LightKind::Point { intensity, .. } => 4.0 * PI * intensity.luminance(),
-                LightKind::Spot {
-                    intensity,
-                    inner_degrees,
-                    outer_degrees,
-                    ..
-                } => {
-                    let mean_angle = (0.5 * (inner_degrees + outer_degrees)).to_radians();
-                    2.0 * PI * (1.0 - mean_angle.cos()) * intensity.luminance()
-                }
-                LightKind::Directional { irradiance, .. } => irradiance.luminance() * cross_section,
-                // The sky is kept apart from the delta lights (`LightSet::sky`).
-                LightKind::Sky { .. } => 0.0,
-            };
+            // Point, spot and directional lights by the power they send into the scene.
+            let p = l.power(radius).map_or(0.0, |p| p.luminance());
             choices.push(Choice::Delta(i));
             power.push(p);
         }

@@ -90,27 +90,12 @@ pub struct PhotonSources {
     radius: f32,
 }
 
-/// Integral of the spot falloff over the sphere of directions, sr (power = I × this).
-pub fn spot_solid_angle(inner_degrees: f32, outer_degrees: f32) -> f32 {
-    let ci = inner_degrees.to_radians().cos();
-    let co = outer_degrees.to_radians().cos();
-    if ci > co {
-        2.0 * PI * ((1.0 - ci) + 0.5 * (ci - co))
-    } else {
-        2.0 * PI * (1.0 - ci)
-    }
-}
-
 impl PhotonSources {
     /// The sources of `world`'s lights.
     pub fn new(world: &World) -> Self {
-        let bounds = world.geometry.bounds();
-        let (center, radius) = if bounds.is_empty() {
-            (Vec3::ZERO, 1.0)
-        } else {
-            let r = 0.5 * bounds.extent().length();
-            (bounds.center(), r * 1.001 + 1e-6)
-        };
+        let (center, radius) = world.geometry.bounding_sphere();
+        // A little larger, so no photon starts on the geometry it is aimed at.
+        let radius = radius * 1.001 + 1e-6;
         let mut sources = Vec::new();
         for (index, light) in world.lights.area.iter().enumerate() {
             let mut cdf = Vec::with_capacity(light.prims.len());
@@ -137,20 +122,21 @@ impl PhotonSources {
             });
         }
         for light in &world.lights.delta {
+            // The sky is a source of its own below.
+            let Some(power) = light.power(radius) else {
+                continue;
+            };
             let source = match *light {
-                LightKind::Point {
-                    position,
-                    intensity,
-                } => PhotonSource {
+                LightKind::Point { position, .. } => PhotonSource {
                     kind: SourceKind::Point { position },
-                    power: intensity * (4.0 * PI),
+                    power,
                 },
                 LightKind::Spot {
                     position,
                     direction,
-                    intensity,
                     inner_degrees,
                     outer_degrees,
+                    ..
                 } => {
                     let Some(axis) = direction.try_normalize() else {
                         continue;
@@ -168,13 +154,10 @@ impl PhotonSources {
                             inner_degrees,
                             outer_degrees,
                         },
-                        power: intensity * spot_solid_angle(inner_degrees, outer_degrees),
+                        power,
                     }
                 }
-                LightKind::Directional {
-                    direction,
-                    irradiance,
-                } => {
+                LightKind::Directional { direction, .. } => {
                     let Some(d) = direction.try_normalize() else {
                         continue;
                     };
@@ -182,7 +165,7 @@ impl PhotonSources {
                         kind: SourceKind::Directional {
                             frame: Frame::from_normal(d),
                         },
-                        power: irradiance * (PI * radius * radius),
+                        power,
                     }
                 }
                 LightKind::Sky { .. } => continue,
@@ -299,7 +282,7 @@ mod tests {
                 sum += LightKind::spot_falloff(cos as f32, inner, outer) as f64;
             }
             let quadrature = 2.0 * std::f64::consts::PI * sum * 2.0 / steps as f64;
-            let formula = spot_solid_angle(inner, outer) as f64;
+            let formula = LightKind::spot_solid_angle(inner, outer) as f64;
             assert!(
                 (quadrature - formula).abs() < 1e-4 * formula.max(1.0),
                 "{inner}/{outer}: {quadrature} vs {formula}"
