@@ -120,6 +120,7 @@ mod tests {
             s = s.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
             (s >> 8) as f32 / 16_777_216.0 * 4.0 - 2.0
         };
+        let mut hit_lanes = 0;
         for _ in 0..2000 {
             let tris: Vec<Triangle> = (0..3)
                 .map(|_| {
@@ -132,15 +133,17 @@ mod tests {
                 })
                 .collect();
             let packed = Triangle4::new(&tris);
-            let ray = Ray::new(
-                Vec3::new(next(), next(), next()) * 3.0,
-                Vec3::new(next(), next(), next()).normalize_or(Vec3::X),
-            );
-            let t_max = next().abs() * 4.0;
+            // Aim near a point of one of the triangles (inside or just outside its edges).
+            let aim = &tris[(next().abs() * 1.49) as usize];
+            let target = aim.point(0.4 + 0.5 * next(), 0.4 + 0.5 * next());
+            let origin = Vec3::new(next(), next(), next()) * 3.0;
+            let ray = Ray::new(origin, (target - origin).normalize_or(Vec3::X));
+            let t_max = next().abs() * 8.0;
             let hits = packed.intersect(&ray, t_max);
             for (i, tri) in tris.iter().enumerate() {
                 match tri.intersect(&ray, t_max) {
                     Some((t, b1, b2)) => {
+                        hit_lanes += 1;
                         assert!(hits.mask & (1 << i) != 0);
                         assert_eq!((hits.t[i], hits.b1[i], hits.b2[i]), (t, b1, b2));
                     }
@@ -149,5 +152,7 @@ mod tests {
             }
             assert!(hits.mask & 8 == 0, "the padding lane never hits");
         }
+        // Enough hits that the comparison means something.
+        assert!(hit_lanes > 100, "only {hit_lanes} hits");
     }
 }
