@@ -63,16 +63,10 @@ pub fn describe(p: Vec3, face: u32) -> LocalHit {
     let mut n = Vec3::ZERO;
     n[axis] = if side == 1 { 1.0 } else { -1.0 };
     let (ua, va) = ((axis + 1) % 3, (axis + 2) % 3);
-    let mut dpdu = Vec3::ZERO;
-    dpdu[ua] = 1.0;
-    let mut dpdv = Vec3::ZERO;
-    dpdv[va] = 1.0;
     LocalHit {
         p,
         n,
         uv: Vec2::new(p[ua], p[va]),
-        dpdu,
-        dpdv,
     }
 }
 

@@ -90,8 +90,6 @@ impl UnitFrustum {
                     p,
                     n,
                     uv: Vec2::new(0.5 + 0.5 * p.x / r, 0.5 + 0.5 * p.y / r),
-                    dpdu: Vec3::new(2.0 * r, 0.0, 0.0),
-                    dpdv: Vec3::new(0.0, 2.0 * r, 0.0),
                 }
             }
             _ => {
@@ -107,8 +105,6 @@ impl UnitFrustum {
                     p,
                     n,
                     uv: Vec2::new(0.5 + phi / (2.0 * PI), z),
-                    dpdu: 2.0 * PI * Vec3::new(-r * sin_p, r * cos_p, 0.0),
-                    dpdv: Vec3::new(s * cos_p, s * sin_p, 1.0),
                 }
             }
         }
@@ -171,13 +167,18 @@ mod tests {
     }
 
     #[test]
-    fn frustum_tangents_are_perpendicular_to_normal() {
+    fn lateral_normal_is_perpendicular_to_the_surface() {
         let f = UnitFrustum {
             top_radius: 0.5,
             bottom_cap: true,
             top_cap: true,
         };
         let h = f.describe(Vec3::new(0.3, 0.6, 0.4), LATERAL);
-        assert!(h.n.dot(h.dpdu).abs() < 1e-5 && h.n.dot(h.dpdv).abs() < 1e-5);
+        assert!((h.p.truncate().length() - f.radius_at(h.p.z)).abs() < 1e-5);
+        // The side line (radius 1 at z = 0 to 0.5 at z = 1) and the circle through the point.
+        let (sin_p, cos_p) = h.p.y.atan2(h.p.x).sin_cos();
+        let along_side = Vec3::new(-0.5 * cos_p, -0.5 * sin_p, 1.0);
+        let around = Vec3::new(-sin_p, cos_p, 0.0);
+        assert!(h.n.dot(along_side).abs() < 1e-5 && h.n.dot(around).abs() < 1e-5);
     }
 }

@@ -11,10 +11,6 @@ pub struct LocalHit {
     pub n: Vec3,
     /// Surface parameters.
     pub uv: Vec2,
-    /// Derivative of the point with respect to `u`.
-    pub dpdu: Vec3,
-    /// Derivative of the point with respect to `v`.
-    pub dpdv: Vec3,
 }
 
 /// The smaller root of `a t² + b t + c = 0` above zero and at most `t_max`, else the larger

@@ -20,8 +20,6 @@ pub fn describe(p: Vec3) -> LocalHit {
         p,
         n: Vec3::Z,
         uv: Vec2::new(p.x, p.y),
-        dpdu: Vec3::X,
-        dpdv: Vec3::Y,
     }
 }
 

@@ -16,6 +16,8 @@ const ALPHA_CUTOFF: f32 = 0.5;
 /// Per-triangle data needed only after a hit.
 #[derive(Clone, Copy, Debug)]
 struct TriangleAttributes {
+    /// Unit geometric normal of the front side (counter-clockwise vertex order).
+    normal: Vec3,
     object: u32,
     face: u32,
     material: MaterialId,
@@ -47,10 +49,6 @@ pub struct SurfaceHit {
     pub ns: Vec3,
     /// Texture coordinates.
     pub uv: Vec2,
-    /// Surface derivative along `u` (world).
-    pub dpdu: Vec3,
-    /// Surface derivative along `v` (world).
-    pub dpdv: Vec3,
     /// Material at the hit.
     pub material: MaterialId,
     /// Scene object hit.
@@ -225,6 +223,7 @@ impl SceneGeometry {
                 };
                 self.triangles.push(tri);
                 self.attributes.push(TriangleAttributes {
+                    normal: tri.normal_area2().normalize(),
                     object,
                     face: face as u32,
                     material: face_material,
@@ -321,11 +320,9 @@ impl SceneGeometry {
     /// triangle `prim`: the part of [`SceneGeometry::point_on_triangle`] light sampling needs.
     #[inline]
     pub fn triangle_point(&self, prim: u32, b1: f32, b2: f32) -> (Vec3, Vec3, Vec2) {
-        let tri = &self.triangles[prim as usize];
-        let ng = tri.normal_area2().normalize();
         (
-            tri.point(b1, b2),
-            ng,
+            self.triangles[prim as usize].point(b1, b2),
+            self.attributes[prim as usize].normal,
             self.triangle_uv(prim as usize, b1, b2),
         )
     }
@@ -375,7 +372,7 @@ impl SceneGeometry {
             let attr = &self.attributes[prim];
             let [b1, b2] = hit.local;
             let b0 = 1.0 - b1 - b2;
-            let ng = tri.normal_area2().normalize();
+            let ng = attr.normal;
             let ns = if attr.normals == u32::MAX {
                 ng
             } else {
@@ -383,15 +380,12 @@ impl SceneGeometry {
                 let s = (n[0] * b0 + n[1] * b1 + n[2] * b2).normalize_or(ng);
                 if s.dot(ng) < 0.0 { ng } else { s }
             };
-            let (dpdu, dpdv) = triangle_tangents(tri, &attr.uvs, ng);
             SurfaceHit {
                 t: hit.t,
                 p: tri.point(b1, b2),
                 ng,
                 ns,
                 uv: self.triangle_uv(prim, b1, b2),
-                dpdu,
-                dpdv,
                 material: attr.material,
                 object: attr.object,
                 face: attr.face,
@@ -409,8 +403,6 @@ impl SceneGeometry {
                 ng,
                 ns: ng,
                 uv: local.uv,
-                dpdu: shape.to_world.vector(local.dpdu),
-                dpdv: shape.to_world.vector(local.dpdv),
                 material: shape.material,
                 object: shape.object,
                 face: 0,
@@ -435,23 +427,6 @@ fn morton3(x: u32, y: u32, z: u32) -> u32 {
         (v | (v << 2)) & 0x0924_9249
     }
     spread(x) | (spread(y) << 1) | (spread(z) << 2)
-}
-
-/// Tangents `dp/du`, `dp/dv` of a triangle from its texture coordinates (any orthogonal pair
-/// when the coordinates are degenerate).
-fn triangle_tangents(tri: &Triangle, uv: &[Vec2; 3], ng: Vec3) -> (Vec3, Vec3) {
-    let du1 = uv[1] - uv[0];
-    let du2 = uv[2] - uv[0];
-    let det = du1.x * du2.y - du1.y * du2.x;
-    if det.abs() > 1e-12 {
-        let inv = 1.0 / det;
-        let dpdu = (tri.e1 * du2.y - tri.e2 * du1.y) * inv;
-        let dpdv = (tri.e2 * du1.x - tri.e1 * du2.x) * inv;
-        if dpdu.is_finite() && dpdv.is_finite() && dpdu.cross(dpdv) != Vec3::ZERO {
-            return (dpdu, dpdv);
-        }
-    }
-    ng.any_orthonormal_pair()
 }
 
 impl PrimitiveSet for SceneGeometry {
