@@ -26,7 +26,7 @@ impl Default for BvhOptions {
         BvhOptions {
             max_leaf_size: 8,
             bins: 16,
-            traversal_cost: 1.0,
+            traversal_cost: 0.25,
         }
     }
 }
@@ -308,6 +308,17 @@ impl Bvh {
                     0 => {}
                     1 => {
                         current = entry(mask.trailing_zeros() as usize);
+                        continue;
+                    }
+                    _ if any => {
+                        // Any hit ends the search, so the order does not matter: no sorting.
+                        current = entry(mask.trailing_zeros() as usize);
+                        mask &= mask - 1;
+                        while mask != 0 {
+                            stack[sp].write(entry(mask.trailing_zeros() as usize));
+                            sp += 1;
+                            mask &= mask - 1;
+                        }
                         continue;
                     }
                     2 => {
