@@ -13,6 +13,7 @@ use super::bsdf::{SurfaceMaterial, fresnel_dielectric, reflect, refract};
 use super::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::color::Rgb;
 use crate::geometry::Frame;
+use crate::scene::Material;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 
@@ -43,10 +44,18 @@ pub struct LobeChoice {
 impl LobeChoice {
     /// The lobe probabilities of `m`.
     pub fn new(m: &SurfaceMaterial) -> Self {
-        let d = m.diffuse.luminance().max(0.0);
-        let s = m.specular.luminance().max(0.0);
-        let r = m.mirror.luminance().max(0.0);
-        let t = m.transmission.luminance().max(0.0);
+        Self::from_weights([m.diffuse, m.specular, m.mirror, m.transmission])
+    }
+
+    /// The lobe probabilities of a scene material without a diffuse texture (the same at
+    /// every point of it).
+    pub fn of_material(m: &Material) -> Self {
+        Self::from_weights([m.diffuse, m.specular, m.mirror, m.transmission])
+    }
+
+    /// Probabilities from the lobe weights (diffuse, specular, mirror, transmission).
+    fn from_weights(weights: [Rgb; 4]) -> Self {
+        let [d, s, r, t] = weights.map(|w| w.luminance().max(0.0));
         let total = d + s + r + t;
         if total <= 0.0 {
             return LobeChoice {

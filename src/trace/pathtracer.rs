@@ -7,12 +7,12 @@
 //! a path off a saturated wall grow past 1 and make colour fireflies; measured on the Cornell
 //! box the largest channel gives 3 % less noise in the same time).
 //!
-//! Random numbers: the camera sample's Owen-scrambled Sobol sampler drives the pixel position
-//! and every decision at the first hit but roulette (light choice, light point, lobe,
-//! direction), where stratification pays most; roulette and all deeper bounces draw from a
-//! PCG stream keyed by one further Sobol dimension of the same sample, which costs a
-//! fraction of a Sobol draw per number and keeps every sample a deterministic function of
-//! seed, pixel and sample index.
+//! Random numbers: the camera sample's Owen-scrambled Sobol dimensions drive the pixel
+//! position (dimensions 0–1) and every decision at the first hit (light choice 2, lobe 3,
+//! light point 4–5, direction 6–7: two sets of four, computed together), where
+//! stratification pays most; roulette and all deeper bounces draw from the sample's PCG
+//! stream, which costs a fraction of a Sobol draw per number. Both are keyed by seed, pixel
+//! and sample index only, so every sample is the same whatever thread renders it.
 //!
 //! Path length counts scattering events: with `max_depth = 0` only emitters seen directly
 //! contribute, with 1 direct light only, and so on; `u32::MAX` leaves the length to roulette.
@@ -21,7 +21,7 @@ use super::bsdf::emitted;
 use super::bsdf_sampling::{LobeChoice, ViewSide, sample_bsdf};
 use super::direct::ShadingPoint;
 use super::light_sampling::{LightPicker, ShadowTarget};
-use super::sampler::{Sampler, SequenceKind, hash64};
+use super::sampler::Sampler;
 use super::{Integrator, SurfaceHit, World};
 use crate::color::Rgb;
 use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
@@ -43,6 +43,9 @@ pub struct PathTracer {
     /// path after that); at least 1.
     pub first_hit_paths: u32,
     lights: LightPicker,
+    /// Lobe probabilities per scene material, `None` where a texture changes them from point
+    /// to point.
+    lobes: Vec<Option<LobeChoice>>,
 }
 
 /// How the path arrived at the vertex being shaded: what multiple importance sampling of
@@ -76,53 +79,25 @@ struct BounceNumbers {
     light_point: Vec2,
     lobe: f32,
     direction: Vec2,
-    roulette: f32,
 }
 
 impl BounceNumbers {
-    /// Draws the numbers that shape the bounce (light choice, light point, lobe, direction)
-    /// from `shaping`, and the roulette number from `rest`.
-    fn draw(shaping: &mut Sampler, rest: &mut Sampler) -> Self {
-        BounceNumbers {
-            light_pick: shaping.next_1d(),
-            light_point: shaping.next_2d(),
-            lobe: shaping.next_1d(),
-            direction: shaping.next_2d(),
-            roulette: rest.next_1d(),
-        }
-    }
-}
-
-/// The random numbers of one camera sample: the caller's sampler for the first hit, a
-/// pseudo-random stream for all deeper bounces.
-struct PathNumbers<'a> {
-    first_hit: &'a mut Sampler,
-    deeper: Sampler,
-}
-
-impl<'a> PathNumbers<'a> {
-    /// Keys the deeper stream by one number drawn from `sampler` (distinct for every sample
-    /// index of a pixel: Sobol points of one dimension never repeat).
-    fn new(sampler: &'a mut Sampler) -> Self {
-        let key = sampler.next_1d().to_bits() as u64;
-        PathNumbers {
-            first_hit: sampler,
-            deeper: Sampler::new(SequenceKind::Random, hash64(key), 0, 0),
-        }
-    }
-
-    /// The numbers of the bounce at vertex `bounce` (0 = first hit).
-    fn bounce(&mut self, bounce: u32) -> BounceNumbers {
+    /// The numbers of the bounce at vertex `bounce` (0 = first hit): Sobol dimensions at the
+    /// first hit, the pseudo-random stream deeper down.
+    fn draw(sampler: &mut Sampler, bounce: u32) -> Self {
         if bounce == 0 {
-            BounceNumbers::draw(self.first_hit, &mut self.deeper)
-        } else {
-            let deeper = &mut self.deeper;
             BounceNumbers {
-                light_pick: deeper.next_1d(),
-                light_point: deeper.next_2d(),
-                lobe: deeper.next_1d(),
-                direction: deeper.next_2d(),
-                roulette: deeper.next_1d(),
+                light_pick: sampler.next_1d(),
+                lobe: sampler.next_1d(),
+                light_point: sampler.next_2d(),
+                direction: sampler.next_2d(),
+            }
+        } else {
+            BounceNumbers {
+                light_pick: sampler.random_1d(),
+                lobe: sampler.random_1d(),
+                light_point: sampler.random_2d(),
+                direction: sampler.random_2d(),
             }
         }
     }
@@ -142,6 +117,16 @@ impl PathTracer {
             max_depth,
             first_hit_paths: first_hit_paths.max(1),
             lights: LightPicker::new(world),
+            lobes: world
+                .scene
+                .materials
+                .iter()
+                .map(|m| {
+                    m.diffuse_texture
+                        .is_none()
+                        .then(|| LobeChoice::of_material(m))
+                })
+                .collect(),
         }
     }
 
@@ -224,7 +209,7 @@ impl PathTracer {
         mut beta: Rgb,
         mut bounce: u32,
         mut arrival: Arrival,
-        numbers: &mut PathNumbers,
+        sampler: &mut Sampler,
     ) -> Rgb {
         let mut radiance = Rgb::BLACK;
         loop {
@@ -245,7 +230,8 @@ impl PathTracer {
             if sp.material.is_black_from(hit.front_face) {
                 return radiance;
             }
-            let choice = LobeChoice::new(&sp.material);
+            let choice =
+                self.lobes[hit.material as usize].unwrap_or_else(|| LobeChoice::new(&sp.material));
             if choice.is_black() {
                 return radiance;
             }
@@ -253,15 +239,15 @@ impl PathTracer {
             if branches > 1 {
                 let mut sum = Rgb::BLACK;
                 for _ in 0..branches {
-                    sum += self.scatter(world, &sp, &choice, beta, bounce, numbers);
+                    sum += self.scatter(world, &sp, &choice, beta, bounce, sampler);
                 }
                 return radiance + sum / branches as f32;
             }
-            let u = numbers.bounce(bounce);
+            let u = BounceNumbers::draw(sampler, bounce);
             if choice.has_density() {
                 radiance += beta * self.next_event(world, &sp, &choice, &u);
             }
-            let Some(next) = self.continue_path(&sp, &choice, beta, bounce, &u) else {
+            let Some(next) = self.continue_path(&sp, &choice, beta, bounce, &u, sampler) else {
                 return radiance;
             };
             (ray, beta, arrival) = next;
@@ -278,21 +264,23 @@ impl PathTracer {
         choice: &LobeChoice,
         beta: Rgb,
         bounce: u32,
-        numbers: &mut PathNumbers,
+        sampler: &mut Sampler,
     ) -> Rgb {
-        let u = numbers.bounce(bounce);
+        let u = BounceNumbers::draw(sampler, bounce);
         let mut radiance = Rgb::BLACK;
         if choice.has_density() {
             radiance += beta * self.next_event(world, sp, choice, &u);
         }
-        if let Some((ray, beta, arrival)) = self.continue_path(sp, choice, beta, bounce, &u) {
-            radiance += self.follow(world, ray, beta, bounce + 1, arrival, numbers);
+        let next = self.continue_path(sp, choice, beta, bounce, &u, sampler);
+        if let Some((ray, beta, arrival)) = next {
+            radiance += self.follow(world, ray, beta, bounce + 1, arrival, sampler);
         }
         radiance
     }
 
-    /// The scattered ray, its throughput after Russian roulette and how it leaves `sp`;
-    /// `None` when the path ends here.
+    /// The scattered ray, its throughput after Russian roulette (its number drawn from
+    /// `sampler`'s pseudo-random stream) and how it leaves `sp`; `None` when the path ends
+    /// here.
     fn continue_path(
         &self,
         sp: &ShadingPoint,
@@ -300,6 +288,7 @@ impl PathTracer {
         beta: Rgb,
         bounce: u32,
         numbers: &BounceNumbers,
+        sampler: &mut Sampler,
     ) -> Option<(Ray, Rgb, Arrival)> {
         let side = ViewSide {
             n: sp.n,
@@ -314,7 +303,7 @@ impl PathTracer {
         }
         if bounce + 1 >= ROULETTE_START {
             let survival = beta.max_channel().min(ROULETTE_MAX_SURVIVAL);
-            if survival <= 0.0 || numbers.roulette >= survival {
+            if survival <= 0.0 || sampler.random_1d() >= survival {
                 return None;
             }
             beta /= survival;
@@ -331,7 +320,6 @@ impl PathTracer {
 
 impl Integrator for PathTracer {
     fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
-        let mut numbers = PathNumbers::new(sampler);
-        self.follow(world, *ray, Rgb::WHITE, 0, Arrival::CAMERA, &mut numbers)
+        self.follow(world, *ray, Rgb::WHITE, 0, Arrival::CAMERA, sampler)
     }
 }

@@ -74,8 +74,21 @@ impl Sampler {
             }
             return self.sobol_block[(dim % 4) as usize];
         }
+        self.random_1d()
+    }
+
+    /// A uniform number in `[0, 1)` from the sample's pseudo-random stream, whatever the
+    /// sequence kind (for decisions where stratification does not pay, such as deep bounces).
+    #[inline]
+    pub fn random_1d(&mut self) -> f32 {
         // 24 random bits give every representable value in [0, 1) with equal spacing.
         (self.rng.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+
+    /// A uniform point in `[0, 1)²` from the sample's pseudo-random stream.
+    #[inline]
+    pub fn random_2d(&mut self) -> Vec2 {
+        Vec2::new(self.random_1d(), self.random_1d())
     }
 
     /// A uniform point in `[0, 1)²`.
