@@ -163,7 +163,8 @@ impl MulAssign<f32> for Rgb {
 impl Div<f32> for Rgb {
     type Output = Rgb;
     fn div(self, s: f32) -> Rgb {
-        Rgb::new(self.r / s, self.g / s, self.b / s)
+        // One division and three products (within an ulp of three divisions, much cheaper).
+        self * (1.0 / s)
     }
 }
 

@@ -45,11 +45,11 @@ impl Camera {
         let half_w = half_h * self.width as f32 / self.height as f32;
         Some(CameraRays {
             origin: self.position,
-            forward,
-            right: right * half_w,
-            up: up * half_h,
-            width: self.width as f32,
-            height: self.height as f32,
+            // Image positions map linearly to the view plane: x ∈ [0, width] to −1…1 along
+            // `right`, y ∈ [0, height] to 1…−1 along `up`.
+            right: right * (2.0 * half_w / self.width as f32),
+            up: up * (-2.0 * half_h / self.height as f32),
+            corner: forward - right * half_w + up * half_h,
         })
     }
 }
@@ -58,20 +58,19 @@ impl Camera {
 #[derive(Clone, Copy, Debug)]
 pub struct CameraRays {
     origin: Vec3,
-    forward: Vec3,
+    /// Direction through the top-left corner of the image (unnormalised).
+    corner: Vec3,
+    /// Change of the direction per pixel to the right.
     right: Vec3,
+    /// Change of the direction per pixel down.
     up: Vec3,
-    width: f32,
-    height: f32,
 }
 
 impl CameraRays {
     /// The unit-direction ray through image position `(x, y)` in pixels, `x` to the right and
     /// `y` down, `(0, 0)` the top-left corner of the image (pixel centres at `+0.5`).
     pub fn ray(&self, x: f32, y: f32) -> Ray {
-        let sx = 2.0 * x / self.width - 1.0;
-        let sy = 1.0 - 2.0 * y / self.height;
-        let dir = (self.forward + self.right * sx + self.up * sy).normalize();
+        let dir = (self.corner + self.right * x + self.up * y).normalize();
         Ray::new(self.origin, dir)
     }
 }
