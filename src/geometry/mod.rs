@@ -17,7 +17,7 @@ mod ray;
 pub mod sphere;
 mod transform;
 mod triangle;
-mod triangle4;
+mod triangle8;
 
 pub use bounds::Aabb;
 pub use frame::Frame;
@@ -25,4 +25,4 @@ pub use local_hit::LocalHit;
 pub use ray::{Ray, offset_origin, spawn_ray, spawn_ray_to, surface_offset};
 pub use transform::Transform;
 pub use triangle::Triangle;
-pub use triangle4::{Hits4, Triangle4};
+pub use triangle8::{Hits8, Ray8, TRIANGLE_LANES, Triangle8};

@@ -59,7 +59,7 @@ pub fn spawn_ray_to(p: Vec3, n: Vec3, target: Vec3) -> (Ray, f32) {
     let origin = offset_origin(p, n, to);
     let d = target - origin;
     let dist = d.length();
-    let dir = if dist > 0.0 { d / dist } else { n };
+    let dir = if dist > 0.0 { d * dist.recip() } else { n };
     let t_max = (dist - surface_offset(target)).max(0.0);
     (Ray::new(origin, dir), t_max)
 }

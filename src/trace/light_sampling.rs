@@ -171,7 +171,7 @@ impl LightPicker {
                 if dist2 <= 0.0 {
                     return None;
                 }
-                let wi = d / dist2.sqrt();
+                let wi = d * dist2.sqrt().recip();
                 let cos_y = s.n.dot(-wi);
                 if cos_y == 0.0 || n.dot(wi) <= 0.0 {
                     return None;

@@ -1,101 +1,105 @@
-//! Four triangles intersected at once with SIMD lanes. Every lane performs exactly the
+//! Eight triangles intersected at once with SIMD lanes (one AVX register per coordinate where
+//! the CPU has AVX, two SSE registers otherwise). Every lane performs exactly the
 //! floating-point operations of [`Triangle::intersect`] in the same order, so the answers are
 //! bit-for-bit those of the scalar test.
 
 use super::{Ray, Triangle};
-use glam::{BVec4A, Vec4};
+use wide::{CmpGe, CmpGt, CmpLe, CmpLt, CmpNe, f32x8};
 
-/// Four triangles in structure-of-arrays form; unused lanes hold a degenerate triangle that
+/// Number of triangles in a [`Triangle8`].
+pub const TRIANGLE_LANES: usize = 8;
+
+/// Eight triangles in structure-of-arrays form; unused lanes hold a degenerate triangle that
 /// nothing hits.
 #[derive(Clone, Copy, Debug)]
-#[repr(C, align(16))]
-pub struct Triangle4 {
-    p0: [Vec4; 3],
-    e1: [Vec4; 3],
-    e2: [Vec4; 3],
+pub struct Triangle8 {
+    p0: [f32x8; 3],
+    e1: [f32x8; 3],
+    e2: [f32x8; 3],
 }
 
-/// Lane results of [`Triangle4::intersect`].
+/// Lane results of [`Triangle8::intersect`].
 #[derive(Clone, Copy, Debug)]
-pub struct Hits4 {
+pub struct Hits8 {
     /// Bit `i` set when lane `i` is hit within `(0, t_max]`.
     pub mask: u32,
     /// Ray parameters.
-    pub t: Vec4,
+    pub t: [f32; 8],
     /// Barycentrics of the second vertex.
-    pub b1: Vec4,
+    pub b1: [f32; 8],
     /// Barycentrics of the third vertex.
-    pub b2: Vec4,
+    pub b2: [f32; 8],
 }
 
-impl Triangle4 {
-    /// Packs up to four triangles (lanes beyond `tris.len()` never hit).
+/// A ray's origin and direction, each coordinate in all eight lanes.
+#[derive(Clone, Copy, Debug)]
+pub struct Ray8 {
+    origin: [f32x8; 3],
+    dir: [f32x8; 3],
+}
+
+impl Ray8 {
+    /// `ray` in every lane.
+    #[inline(always)]
+    pub fn new(ray: &Ray) -> Self {
+        Ray8 {
+            origin: ray.origin.to_array().map(f32x8::splat),
+            dir: ray.dir.to_array().map(f32x8::splat),
+        }
+    }
+}
+
+impl Triangle8 {
+    /// Packs up to eight triangles (lanes beyond `tris.len()` never hit).
     pub fn new(tris: &[Triangle]) -> Self {
-        let lane = |i: usize| {
-            tris.get(i).copied().unwrap_or(Triangle::new(
-                glam::Vec3::ZERO,
-                glam::Vec3::ZERO,
-                glam::Vec3::ZERO,
-            ))
+        let degenerate = Triangle::new(glam::Vec3::ZERO, glam::Vec3::ZERO, glam::Vec3::ZERO);
+        let lanes: [Triangle; 8] =
+            std::array::from_fn(|i| tris.get(i).copied().unwrap_or(degenerate));
+        let gather = |f: &dyn Fn(&Triangle) -> glam::Vec3| -> [f32x8; 3] {
+            let v = lanes.map(|t| f(&t));
+            [0, 1, 2].map(|axis| f32x8::new(v.map(|p| p[axis])))
         };
-        let l = [lane(0), lane(1), lane(2), lane(3)];
-        let gather = |f: &dyn Fn(&Triangle) -> glam::Vec3| -> [Vec4; 3] {
-            let v = l.map(|t| f(&t));
-            [
-                Vec4::new(v[0].x, v[1].x, v[2].x, v[3].x),
-                Vec4::new(v[0].y, v[1].y, v[2].y, v[3].y),
-                Vec4::new(v[0].z, v[1].z, v[2].z, v[3].z),
-            ]
-        };
-        Triangle4 {
+        Triangle8 {
             p0: gather(&|t| t.p0),
             e1: gather(&|t| t.e1),
             e2: gather(&|t| t.e2),
         }
     }
 
-    /// Möller–Trumbore on all four lanes.
+    /// Möller–Trumbore on all eight lanes.
     #[inline(always)]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Hits4 {
-        let d = [
-            Vec4::splat(ray.dir.x),
-            Vec4::splat(ray.dir.y),
-            Vec4::splat(ray.dir.z),
-        ];
-        let o = [
-            Vec4::splat(ray.origin.x),
-            Vec4::splat(ray.origin.y),
-            Vec4::splat(ray.origin.z),
-        ];
+    pub fn intersect(&self, ray: &Ray8, t_max: f32) -> Hits8 {
+        let (d, o) = (&ray.dir, &ray.origin);
         let (e1, e2) = (&self.e1, &self.e2);
-        let pvec = cross(&d, e2);
+        let pvec = cross(d, e2);
         let det = dot(e1, &pvec);
-        let inv_det = Vec4::ONE / det;
+        let inv_det = f32x8::ONE / det;
         let tvec = [o[0] - self.p0[0], o[1] - self.p0[1], o[2] - self.p0[2]];
         let b1 = dot(&tvec, &pvec) * inv_det;
         let qvec = cross(&tvec, e1);
-        let b2 = dot(&d, &qvec) * inv_det;
+        let b2 = dot(d, &qvec) * inv_det;
         let t = dot(e2, &qvec) * inv_det;
-        let finite = det.abs().cmplt(Vec4::INFINITY);
-        let ok: BVec4A = det.cmpne(Vec4::ZERO)
+        let (zero, one) = (f32x8::ZERO, f32x8::ONE);
+        let finite = det.abs().cmp_lt(f32x8::splat(f32::INFINITY));
+        let ok = det.cmp_ne(zero)
             & finite
-            & b1.cmpge(Vec4::ZERO)
-            & b1.cmple(Vec4::ONE)
-            & !b2.cmplt(Vec4::ZERO)
-            & !(b1 + b2).cmpgt(Vec4::ONE)
-            & t.cmpgt(Vec4::ZERO)
-            & t.cmple(Vec4::splat(t_max));
-        Hits4 {
-            mask: ok.bitmask(),
-            t,
-            b1,
-            b2,
+            & b1.cmp_ge(zero)
+            & b1.cmp_le(one)
+            & !b2.cmp_lt(zero)
+            & !(b1 + b2).cmp_gt(one)
+            & t.cmp_gt(zero)
+            & t.cmp_le(f32x8::splat(t_max));
+        Hits8 {
+            mask: ok.move_mask() as u32,
+            t: t.to_array(),
+            b1: b1.to_array(),
+            b2: b2.to_array(),
         }
     }
 }
 
 #[inline(always)]
-fn cross(a: &[Vec4; 3], b: &[Vec4; 3]) -> [Vec4; 3] {
+fn cross(a: &[f32x8; 3], b: &[f32x8; 3]) -> [f32x8; 3] {
     [
         a[1] * b[2] - b[1] * a[2],
         a[2] * b[0] - b[2] * a[0],
@@ -104,7 +108,7 @@ fn cross(a: &[Vec4; 3], b: &[Vec4; 3]) -> [Vec4; 3] {
 }
 
 #[inline(always)]
-fn dot(a: &[Vec4; 3], b: &[Vec4; 3]) -> Vec4 {
+fn dot(a: &[f32x8; 3], b: &[f32x8; 3]) -> f32x8 {
     (a[0] * b[0]) + (a[1] * b[1]) + (a[2] * b[2])
 }
 
@@ -122,7 +126,7 @@ mod tests {
         };
         let mut hit_lanes = 0;
         for _ in 0..2000 {
-            let tris: Vec<Triangle> = (0..3)
+            let tris: Vec<Triangle> = (0..7)
                 .map(|_| {
                     let p = Vec3::new(next(), next(), next());
                     Triangle::new(
@@ -132,14 +136,14 @@ mod tests {
                     )
                 })
                 .collect();
-            let packed = Triangle4::new(&tris);
+            let packed = Triangle8::new(&tris);
             // Aim near a point of one of the triangles (inside or just outside its edges).
-            let aim = &tris[(next().abs() * 1.49) as usize];
+            let aim = &tris[(next().abs() * 3.49) as usize];
             let target = aim.point(0.4 + 0.5 * next(), 0.4 + 0.5 * next());
             let origin = Vec3::new(next(), next(), next()) * 3.0;
             let ray = Ray::new(origin, (target - origin).normalize_or(Vec3::X));
             let t_max = next().abs() * 8.0;
-            let hits = packed.intersect(&ray, t_max);
+            let hits = packed.intersect(&Ray8::new(&ray), t_max);
             for (i, tri) in tris.iter().enumerate() {
                 match tri.intersect(&ray, t_max) {
                     Some((t, b1, b2)) => {
@@ -150,7 +154,7 @@ mod tests {
                     None => assert!(hits.mask & (1 << i) == 0),
                 }
             }
-            assert!(hits.mask & 8 == 0, "the padding lane never hits");
+            assert!(hits.mask & 0x80 == 0, "the padding lane never hits");
         }
         // Enough hits that the comparison means something.
         assert!(hit_lanes > 100, "only {hit_lanes} hits");
