@@ -20,7 +20,7 @@
 use super::bsdf::emitted;
 use super::bsdf_sampling::{LobeChoice, ViewSide, sample_bsdf};
 use super::direct::ShadingPoint;
-use super::light_sampling::{LightPicker, ShadowTarget};
+use super::light_sampling::{LightPicker, LightSample, ShadowTarget};
 use super::sampler::Sampler;
 use super::{Integrator, SurfaceHit, World};
 use crate::color::Rgb;
@@ -155,24 +155,30 @@ impl PathTracer {
         }
     }
 
-    /// Radiance reflected toward the viewer at `sp` from one sampled light, weighted against
-    /// BSDF sampling.
-    fn next_event(
+    /// The light sample of next-event estimation at `sp`, if the material can reflect it.
+    fn sample_light(
         &self,
         world: &World,
         sp: &ShadingPoint,
         choice: &LobeChoice,
         numbers: &BounceNumbers,
+    ) -> Option<LightSample> {
+        if !choice.has_density() {
+            return None;
+        }
+        let (pick, point) = (numbers.light_pick, numbers.light_point);
+        self.lights.sample(world, sp.hit.p, sp.n, pick, point)
+    }
+
+    /// Radiance reflected toward the viewer at `sp` from the light sample `ls`, weighted
+    /// against BSDF sampling: its shadow ray is traced here.
+    fn next_event(
+        &self,
+        world: &World,
+        sp: &ShadingPoint,
+        choice: &LobeChoice,
+        ls: &LightSample,
     ) -> Rgb {
-        let Some(ls) = self.lights.sample(
-            world,
-            sp.hit.p,
-            sp.n,
-            numbers.light_pick,
-            numbers.light_point,
-        ) else {
-            return Rgb::BLACK;
-        };
         if sp.ng.dot(ls.wi) <= 0.0 {
             return Rgb::BLACK;
         }
@@ -244,10 +250,15 @@ impl PathTracer {
                 return radiance + sum / branches as f32;
             }
             let u = BounceNumbers::draw(sampler, bounce);
-            if choice.has_density() {
-                radiance += beta * self.next_event(world, &sp, &choice, &u);
+            // The light sample, the continuation and then the shadow ray: the two samplings
+            // are independent chains of divisions and square roots that the processor can
+            // overlap when they are next to each other.
+            let light = self.sample_light(world, &sp, &choice, &u);
+            let next = self.continue_path(&sp, &choice, beta, bounce, &u, sampler);
+            if let Some(ls) = &light {
+                radiance += beta * self.next_event(world, &sp, &choice, ls);
             }
-            let Some(next) = self.continue_path(&sp, &choice, beta, bounce, &u, sampler) else {
+            let Some(next) = next else {
                 return radiance;
             };
             (ray, beta, arrival) = next;
@@ -268,10 +279,11 @@ impl PathTracer {
     ) -> Rgb {
         let u = BounceNumbers::draw(sampler, bounce);
         let mut radiance = Rgb::BLACK;
-        if choice.has_density() {
-            radiance += beta * self.next_event(world, sp, choice, &u);
-        }
+        let light = self.sample_light(world, sp, choice, &u);
         let next = self.continue_path(sp, choice, beta, bounce, &u, sampler);
+        if let Some(ls) = &light {
+            radiance += beta * self.next_event(world, sp, choice, ls);
+        }
         if let Some((ray, beta, arrival)) = next {
             radiance += self.follow(world, ray, beta, bounce + 1, arrival, sampler);
         }
