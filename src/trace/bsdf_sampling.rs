@@ -36,6 +36,8 @@ pub struct BsdfSample {
 #[derive(Clone, Copy, Debug)]
 pub struct LobeChoice {
     diffuse: f32,
+    /// `1 / diffuse` (0 when there is no diffuse lobe).
+    inverse_diffuse: f32,
     specular: f32,
     mirror: f32,
     transmission: f32,
@@ -60,6 +62,7 @@ impl LobeChoice {
         if total <= 0.0 {
             return LobeChoice {
                 diffuse: 0.0,
+                inverse_diffuse: 0.0,
                 specular: 0.0,
                 mirror: 0.0,
                 transmission: 0.0,
@@ -67,6 +70,7 @@ impl LobeChoice {
         }
         LobeChoice {
             diffuse: d / total,
+            inverse_diffuse: if d > 0.0 { total / d } else { 0.0 },
             specular: s / total,
             mirror: r / total,
             transmission: t / total,
@@ -150,8 +154,18 @@ pub fn sample_bsdf(
             Frame::from_normal(reflect(wo, n)).to_world(local)
         };
         let cos = n.dot(wi);
-        if cos <= 0.0 || ng.dot(wi) <= 0.0 {
+        if cos <= 0.0 || ng.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
             return None;
+        }
+        if choice.specular <= 0.0 {
+            // Lambert alone: f·cos/pdf = (ρ/π)·cos / (p_d·cos/π) = ρ/p_d, a constant the
+            // processor need not wait for a division to know.
+            return Some(BsdfSample {
+                wi,
+                weight: m.diffuse * choice.inverse_diffuse,
+                pdf: choice.diffuse * cosine_hemisphere_pdf(cos),
+                delta: false,
+            });
         }
         let pdf = choice.pdf(m, n, wo, wi);
         if pdf <= 0.0 {
