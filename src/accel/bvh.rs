@@ -4,8 +4,8 @@
 //! its right child) and then collapsed into an 8-wide tree whose nodes hold the boxes of their
 //! eight children side by side, so one SIMD slab test checks all eight (one AVX instruction
 //! per step where the CPU has AVX). Leaves of plain triangles are packed into blocks of eight
-//! tested at once. Traversal visits hit
-//! children nearest first and skips those starting beyond the closest hit found so far.
+//! tested at once. Traversal visits hit children nearest first and skips those starting
+//! beyond the closest hit found so far.
 //! Unbounded primitives (infinite planes) are kept outside the tree and tested by every ray.
 
 use super::{AccelStats, Accelerator, PrimHit, PrimitiveSet, keep_closest};
@@ -82,7 +82,7 @@ const WIDTH: usize = 8;
 const STACK_SIZE: usize = (WIDTH - 1) * MAX_BINARY_DEPTH + WIDTH;
 /// `count` of an unused child slot.
 const EMPTY: u32 = u32::MAX;
-/// Flag in a leaf's `count`: its primitives are plain triangles packed four to a block, and
+/// Flag in a leaf's `count`: its primitives are plain triangles packed eight to a block, and
 /// `child` is the first block.
 const PACKED: u32 = 1 << 30;
 
@@ -150,7 +150,7 @@ impl WideRay {
         }
     }
 
-    /// Entry parameters into the four child boxes and the mask of those entered before
+    /// Entry parameters into the eight child boxes and the mask of those entered before
     /// `t_max`.
     #[inline(always)]
     fn test(&self, n: &WideNode, t_max: f32) -> ([f32; WIDTH], u32) {
@@ -183,7 +183,7 @@ impl WideRay {
 pub struct Bvh {
     nodes: Vec<WideNode>,
     refs: Vec<u32>,
-    /// Leaves of plain triangles, four per block, with the primitive index of each lane
+    /// Leaves of plain triangles, eight per block, with the primitive index of each lane
     /// (`u32::MAX` for padding).
     blocks: Vec<(Triangle8, [u32; TRIANGLE_LANES])>,
     unbounded: Vec<u32>,
