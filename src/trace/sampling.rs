@@ -32,17 +32,20 @@ pub fn uniform_sphere(u: Vec2) -> Vec3 {
 /// A uniform point on the unit disc (Shirley–Chiu concentric map).
 pub fn concentric_disk(u: Vec2) -> Vec2 {
     let o = 2.0 * u - Vec2::ONE;
-    if o == Vec2::ZERO {
+    // The angle is π/4·(minor/major) from the major axis (x where |x| > |y|, else y): a sine
+    // and cosine of an angle within ±π/4. The axes are picked by selects, not branches (the
+    // choice is a coin toss no predictor can learn).
+    let x_major = o.x.abs() > o.y.abs();
+    let (major, minor) = if x_major { (o.x, o.y) } else { (o.y, o.x) };
+    if major == 0.0 {
         return Vec2::ZERO;
     }
-    // The angle is π/4·(y/x) from the x axis, or π/2 − π/4·(x/y) from it (the same π/4·(x/y)
-    // from the y axis): either way a sine and cosine of an angle within ±π/4.
-    if o.x.abs() > o.y.abs() {
-        let (sin, cos) = sin_cos_within_quarter((PI / 4.0) * (o.y / o.x));
-        Vec2::new(o.x * cos, o.x * sin)
+    let (sin, cos) = sin_cos_within_quarter((PI / 4.0) * (minor / major));
+    let (along, across) = (major * cos, major * sin);
+    if x_major {
+        Vec2::new(along, across)
     } else {
-        let (sin, cos) = sin_cos_within_quarter((PI / 4.0) * (o.x / o.y));
-        Vec2::new(o.y * sin, o.y * cos)
+        Vec2::new(across, along)
     }
 }
 
