@@ -145,7 +145,10 @@ impl WideRay {
     fn new(ray: &Ray) -> Self {
         WideRay {
             origin: ray.origin.to_array().map(f32x8::splat),
-            inv_dir: ray.dir.recip().to_array().map(f32x8::splat),
+            inv_dir: glam::Vec3A::from(ray.dir)
+                .recip()
+                .to_array()
+                .map(f32x8::splat),
             lanes: Ray8::new(ray),
         }
     }
