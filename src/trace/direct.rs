@@ -1,7 +1,7 @@
 //! Direct light at a surface point from every light of the scene, with shadow rays (or, with
 //! shadows off, only self-shadowing by facing: seed 002 §4.4, `NoShadows`).
 
-use super::bsdf::{SurfaceMaterial, emitted_toward};
+use super::bsdf::SurfaceMaterial;
 use super::sampler::Sampler;
 use super::sampling::{cosine_hemisphere, stratified};
 use super::{SurfaceHit, World};
@@ -120,8 +120,10 @@ pub fn direct_light(
             if cos_x <= 0.0 || cos_y == 0.0 {
                 continue;
             }
-            let material = &world.scene.materials[world.geometry.owner(s.prim).1 as usize];
-            let le = emitted_toward(&world.scene, material, s.uv, cos_y > 0.0);
+            let le =
+                world
+                    .lights
+                    .area_radiance(&world.scene, &world.geometry, index, &s, cos_y > 0.0);
             if le.is_black() || !sp.sees(world, s.p, shadows) {
                 continue;
             }

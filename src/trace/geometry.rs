@@ -279,7 +279,8 @@ impl SceneGeometry {
         }
     }
 
-    fn triangle_uv(&self, prim: usize, b1: f32, b2: f32) -> Vec2 {
+    /// Texture coordinates at barycentrics `(b1, b2)` of triangle `prim`.
+    pub fn triangle_uv(&self, prim: usize, b1: f32, b2: f32) -> Vec2 {
         let uv = &self.attributes[prim].uvs;
         uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2
     }
@@ -316,14 +317,13 @@ impl SceneGeometry {
         }
     }
 
-    /// Point, unit front normal and texture coordinates at barycentrics `(b1, b2)` of
-    /// triangle `prim`: the part of [`SceneGeometry::point_on_triangle`] light sampling needs.
+    /// Point and unit front normal at barycentrics `(b1, b2)` of triangle `prim`: the part of
+    /// [`SceneGeometry::point_on_triangle`] light sampling needs.
     #[inline]
-    pub fn triangle_point(&self, prim: u32, b1: f32, b2: f32) -> (Vec3, Vec3, Vec2) {
+    pub fn triangle_point(&self, prim: u32, b1: f32, b2: f32) -> (Vec3, Vec3) {
         (
             self.triangles[prim as usize].point(b1, b2),
             self.attributes[prim as usize].normal,
-            self.triangle_uv(prim as usize, b1, b2),
         )
     }
 

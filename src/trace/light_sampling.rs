@@ -11,9 +11,8 @@
 //! Area lights are sampled uniformly by area and their density turned into solid angle,
 //! `pdf_ω = pdf_A·d²/|cos θ_y|`; the sky is sampled cosine-weighted about the shading normal.
 
-use super::bsdf::emitted_toward;
+use super::World;
 use super::sampling::cosine_hemisphere;
-use super::{SceneGeometry, World};
 use crate::color::Rgb;
 use crate::geometry::Frame;
 use glam::{Vec2, Vec3};
@@ -176,7 +175,13 @@ impl LightPicker {
                 if cos_y == 0.0 || n.dot(wi) <= 0.0 {
                     return None;
                 }
-                let le = area_emission(world, &world.geometry, s.prim, s.uv, cos_y > 0.0);
+                let le = world.lights.area_radiance(
+                    &world.scene,
+                    &world.geometry,
+                    light,
+                    &s,
+                    cos_y > 0.0,
+                );
                 if le.is_black() {
                     return None;
                 }
@@ -221,10 +226,4 @@ impl LightPicker {
             }
         }
     }
-}
-
-/// Radiance emitted by primitive `prim` at texture coordinate `uv` toward its front or back.
-fn area_emission(world: &World, geometry: &SceneGeometry, prim: u32, uv: Vec2, front: bool) -> Rgb {
-    let material = &world.scene.materials[geometry.owner(prim).1 as usize];
-    emitted_toward(&world.scene, material, uv, front)
 }

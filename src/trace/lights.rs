@@ -2,6 +2,7 @@
 //! by area), point, spot and directional lights, and the sky.
 
 use super::SceneGeometry;
+use super::bsdf::emitted_toward;
 use super::sampling::uniform_triangle;
 use crate::color::Rgb;
 use crate::scene::{LightKind, Scene};
@@ -21,6 +22,9 @@ pub struct AreaLight {
     pub area: f32,
     /// Emitted power estimate π·L·A summed over sides (W), for choosing lights by power.
     pub power: Rgb,
+    /// Radiance toward the front and the back, when it is the same at every point (one
+    /// material without an emission texture); `None` when it varies.
+    uniform_radiance: Option<[Rgb; 2]>,
 }
 
 /// A point sampled on an area light.
@@ -30,8 +34,8 @@ pub struct AreaSample {
     pub p: Vec3,
     /// Unit front-side normal.
     pub n: Vec3,
-    /// Texture coordinates.
-    pub uv: Vec2,
+    /// Barycentrics `(b1, b2)` of the point on its triangle.
+    pub barycentrics: (f32, f32),
     /// Primitive sampled.
     pub prim: u32,
     /// Density with respect to area (1 / light area).
@@ -72,6 +76,10 @@ impl LightSet {
                 None => m.emission,
             };
             let sides = if m.two_sided { 2.0 } else { 1.0 };
+            let uniform = m
+                .emission_texture
+                .is_none()
+                .then(|| [true, false].map(|front| emitted_toward(scene, m, Vec2::ZERO, front)));
             let slot = *by_object.entry(object).or_insert_with(|| {
                 area.push(AreaLight {
                     object,
@@ -79,11 +87,15 @@ impl LightSet {
                     cdf: Vec::new(),
                     area: 0.0,
                     power: Rgb::BLACK,
+                    uniform_radiance: uniform,
                 });
                 area.len() - 1
             });
             light_of_prim[prim as usize] = slot as u32;
             let light = &mut area[slot];
+            if light.uniform_radiance != uniform {
+                light.uniform_radiance = None;
+            }
             light.prims.push(prim);
             light.area += a;
             light.cdf.push(light.area);
@@ -141,13 +153,32 @@ impl LightSet {
             .min(l.prims.len() - 1);
         let prim = l.prims[i];
         let (b1, b2) = uniform_triangle(u);
-        let (p, n, uv) = geometry.triangle_point(prim, b1, b2);
+        let (p, n) = geometry.triangle_point(prim, b1, b2);
         AreaSample {
             p,
             n,
-            uv,
+            barycentrics: (b1, b2),
             prim,
             pdf_area: 1.0 / l.area,
         }
+    }
+
+    /// Radiance that the sample `s` of area light `light` emits toward its front (or back)
+    /// side.
+    pub fn area_radiance(
+        &self,
+        scene: &Scene,
+        geometry: &SceneGeometry,
+        light: usize,
+        s: &AreaSample,
+        front: bool,
+    ) -> Rgb {
+        if let Some([toward_front, toward_back]) = self.area[light].uniform_radiance {
+            return if front { toward_front } else { toward_back };
+        }
+        let material = &scene.materials[geometry.owner(s.prim).1 as usize];
+        let (b1, b2) = s.barycentrics;
+        let uv = geometry.triangle_uv(s.prim as usize, b1, b2);
+        emitted_toward(scene, material, uv, front)
     }
 }
