@@ -279,10 +279,13 @@ impl Bvh {
                     while mask != 0 {
                         let lane = mask.trailing_zeros() as usize;
                         mask &= mask - 1;
+                        let Some((t, b1, b2)) = hits.lane(lane, limit) else {
+                            continue;
+                        };
                         let hit = PrimHit {
-                            t: hits.t[lane],
+                            t,
                             prim: lanes[lane],
-                            local: [hits.b1[lane], hits.b2[lane]],
+                            local: [b1, b2],
                         };
                         if any {
                             return Some(hit);

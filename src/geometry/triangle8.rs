@@ -1,10 +1,11 @@
 //! Eight triangles intersected at once with SIMD lanes (one AVX register per coordinate where
 //! the CPU has AVX, two SSE registers otherwise). Every lane performs exactly the
 //! floating-point operations of [`Triangle::intersect`] in the same order, so the answers are
-//! bit-for-bit those of the scalar test.
+//! bit-for-bit those of the scalar test; the division is left to the lanes that pass.
 
+use super::triangle::{SIGN_BIT, ScaledHit, widen_t_max};
 use super::{Ray, Triangle};
-use wide::{CmpGe, CmpGt, CmpLe, CmpLt, CmpNe, f32x8};
+use wide::{CmpGe, CmpGt, CmpLe, f32x8};
 
 /// Number of triangles in a [`Triangle8`].
 pub const TRIANGLE_LANES: usize = 8;
@@ -16,19 +17,36 @@ pub struct Triangle8 {
     p0: [f32x8; 3],
     e1: [f32x8; 3],
     e2: [f32x8; 3],
+    /// `e1 × e2`, unnormalised.
+    n: [f32x8; 3],
 }
 
-/// Lane results of [`Triangle8::intersect`].
+/// Lane results of [`Triangle8::intersect`]: which lanes pass the division-free test, and
+/// their products still to be divided by the determinant.
 #[derive(Clone, Copy, Debug)]
 pub struct Hits8 {
-    /// Bit `i` set when lane `i` is hit within `(0, t_max]`.
+    /// Bit `i` set when lane `i` passes the test for `(0, t_max]` before the division (with a
+    /// few ulps of slack on `t_max`, see [`Hits8::lane`]).
     pub mask: u32,
-    /// Ray parameters.
-    pub t: [f32; 8],
-    /// Barycentrics of the second vertex.
-    pub b1: [f32; 8],
-    /// Barycentrics of the third vertex.
-    pub b2: [f32; 8],
+    det: f32x8,
+    b1: f32x8,
+    b2: f32x8,
+    t: f32x8,
+}
+
+impl Hits8 {
+    /// `(t, b1, b2)` of lane `lane` (a bit set in `mask`), `None` when the division puts `t`
+    /// outside `(0, t_max]` (what [`Triangle::intersect`] returns for that triangle).
+    #[inline(always)]
+    pub fn lane(&self, lane: usize, t_max: f32) -> Option<(f32, f32, f32)> {
+        ScaledHit {
+            det: self.det.as_array_ref()[lane],
+            b1: self.b1.as_array_ref()[lane],
+            b2: self.b2.as_array_ref()[lane],
+            t: self.t.as_array_ref()[lane],
+        }
+        .divide(t_max)
+    }
 }
 
 /// A ray's origin and direction, each coordinate in all eight lanes.
@@ -63,37 +81,35 @@ impl Triangle8 {
             p0: gather(&|t| t.p0),
             e1: gather(&|t| t.e1),
             e2: gather(&|t| t.e2),
+            n: gather(&|t| t.normal_area2()),
         }
     }
 
-    /// Möller–Trumbore on all eight lanes.
+    /// The division-free test of [`Triangle::intersect`] on all eight lanes.
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray8, t_max: f32) -> Hits8 {
         let (d, o) = (&ray.dir, &ray.origin);
-        let (e1, e2) = (&self.e1, &self.e2);
-        let pvec = cross(d, e2);
-        let det = dot(e1, &pvec);
-        let inv_det = f32x8::ONE / det;
-        let tvec = [o[0] - self.p0[0], o[1] - self.p0[1], o[2] - self.p0[2]];
-        let b1 = dot(&tvec, &pvec) * inv_det;
-        let qvec = cross(&tvec, e1);
-        let b2 = dot(d, &qvec) * inv_det;
-        let t = dot(e2, &qvec) * inv_det;
-        let (zero, one) = (f32x8::ZERO, f32x8::ONE);
-        let finite = det.abs().cmp_lt(f32x8::splat(f32::INFINITY));
-        let ok = det.cmp_ne(zero)
-            & finite
-            & b1.cmp_ge(zero)
-            & b1.cmp_le(one)
-            & !b2.cmp_lt(zero)
-            & !(b1 + b2).cmp_gt(one)
-            & t.cmp_gt(zero)
-            & t.cmp_le(f32x8::splat(t_max));
+        let s = [self.p0[0] - o[0], self.p0[1] - o[1], self.p0[2] - o[2]];
+        let det = dot(d, &self.n);
+        let g = cross(&s, d);
+        let b1 = dot(&self.e2, &g);
+        let b2 = -dot(&self.e1, &g);
+        let t = dot(&s, &self.n);
+        let sign = det & f32x8::splat(f32::from_bits(SIGN_BIT));
+        let abs_det = det.abs();
+        let (b1s, b2s, ts) = (b1 ^ sign, b2 ^ sign, t ^ sign);
+        let zero = f32x8::ZERO;
+        let ok = b1s.cmp_ge(zero)
+            & b2s.cmp_ge(zero)
+            & (b1s + b2s).cmp_le(abs_det)
+            & ts.cmp_gt(zero)
+            & ts.cmp_le(f32x8::splat(widen_t_max(t_max)) * abs_det);
         Hits8 {
             mask: ok.move_mask() as u32,
-            t: t.to_array(),
-            b1: b1.to_array(),
-            b2: b2.to_array(),
+            det,
+            b1,
+            b2,
+            t,
         }
     }
 }
@@ -145,14 +161,12 @@ mod tests {
             let t_max = next().abs() * 8.0;
             let hits = packed.intersect(&Ray8::new(&ray), t_max);
             for (i, tri) in tris.iter().enumerate() {
-                match tri.intersect(&ray, t_max) {
-                    Some((t, b1, b2)) => {
-                        hit_lanes += 1;
-                        assert!(hits.mask & (1 << i) != 0);
-                        assert_eq!((hits.t[i], hits.b1[i], hits.b2[i]), (t, b1, b2));
-                    }
-                    None => assert!(hits.mask & (1 << i) == 0),
-                }
+                let lane = (hits.mask & (1 << i) != 0)
+                    .then(|| hits.lane(i, t_max))
+                    .flatten();
+                let scalar = tri.intersect(&ray, t_max);
+                hit_lanes += usize::from(scalar.is_some());
+                assert_eq!(lane, scalar);
             }
             assert!(hits.mask & 0x80 == 0, "the padding lane never hits");
         }
