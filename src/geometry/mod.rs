@@ -22,7 +22,9 @@ mod triangle8;
 pub use bounds::Aabb;
 pub use frame::Frame;
 pub use local_hit::LocalHit;
-pub use ray::{Ray, offset_origin, spawn_ray, spawn_ray_to, surface_offset};
+pub use ray::{
+    OFFSET_ABSOLUTE, OFFSET_RELATIVE, Ray, offset_origin, spawn_ray, spawn_ray_to, surface_offset,
+};
 pub use transform::Transform;
 pub use triangle::Triangle;
 pub use triangle8::{Hits8, Ray8, TRIANGLE_LANES, Triangle8};

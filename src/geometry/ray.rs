@@ -25,9 +25,9 @@ impl Ray {
 }
 
 /// Relative size of the offset that moves a ray origin off the surface it starts on.
-const OFFSET_RELATIVE: f32 = 1.0 / 131_072.0;
+pub const OFFSET_RELATIVE: f32 = 1.0 / 131_072.0;
 /// Absolute floor of that offset, for points near the coordinate origin.
-const OFFSET_ABSOLUTE: f32 = 1e-7;
+pub const OFFSET_ABSOLUTE: f32 = 1e-7;
 
 /// Distance a new ray origin is moved off a surface point `p` so that floating-point error in
 /// `p` cannot make the ray hit the surface it starts on. It scales with the magnitude of the

@@ -40,6 +40,7 @@ pub struct ShadingPoint {
 
 impl ShadingPoint {
     /// Prepares `hit`, found along a ray with direction `dir`.
+    #[inline(always)]
     pub fn new(world: &World, hit: SurfaceHit, dir: Vec3) -> Self {
         let side = if hit.front_face { 1.0 } else { -1.0 };
         ShadingPoint {

@@ -43,6 +43,20 @@ pub struct LightSample {
     pub target: ShadowTarget,
 }
 
+/// A point sampled on an area light of uniform radiance, before anything about the shading
+/// point is known.
+#[derive(Clone, Copy, Debug)]
+pub struct UniformAreaPoint {
+    /// The point (world).
+    pub p: Vec3,
+    /// Unit front-side normal.
+    pub n: Vec3,
+    /// Radiance toward the front and toward the back (W·sr⁻¹·m⁻²).
+    pub radiance: [Rgb; 2],
+    /// Density with respect to area (1/m²), the probability of choosing the light included.
+    pub pdf_area: f32,
+}
+
 /// One entry of the light-choice distribution.
 #[derive(Clone, Copy, Debug)]
 enum Choice {
@@ -139,6 +153,44 @@ impl LightPicker {
         self.sky_probability * n.dot(wi).max(0.0) * FRAC_1_PI
     }
 
+    /// The light `u_pick` chooses, its probability, and what remains of `u_pick` after the
+    /// choice, rescaled to `[0, 1)`.
+    #[inline]
+    fn choose(&self, u_pick: f32) -> Option<(Choice, f32, f32)> {
+        let index = self
+            .cdf
+            .partition_point(|&c| c <= u_pick)
+            .min(self.cdf.len().checked_sub(1)?);
+        let below = if index == 0 { 0.0 } else { self.cdf[index - 1] };
+        let probability = self.cdf[index] - below;
+        if probability <= 0.0 {
+            return None;
+        }
+        let u_prim = ((u_pick - below) / probability).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+        Some((self.choices[index], probability, u_prim))
+    }
+
+    /// The point [`Self::sample`] draws from the same numbers when they choose an area light
+    /// that emits the same radiance everywhere; `None` for any other choice.
+    pub fn uniform_area_point(
+        &self,
+        world: &World,
+        u_pick: f32,
+        u: Vec2,
+    ) -> Option<UniformAreaPoint> {
+        let (Choice::Area(light), probability, u_prim) = self.choose(u_pick)? else {
+            return None;
+        };
+        let radiance = world.lights.area[light].uniform_radiance()?;
+        let s = world.lights.sample_area(&world.geometry, light, u_prim, u);
+        Some(UniformAreaPoint {
+            p: s.p,
+            n: s.n,
+            radiance,
+            pdf_area: probability * s.pdf_area,
+        })
+    }
+
     /// Samples one light for the shading point `x` with unit shading normal `n` (toward the
     /// viewer), from uniform numbers `u_pick` (chooses the light; what remains of it after the
     /// choice, rescaled to `[0, 1)`, chooses the light's triangle) and `u` (the point). `None`
@@ -152,17 +204,8 @@ impl LightPicker {
         u_pick: f32,
         u: Vec2,
     ) -> Option<LightSample> {
-        let index = self
-            .cdf
-            .partition_point(|&c| c <= u_pick)
-            .min(self.cdf.len().checked_sub(1)?);
-        let below = if index == 0 { 0.0 } else { self.cdf[index - 1] };
-        let probability = self.cdf[index] - below;
-        if probability <= 0.0 {
-            return None;
-        }
-        let u_prim = ((u_pick - below) / probability).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
-        match self.choices[index] {
+        let (choice, probability, u_prim) = self.choose(u_pick)?;
+        match choice {
             Choice::Area(light) => {
                 let s = world.lights.sample_area(&world.geometry, light, u_prim, u);
                 let d = s.p - x;

@@ -27,6 +27,14 @@ pub struct AreaLight {
     uniform_radiance: Option<[Rgb; 2]>,
 }
 
+impl AreaLight {
+    /// Radiance toward the front and the back, when it is the same at every point of the
+    /// light.
+    pub fn uniform_radiance(&self) -> Option<[Rgb; 2]> {
+        self.uniform_radiance
+    }
+}
+
 /// A point sampled on an area light.
 #[derive(Clone, Copy, Debug)]
 pub struct AreaSample {

@@ -7,9 +7,11 @@ pub mod bsdf;
 pub mod bsdf_sampling;
 pub mod direct;
 mod geometry;
+mod lanes;
 pub mod light_sampling;
 mod lights;
 pub mod lighttracer;
+mod path_packet;
 pub mod pathtracer;
 pub mod photon_scatter;
 pub mod photon_sources;
@@ -34,4 +36,19 @@ use sampler::Sampler;
 pub trait Integrator: Sync {
     /// Radiance (W·sr⁻¹·m⁻²) arriving at the ray origin from direction `-ray.dir`.
     fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb;
+
+    /// [`Self::radiance`] along each of `rays`, ray `i` drawing from `samplers[i]`, into
+    /// `out[i]` (the three slices are equally long). Integrators that trace several rays
+    /// faster together than one by one override it; the values are the same.
+    fn radiance_batch(
+        &self,
+        world: &World,
+        rays: &[Ray],
+        samplers: &mut [Sampler],
+        out: &mut [Rgb],
+    ) {
+        for ((ray, sampler), o) in rays.iter().zip(samplers).zip(out) {
+            *o = self.radiance(world, ray, sampler);
+        }
+    }
 }

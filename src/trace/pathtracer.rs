@@ -20,6 +20,7 @@
 use super::bsdf::emitted;
 use super::bsdf_sampling::{LobeChoice, ViewSide, sample_bsdf};
 use super::direct::ShadingPoint;
+use super::lanes::LANES;
 use super::light_sampling::{LightPicker, LightSample, ShadowTarget};
 use super::sampler::Sampler;
 use super::{Integrator, SurfaceHit, World};
@@ -42,7 +43,7 @@ pub struct PathTracer {
     /// Paths branching from the first hit (seed 002 §3.2: N paths from the first hit, one
     /// path after that); at least 1.
     pub first_hit_paths: u32,
-    lights: LightPicker,
+    pub(super) lights: LightPicker,
     /// Lobe probabilities per scene material, `None` where a texture changes them from point
     /// to point.
     lobes: Vec<Option<LobeChoice>>,
@@ -51,20 +52,20 @@ pub struct PathTracer {
 /// How the path arrived at the vertex being shaded: what multiple importance sampling of
 /// emission found there needs.
 #[derive(Clone, Copy, Debug)]
-struct Arrival {
+pub(super) struct Arrival {
     /// The previous vertex.
-    from: Vec3,
+    pub from: Vec3,
     /// Unit shading normal at the previous vertex, toward its viewer.
-    normal: Vec3,
+    pub normal: Vec3,
     /// Density (1/sr) of the direction under BSDF sampling; unused for delta lobes.
-    pdf: f32,
+    pub pdf: f32,
     /// Arrived by a delta lobe or from the camera: emission counts in full.
-    delta: bool,
+    pub delta: bool,
 }
 
 impl Arrival {
     /// The camera ray: nothing to weigh against.
-    const CAMERA: Arrival = Arrival {
+    pub(super) const CAMERA: Arrival = Arrival {
         from: Vec3::ZERO,
         normal: Vec3::ZERO,
         pdf: 0.0,
@@ -74,17 +75,21 @@ impl Arrival {
 
 /// The uniform numbers one bounce uses, always drawn in the same order so that every
 /// sample index uses the same Sobol dimension for the same decision.
-struct BounceNumbers {
-    light_pick: f32,
-    light_point: Vec2,
-    lobe: f32,
-    direction: Vec2,
+pub(super) struct BounceNumbers {
+    /// Chooses the light (and its triangle).
+    pub light_pick: f32,
+    /// The point on the light.
+    pub light_point: Vec2,
+    /// Chooses the material's lobe.
+    pub lobe: f32,
+    /// The scattered direction.
+    pub direction: Vec2,
 }
 
 impl BounceNumbers {
     /// The numbers of the bounce at vertex `bounce` (0 = first hit): Sobol dimensions at the
     /// first hit, the pseudo-random stream deeper down.
-    fn draw(sampler: &mut Sampler, bounce: u32) -> Self {
+    pub(super) fn draw(sampler: &mut Sampler, bounce: u32) -> Self {
         if bounce == 0 {
             BounceNumbers {
                 light_pick: sampler.next_1d(),
@@ -104,7 +109,7 @@ impl BounceNumbers {
 }
 
 /// Power heuristic (β = 2) weight of the strategy with density `a` against one with `b`.
-fn power_heuristic(a: f32, b: f32) -> f32 {
+pub(super) fn power_heuristic(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
@@ -206,6 +211,45 @@ impl PathTracer {
         f * ls.radiance_over_pdf * (sp.n.dot(ls.wi) * weight)
     }
 
+    /// The vertex a path with throughput `beta`, `bounce` scattering events so far and
+    /// arrival `arrival` reaches along `ray`: light it finds there (sky or emission, weighted
+    /// against light sampling) is added to `radiance`; `None` when the path ends there (it
+    /// escaped, reached its maximum length, or hit a surface that scatters nothing).
+    #[inline(always)]
+    pub(super) fn arrive(
+        &self,
+        world: &World,
+        ray: &Ray,
+        beta: Rgb,
+        bounce: u32,
+        arrival: &Arrival,
+        radiance: &mut Rgb,
+    ) -> Option<(ShadingPoint, LobeChoice)> {
+        let Some(hit) = world.intersect(ray) else {
+            if let Some(sky) = world.lights.sky {
+                *radiance += beta * sky * self.sky_weight(arrival, ray.dir);
+            }
+            return None;
+        };
+        let le = emitted(&world.scene, &hit);
+        if !le.is_black() {
+            *radiance += beta * le * self.emission_weight(world, arrival, &hit);
+        }
+        if bounce >= self.max_depth {
+            return None;
+        }
+        let sp = ShadingPoint::new(world, hit, ray.dir);
+        if sp.material.is_black_from(hit.front_face) {
+            return None;
+        }
+        let choice =
+            self.lobes[hit.material as usize].unwrap_or_else(|| LobeChoice::new(&sp.material));
+        if choice.is_black() {
+            return None;
+        }
+        Some((sp, choice))
+    }
+
     /// Radiance carried back along `ray` by a path with throughput `beta` that has scattered
     /// `bounce` times so far and arrived as `arrival` says.
     fn follow(
@@ -219,45 +263,17 @@ impl PathTracer {
     ) -> Rgb {
         let mut radiance = Rgb::BLACK;
         loop {
-            let Some(hit) = world.intersect(&ray) else {
-                if let Some(sky) = world.lights.sky {
-                    radiance += beta * sky * self.sky_weight(&arrival, ray.dir);
-                }
+            let Some((sp, choice)) =
+                self.arrive(world, &ray, beta, bounce, &arrival, &mut radiance)
+            else {
                 return radiance;
             };
-            let le = emitted(&world.scene, &hit);
-            if !le.is_black() {
-                radiance += beta * le * self.emission_weight(world, &arrival, &hit);
-            }
-            if bounce >= self.max_depth {
-                return radiance;
-            }
-            let sp = ShadingPoint::new(world, hit, ray.dir);
-            if sp.material.is_black_from(hit.front_face) {
-                return radiance;
-            }
-            let choice =
-                self.lobes[hit.material as usize].unwrap_or_else(|| LobeChoice::new(&sp.material));
-            if choice.is_black() {
-                return radiance;
-            }
-            let branches = if bounce == 0 { self.first_hit_paths } else { 1 };
-            if branches > 1 {
-                let mut sum = Rgb::BLACK;
-                for _ in 0..branches {
-                    sum += self.scatter(world, &sp, &choice, beta, bounce, sampler);
-                }
-                return radiance + sum / branches as f32;
+            if bounce == 0 && self.first_hit_paths > 1 {
+                return radiance + self.branch(world, &sp, &choice, beta, sampler);
             }
             let u = BounceNumbers::draw(sampler, bounce);
-            // The light sample, the continuation and then the shadow ray: the two samplings
-            // are independent chains of divisions and square roots that the processor can
-            // overlap when they are next to each other.
-            let light = self.sample_light(world, &sp, &choice, &u);
-            let next = self.continue_path(&sp, &choice, beta, bounce, &u, sampler);
-            if let Some(ls) = &light {
-                radiance += beta * self.next_event(world, &sp, &choice, ls);
-            }
+            let (light, next) = self.scatter_once(world, &sp, &choice, beta, bounce, &u, sampler);
+            radiance += light;
             let Some(next) = next else {
                 return radiance;
             };
@@ -266,28 +282,51 @@ impl PathTracer {
         }
     }
 
-    /// One branch from the shading point `sp`: light sampling there plus the path continued
-    /// by BSDF sampling.
-    fn scatter(
+    /// The mean radiance of [`Self::first_hit_paths`] paths branching from the first hit `sp`.
+    pub(super) fn branch(
+        &self,
+        world: &World,
+        sp: &ShadingPoint,
+        choice: &LobeChoice,
+        beta: Rgb,
+        sampler: &mut Sampler,
+    ) -> Rgb {
+        let mut sum = Rgb::BLACK;
+        for _ in 0..self.first_hit_paths {
+            let u = BounceNumbers::draw(sampler, 0);
+            let (light, next) = self.scatter_once(world, sp, choice, beta, 0, &u, sampler);
+            sum += light;
+            if let Some((ray, beta, arrival)) = next {
+                sum += self.follow(world, ray, beta, 1, arrival, sampler);
+            }
+        }
+        sum / self.first_hit_paths as f32
+    }
+
+    /// One scattering event at `sp` for a path with throughput `beta` and `bounce` events so
+    /// far, driven by the numbers `u`: the light sampled there (its shadow ray traced) and the
+    /// continued path (ray, throughput, arrival), `None` when it ends.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn scatter_once(
         &self,
         world: &World,
         sp: &ShadingPoint,
         choice: &LobeChoice,
         beta: Rgb,
         bounce: u32,
+        u: &BounceNumbers,
         sampler: &mut Sampler,
-    ) -> Rgb {
-        let u = BounceNumbers::draw(sampler, bounce);
-        let mut radiance = Rgb::BLACK;
-        let light = self.sample_light(world, sp, choice, &u);
-        let next = self.continue_path(sp, choice, beta, bounce, &u, sampler);
-        if let Some(ls) = &light {
-            radiance += beta * self.next_event(world, sp, choice, ls);
-        }
-        if let Some((ray, beta, arrival)) = next {
-            radiance += self.follow(world, ray, beta, bounce + 1, arrival, sampler);
-        }
-        radiance
+    ) -> (Rgb, Option<(Ray, Rgb, Arrival)>) {
+        // The light sample, the continuation and then the shadow ray: the two samplings are
+        // independent chains of divisions and square roots that the processor can overlap
+        // when they are next to each other.
+        let light = self.sample_light(world, sp, choice, u);
+        let next = self.continue_path(sp, choice, beta, bounce, u, sampler);
+        let radiance = match &light {
+            Some(ls) => beta * self.next_event(world, sp, choice, ls),
+            None => Rgb::BLACK,
+        };
+        (radiance, next)
     }
 
     /// The scattered ray, its throughput after Russian roulette (its number drawn from
@@ -309,17 +348,7 @@ impl PathTracer {
             front_face: sp.hit.front_face,
         };
         let bs = sample_bsdf(&sp.material, choice, &side, numbers.lobe, numbers.direction)?;
-        let mut beta = beta * bs.weight;
-        if beta.is_black() {
-            return None;
-        }
-        if bounce + 1 >= ROULETTE_START {
-            let survival = beta.max_channel().min(ROULETTE_MAX_SURVIVAL);
-            if survival <= 0.0 || sampler.random_1d() >= survival {
-                return None;
-            }
-            beta /= survival;
-        }
+        let beta = survive_roulette(beta * bs.weight, bounce, sampler)?;
         let arrival = Arrival {
             from: sp.hit.p,
             normal: sp.n,
@@ -330,8 +359,38 @@ impl PathTracer {
     }
 }
 
+/// The throughput `beta` of a path continuing after `bounce + 1` scattering events, after
+/// Russian roulette (its number drawn from `sampler`'s pseudo-random stream); `None` when the
+/// path carries nothing or roulette ends it.
+pub(super) fn survive_roulette(beta: Rgb, bounce: u32, sampler: &mut Sampler) -> Option<Rgb> {
+    if beta.is_black() {
+        return None;
+    }
+    if bounce + 1 < ROULETTE_START {
+        return Some(beta);
+    }
+    let survival = beta.max_channel().min(ROULETTE_MAX_SURVIVAL);
+    if survival <= 0.0 || sampler.random_1d() >= survival {
+        return None;
+    }
+    Some(beta / survival)
+}
+
 impl Integrator for PathTracer {
     fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
         self.follow(world, *ray, Rgb::WHITE, 0, Arrival::CAMERA, sampler)
+    }
+
+    fn radiance_batch(
+        &self,
+        world: &World,
+        rays: &[Ray],
+        samplers: &mut [Sampler],
+        out: &mut [Rgb],
+    ) {
+        let packets = rays.chunks(LANES).zip(samplers.chunks_mut(LANES));
+        for ((rays, samplers), out) in packets.zip(out.chunks_mut(LANES)) {
+            self.radiance_packet(world, rays, samplers, out);
+        }
     }
 }

@@ -18,6 +18,8 @@ use std::time::{Duration, Instant};
 
 /// Pixel rows per parallel work item.
 const STRIP_ROWS: usize = 4;
+/// Camera samples handed to the integrator at once.
+const BATCH: usize = 64;
 /// Largest number of samples per pixel in one pass.
 const MAX_PASS_SAMPLES: u32 = 8;
 
@@ -69,15 +71,39 @@ struct SampleTracer<'a> {
 }
 
 impl SampleTracer<'_> {
-    /// Radiance of sample `k` of pixel `(px, py)`.
-    fn sample(&self, px: u32, py: u32, k: u32) -> Rgb {
-        let stream = u64::from(py) * u64::from(self.width) + u64::from(px);
-        let mut sampler = Sampler::new(SequenceKind::Sobol, self.seed, stream, k);
-        let jitter = sampler.next_2d();
-        let ray = self.camera.ray(px as f32 + jitter.x, py as f32 + jitter.y);
-        let c = self.integrator.radiance(self.world, &ray, &mut sampler);
-        // A NaN or infinite sample would poison the pixel; drop it.
-        if c.is_finite() { c } else { Rgb::BLACK }
+    /// Adds samples `first..first + count` of every pixel of `pixels` (row-major from pixel
+    /// index `start`) to its sum, in sample order, tracing them [`BATCH`] at a time.
+    fn add_samples(&self, pixels: &mut [Rgb], start: usize, first: u32, count: u32) {
+        let w = self.width as usize;
+        let samples = (0..pixels.len()).flat_map(|i| (first..first + count).map(move |k| (i, k)));
+        let mut batch = Vec::with_capacity(BATCH);
+        let mut rays = Vec::with_capacity(BATCH);
+        let mut samplers = Vec::with_capacity(BATCH);
+        let mut radiance = [Rgb::BLACK; BATCH];
+        let mut samples = samples.peekable();
+        while samples.peek().is_some() {
+            batch.clear();
+            rays.clear();
+            samplers.clear();
+            for (i, k) in samples.by_ref().take(BATCH) {
+                let (px, py) = ((start + i) % w, (start + i) / w);
+                let mut sampler =
+                    Sampler::new(SequenceKind::Sobol, self.seed, (py * w + px) as u64, k);
+                let jitter = sampler.next_2d();
+                rays.push(self.camera.ray(px as f32 + jitter.x, py as f32 + jitter.y));
+                samplers.push(sampler);
+                batch.push(i);
+            }
+            let out = &mut radiance[..batch.len()];
+            self.integrator
+                .radiance_batch(self.world, &rays, &mut samplers, out);
+            for (&i, &c) in batch.iter().zip(out.iter()) {
+                // A NaN or infinite sample would poison the pixel; drop it.
+                if c.is_finite() {
+                    pixels[i] += c;
+                }
+            }
+        }
     }
 }
 
@@ -132,13 +158,7 @@ pub fn render_progressive(
                 if stop(Instant::now()) {
                     return false;
                 }
-                for (i, sum) in pixels.iter_mut().enumerate() {
-                    let px = (i % w as usize) as u32;
-                    let py = (strip * STRIP_ROWS + i / w as usize) as u32;
-                    for k in done..done + count {
-                        *sum += tracer.sample(px, py, k);
-                    }
-                }
+                tracer.add_samples(pixels, strip * STRIP_ROWS * w as usize, done, count);
                 progress.advance(pixels.len() as u64 * u64::from(count));
                 true
             });
