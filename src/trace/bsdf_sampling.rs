@@ -77,11 +77,10 @@ impl LobeChoice {
         }
     }
 
-    /// For a material with only a Lambert lobe: its choice probability (1) and the inverse
-    /// of that, the factor [`sample_bsdf`] applies to the reflectance.
-    pub fn lambert_only(&self) -> Option<(f32, f32)> {
-        (self.diffuse > 0.0 && self.specular + self.mirror + self.transmission <= 0.0)
-            .then_some((self.diffuse, self.inverse_diffuse))
+    /// True for a material with only a Lambert lobe, which it then chooses with probability
+    /// exactly 1 (`d / d`), so [`sample_bsdf`]'s weight is the reflectance itself.
+    pub fn is_lambert_only(&self) -> bool {
+        self.diffuse > 0.0 && self.specular + self.mirror + self.transmission <= 0.0
     }
 
     /// True when the material has a lobe with a density (diffuse or Phong), so that light

@@ -48,8 +48,6 @@ struct LambertLanes {
     wo: [[f32; LANES]; 3],
     /// Diffuse reflectance.
     rho: [[f32; LANES]; 3],
-    /// Probability of the Lambert lobe (1) and its inverse.
-    lobe: [[f32; LANES]; 2],
     /// Path throughput arriving at the vertex.
     beta: [[f32; LANES]; 3],
     /// The light sample's point (world) and unit front normal.
@@ -85,17 +83,12 @@ fn get(lanes: &[[f32; LANES]; 3], lane: usize) -> [f32; 3] {
     [lanes[0][lane], lanes[1][lane], lanes[2][lane]]
 }
 
-fn rgb(c: Rgb) -> [f32; 3] {
-    [c.r, c.g, c.b]
-}
-
 impl LambertLanes {
     /// Puts a vertex into lane `lane`.
     fn set(
         &mut self,
         lane: usize,
         sp: &ShadingPoint,
-        lobe: (f32, f32),
         light: &UniformAreaPoint,
         direction: [f32; 2],
         beta: Rgb,
@@ -105,13 +98,12 @@ impl LambertLanes {
         put(&mut self.n, lane, sp.n.to_array());
         put(&mut self.ng, lane, sp.ng.to_array());
         put(&mut self.wo, lane, sp.wo.to_array());
-        put(&mut self.rho, lane, rgb(sp.material.diffuse));
-        put(&mut self.beta, lane, rgb(beta));
+        put(&mut self.rho, lane, sp.material.diffuse.to_array());
+        put(&mut self.beta, lane, beta.to_array());
         put(&mut self.light_p, lane, light.p.to_array());
         put(&mut self.light_n, lane, light.n.to_array());
-        put(&mut self.light_front, lane, rgb(light.radiance[0]));
-        put(&mut self.light_back, lane, rgb(light.radiance[1]));
-        (self.lobe[0][lane], self.lobe[1][lane]) = lobe;
+        put(&mut self.light_front, lane, light.radiance[0].to_array());
+        put(&mut self.light_back, lane, light.radiance[1].to_array());
         self.light_pdf_area[lane] = light.pdf_area;
         (self.direction[0][lane], self.direction[1][lane]) = (direction[0], direction[1]);
     }
@@ -218,13 +210,13 @@ impl PathTracer {
             return;
         }
         let u = BounceNumbers::draw(sampler, path.bounce);
-        if let Some(lobe) = choice.lambert_only()
+        if choice.is_lambert_only()
             && sp.material.specular.is_black()
             && let Some(light) = self
                 .lights
                 .uniform_area_point(world, u.light_pick, u.light_point)
         {
-            lambert.set(lane, &sp, lobe, &light, u.direction.to_array(), path.beta);
+            lambert.set(lane, &sp, &light, u.direction.to_array(), path.beta);
             return;
         }
         let (light, next) =
@@ -293,7 +285,6 @@ fn scatter_lambert(lambert: &LambertLanes) -> LambertScatter {
     let wo = load(&lambert.wo);
     let rho = load(&lambert.rho);
     let beta = load(&lambert.beta);
-    let p_d = f32x8::new(lambert.lobe[0]);
     let zero = f32x8::ZERO;
     let n_wo = n.dot(&wo);
     let viewer_side = n_wo.cmp_gt(zero);
@@ -313,7 +304,9 @@ fn scatter_lambert(lambert: &LambertLanes) -> LambertScatter {
     );
     let pdf = f32x8::new(lambert.light_pdf_area) * dist2 / cos_y.abs();
     let radiance_over_pdf = le.scale(f32x8::ONE / pdf);
-    let bsdf_pdf = viewer_side.blend(p_d * (cos.fast_max(zero) * f32x8::splat(FRAC_1_PI)), zero);
+    // A Lambert-only material chooses its lobe with probability 1 (exactly: d/d), so the
+    // scalar code's factors p_d = 1/p_d = 1 leave every product unchanged and are left out.
+    let bsdf_pdf = viewer_side.blend(cos.fast_max(zero) * f32x8::splat(FRAC_1_PI), zero);
     let (a2, b2) = (pdf * pdf, bsdf_pdf * bsdf_pdf);
     let sum = a2 + b2;
     let heuristic = sum.cmp_gt(zero).blend(a2 / sum, zero);
@@ -336,8 +329,8 @@ fn scatter_lambert(lambert: &LambertLanes) -> LambertScatter {
     let wi_b = lanes::to_world_about(&n, &local);
     let cos_b = n.dot(&wi_b);
     let leaves = cos_b.cmp_gt(zero) & ng.dot(&wi_b).cmp_gt(zero) & viewer_side;
-    let next_beta = beta.mul(&rho.scale(f32x8::new(lambert.lobe[1])));
-    let pdf_b = p_d * (cos_b.fast_max(zero) * f32x8::splat(FRAC_1_PI));
+    let next_beta = beta.mul(&rho);
+    let pdf_b = cos_b.fast_max(zero) * f32x8::splat(FRAC_1_PI);
     let (shadow_origin, shadow_dir, shadow_t_max) = lanes::spawn_ray_to(&x, &ng, &light_p);
     LambertScatter {
         carries: carries.move_mask() as u32,

@@ -109,7 +109,7 @@ impl BounceNumbers {
 }
 
 /// Power heuristic (β = 2) weight of the strategy with density `a` against one with `b`.
-pub(super) fn power_heuristic(a: f32, b: f32) -> f32 {
+fn power_heuristic(a: f32, b: f32) -> f32 {
     let (a2, b2) = (a * a, b * b);
     if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }

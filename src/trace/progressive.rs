@@ -11,6 +11,7 @@ use super::render::ProgressListener;
 use super::sampler::{Sampler, SequenceKind};
 use super::{Integrator, World};
 use crate::color::Rgb;
+use crate::geometry::Ray;
 use crate::image::Film;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -75,29 +76,26 @@ impl SampleTracer<'_> {
     /// index `start`) to its sum, in sample order, tracing them [`BATCH`] at a time.
     fn add_samples(&self, pixels: &mut [Rgb], start: usize, first: u32, count: u32) {
         let w = self.width as usize;
-        let samples = (0..pixels.len()).flat_map(|i| (first..first + count).map(move |k| (i, k)));
-        let mut batch = Vec::with_capacity(BATCH);
-        let mut rays = Vec::with_capacity(BATCH);
-        let mut samplers = Vec::with_capacity(BATCH);
+        let samples: Vec<(usize, u32)> = (0..pixels.len())
+            .flat_map(|i| (first..first + count).map(move |k| (i, k)))
+            .collect();
         let mut radiance = [Rgb::BLACK; BATCH];
-        let mut samples = samples.peekable();
-        while samples.peek().is_some() {
-            batch.clear();
-            rays.clear();
-            samplers.clear();
-            for (i, k) in samples.by_ref().take(BATCH) {
-                let (px, py) = ((start + i) % w, (start + i) / w);
-                let mut sampler =
-                    Sampler::new(SequenceKind::Sobol, self.seed, (py * w + px) as u64, k);
-                let jitter = sampler.next_2d();
-                rays.push(self.camera.ray(px as f32 + jitter.x, py as f32 + jitter.y));
-                samplers.push(sampler);
-                batch.push(i);
-            }
+        for batch in samples.chunks(BATCH) {
+            let (rays, mut samplers): (Vec<Ray>, Vec<Sampler>) = batch
+                .iter()
+                .map(|&(i, k)| {
+                    // A pixel's index in the image is its sampler stream.
+                    let pixel = start + i;
+                    let mut sampler = Sampler::new(SequenceKind::Sobol, self.seed, pixel as u64, k);
+                    let jitter = sampler.next_2d();
+                    let (px, py) = ((pixel % w) as f32, (pixel / w) as f32);
+                    (self.camera.ray(px + jitter.x, py + jitter.y), sampler)
+                })
+                .unzip();
             let out = &mut radiance[..batch.len()];
             self.integrator
                 .radiance_batch(self.world, &rays, &mut samplers, out);
-            for (&i, &c) in batch.iter().zip(out.iter()) {
+            for (&(i, _), &c) in batch.iter().zip(out.iter()) {
                 // A NaN or infinite sample would poison the pixel; drop it.
                 if c.is_finite() {
                     pixels[i] += c;
