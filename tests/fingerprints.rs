@@ -1,0 +1,174 @@
+//! What users get, pinned bit for bit: every method's output on the Cornell box and an image
+//! of every built-in scene, produced by the `strahl` binary and compared with a fingerprint
+//! (64-bit FNV-1a) of its exact bytes.
+//!
+//! Images are written as PFM (the linear `f32` radiance, unrounded); reports as JSON with the
+//! wall-clock timings removed; solutions as PLY and GLB. A change that alters no result leaves
+//! every fingerprint as it is. A change that alters results on purpose records the new
+//! fingerprints (the failure message lists them) and says so in its commit.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// One run of the binary and the files whose fingerprints it must reproduce.
+struct Case {
+    name: &'static str,
+    args: Vec<String>,
+    /// (file name in the case's folder, expected fingerprint).
+    outputs: Vec<(&'static str, u64)>,
+}
+
+fn case(name: &'static str, args: &str, outputs: &[(&'static str, u64)]) -> Case {
+    Case {
+        name,
+        args: args.split_whitespace().map(str::to_string).collect(),
+        outputs: outputs.to_vec(),
+    }
+}
+
+/// 64-bit FNV-1a of `bytes`.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+/// The bytes a fingerprint is taken of: the file itself, or for a JSON report the report
+/// without its timings (`seconds` and `seconds_*` in `stats`).
+fn comparable_bytes(path: &Path) -> Vec<u8> {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    if path.extension().is_some_and(|e| e == "json") {
+        let mut report: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+        if let Some(stats) = report["stats"].as_object_mut() {
+            stats.retain(|k, _| k != "seconds" && !k.starts_with("seconds_"));
+        }
+        return serde_json::to_vec(&report).unwrap();
+    }
+    bytes
+}
+
+fn folder(case: &str) -> PathBuf {
+    let dir = std::env::temp_dir()
+        .join(format!("strahl-fingerprints-{}", std::process::id()))
+        .join(case);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn outputs_match_their_fingerprints() {
+    let cases = [
+        // The Cornell box by every method.
+        case(
+            "raytrace",
+            "render cornell -o {}/image.pfm --width 48 --height 40 --spp 4",
+            &[("image.pfm", 0xf260312793beaf0b)],
+        ),
+        case(
+            "raytrace-adaptive",
+            "render cornell -o {}/image.pfm --width 48 --height 40 --aa adaptive --aa-map {}/map.pfm",
+            &[
+                ("image.pfm", 0xbd99424b1f04dfb3),
+                ("map.pfm", 0x3fa79115a7e76e67),
+            ],
+        ),
+        case(
+            "raytrace-no-shadows-octree",
+            "render cornell -o {}/image.pfm --width 32 --height 32 --aa none --shadows off --accel octree",
+            &[("image.pfm", 0x5a9155c322405ea2)],
+        ),
+        case(
+            "pathtrace",
+            "render cornell -o {}/image.pfm --method pathtrace --width 48 --height 40 --spp 16",
+            &[("image.pfm", 0xa18c42fc7446f969)],
+        ),
+        case(
+            "pathtrace-branching",
+            "render cornell -o {}/image.pfm --method pathtrace --width 32 --height 32 --spp 4 --first-hit-paths 3 --depth 4",
+            &[("image.pfm", 0x578e0163f118b9d8)],
+        ),
+        case(
+            "radiosity-matrix",
+            "render cornell -o {}/image.pfm --method radiosity --solver matrix --mesh-size levels:2 --shading flat --wireframe --width 48 --height 40",
+            &[("image.pfm", 0xcec87abcc9fddb90)],
+        ),
+        case(
+            "radiosity-progressive",
+            "render cornell -o {}/image.pfm --method radiosity --solver progressive --mesh-size levels:2 --width 48 --height 40",
+            &[("image.pfm", 0x1fadcaa98b49df59)],
+        ),
+        case(
+            "solve-light-trace",
+            "solve cornell --solver light-trace --photons 100000 --report {}/report.json",
+            &[("report.json", 0x1385c3fc3e4c6521)],
+        ),
+        case(
+            "solve-matrix",
+            "solve cornell --solver matrix --iteration jacobi --mesh-size levels:2 --report {}/report.json --export {}/solution.ply",
+            &[
+                ("report.json", 0x6668eb21d5523ccd),
+                ("solution.ply", 0xec5277cb88e80f52),
+            ],
+        ),
+        case(
+            "solve-progressive",
+            "solve cornell --solver progressive --overshoot --mesh-size levels:2 --vis-rays 16 --report {}/report.json --export {}/solution.glb",
+            &[
+                ("report.json", 0x484507d1f15edba4),
+                ("solution.glb", 0x0058f156f584e71c),
+            ],
+        ),
+        // Every other built-in scene.
+        case(
+            "cornell-textured",
+            "render cornell-textured -o {}/image.pfm --method pathtrace --width 32 --height 32 --spp 8",
+            &[("image.pfm", 0xb514d5dda4095bd9)],
+        ),
+        case(
+            "spheres",
+            "render spheres:30 -o {}/image.pfm --width 32 --height 32 --spp 4",
+            &[("image.pfm", 0xceefd5b8c561de3e)],
+        ),
+        case(
+            "neon",
+            "render neon -o {}/image.pfm --method pathtrace --width 32 --height 32 --spp 8",
+            &[("image.pfm", 0x9e7173821577f0ce)],
+        ),
+        case(
+            "canopy",
+            "solve canopy:300 --solver light-trace --photons 50000 --report {}/report.json",
+            &[("report.json", 0xa5237c808036accb)],
+        ),
+    ];
+    let mut mismatches = Vec::new();
+    for case in &cases {
+        let dir = folder(case.name);
+        let args: Vec<String> = case
+            .args
+            .iter()
+            .map(|a| a.replace("{}", dir.to_str().unwrap()))
+            .collect();
+        let out = Command::new(env!("CARGO_BIN_EXE_strahl"))
+            .args(&args)
+            .arg("--quiet")
+            .output()
+            .expect("the binary runs");
+        assert!(
+            out.status.success(),
+            "{}: {}",
+            case.name,
+            String::from_utf8_lossy(&out.stderr)
+        );
+        for &(file, expected) in &case.outputs {
+            let got = fnv1a(&comparable_bytes(&dir.join(file)));
+            if got != expected {
+                mismatches.push(format!("{}/{file}: {got:#018x}", case.name));
+            }
+        }
+    }
+    assert!(
+        mismatches.is_empty(),
+        "outputs differ from their fingerprints:\n{}",
+        mismatches.join("\n")
+    );
+}
