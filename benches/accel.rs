@@ -10,7 +10,7 @@ use std::sync::Arc;
 use strahl::accel::{Accelerator, Bvh, BvhOptions};
 use strahl::geometry::Ray;
 use strahl::scene::{Material, Object, PolygonMesh, Scene, Shape, builtin};
-use strahl::trace::SceneGeometry;
+use strahl::world::SceneGeometry;
 
 /// A room (20 × 4 × 12) furnished with rows of tessellated chairs and tables: about 300,000
 /// triangles in many small pieces, like the conference room; camera in the middle looking +x.

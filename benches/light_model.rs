@@ -2,12 +2,12 @@
 //! a sun), 100,000 photons per iteration (photons per second is the figure to read).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
+use strahl::light_model::{LightTraceSettings, trace_light};
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::scene::builtin;
-use strahl::trace::World;
-use strahl::trace::lighttracer::{LightTraceSettings, trace_light};
-use strahl::trace::render::NoProgress;
+use strahl::world::World;
 
 fn light_model(c: &mut Criterion) {
     let canopy = builtin::load("canopy").expect("built-in").expect("valid");
@@ -21,9 +21,7 @@ fn light_model(c: &mut Criterion) {
     group.sample_size(10);
     group.throughput(Throughput::Elements(settings.photons));
     group.bench_function("canopy_10000_leaves", |b| {
-        b.iter(|| {
-            trace_light(&world, &settings, &NoProgress, &AtomicBool::new(false)).expect("lights")
-        })
+        b.iter(|| trace_light(&world, &settings, &NoProgress, &Cancel::new()).expect("lights"))
     });
     group.finish();
 }

@@ -5,12 +5,13 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::scene::builtin;
-use strahl::trace::progressive::{ProgressiveSettings, render_progressive};
-use strahl::trace::render::NoProgress;
-use strahl::trace::{PathTracer, World};
+use strahl::trace::PathTracer;
+use strahl::trace::{ProgressiveSettings, render_progressive};
+use strahl::world::World;
 
 fn cornell(c: &mut Criterion) {
     let scene = builtin::load("cornell")
@@ -22,7 +23,7 @@ fn cornell(c: &mut Criterion) {
     if std::env::var_os("STRAHL_BENCH_FULL").is_some() {
         sizes.push((256, 64));
     }
-    let cancel = AtomicBool::new(false);
+    let cancel = Cancel::new();
     for (size, spp) in sizes {
         let settings = ProgressiveSettings {
             width: size,

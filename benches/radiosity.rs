@@ -4,8 +4,9 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::radiosity::solve::{
     RadiositySystem, ShootingSettings, SystemOptions, solve_progressive,
 };
@@ -14,8 +15,7 @@ use strahl::radiosity::{
     VisibilityOptions, facing, form_factor,
 };
 use strahl::scene::builtin;
-use strahl::trace::World;
-use strahl::trace::render::NoProgress;
+use strahl::world::World;
 
 /// Facing leaf pairs taken at a fixed stride through all pairs.
 const PAIRS: usize = 2000;
@@ -122,7 +122,7 @@ fn solve_cornell(c: &mut Criterion) {
     group.bench_function(name, |b| {
         b.iter(|| {
             let system = RadiositySystem::new(&world, options).expect("mesh");
-            let cancel = AtomicBool::new(false);
+            let cancel = Cancel::new();
             let solution =
                 solve_progressive(&system, &settings, &NoProgress, &cancel).expect("solve");
             assert!(solution.converged);

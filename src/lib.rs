@@ -4,15 +4,33 @@
 //! Conventions (shared by every module): right-handed coordinates, y up unless a scene says
 //! otherwise; lengths in scene units (metres for photometric reports); colours are linear
 //! Rec.709 RGB; emission is radiance L in W·sr⁻¹·m⁻²; reflectance ρ ∈ [0, 1] per channel.
+//!
+//! The modules form layers; each imports only the layers below it (`docs/ARCHITECTURE.md`
+//! has the map):
+//!
+//! 1. [`color`], [`geometry`], [`lanes`], [`sampling`], [`progress`], [`choice`] — foundations;
+//! 2. [`scene`] — the scene model, its files and the built-in scenes;
+//! 3. [`accel`] — acceleration structures over any primitive set;
+//! 4. [`world`] — the scene compiled for ray queries;
+//! 5. [`measure`] — what the algorithms fill: films, surface power, lit meshes;
+//! 6. [`trace`], [`light_model`], [`radiosity`] — the algorithms, which never import each
+//!    other;
+//! 7. [`image`], then [`report`] — files made from what was measured.
 
 #![warn(missing_docs)]
 
 pub mod accel;
-pub mod cli;
+pub mod choice;
 pub mod color;
 pub mod geometry;
 pub mod image;
+pub mod lanes;
+pub mod light_model;
+pub mod measure;
+pub mod progress;
 pub mod radiosity;
 pub mod report;
+pub mod sampling;
 pub mod scene;
 pub mod trace;
+pub mod world;

@@ -1,3 +1,7 @@
+//! The `strahl` command line, a thin front end over the `strahl` library.
+
+mod cli;
+
 fn main() -> std::process::ExitCode {
-    strahl::cli::main()
+    cli::main()
 }

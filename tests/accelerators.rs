@@ -2,10 +2,10 @@
 
 use strahl::accel::{AccelKind, Accelerator};
 use strahl::geometry::Ray;
+use strahl::sampling::warp::uniform_sphere;
+use strahl::sampling::{Sampler, SequenceKind};
 use strahl::scene::builtin;
-use strahl::trace::SceneGeometry;
-use strahl::trace::sampler::{Sampler, SequenceKind};
-use strahl::trace::sampling::uniform_sphere;
+use strahl::world::SceneGeometry;
 
 fn random_rays(geometry: &SceneGeometry, count: usize, seed: u64) -> Vec<Ray> {
     let b = geometry.bounds();

@@ -3,14 +3,16 @@
 
 use glam::Vec3;
 use std::f32::consts::PI;
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb;
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::scene::{Camera, Light, LightKind, Material, Scene, Shape};
-use strahl::trace::antialias::AntialiasMode;
-use strahl::trace::direct::ShadowMode;
-use strahl::trace::render::{NoProgress, RenderSettings, render};
-use strahl::trace::{StandardRayTracer, World};
+use strahl::trace::AntialiasMode;
+use strahl::trace::ShadowMode;
+use strahl::trace::StandardRayTracer;
+use strahl::trace::{RenderSettings, render};
+use strahl::world::World;
 
 const RHO: f32 = 0.5;
 
@@ -52,14 +54,7 @@ fn centre_radiance(scene: Scene, light_samples: u32, shadows: ShadowMode) -> Rgb
         antialias: AntialiasMode::None,
         ..Default::default()
     };
-    let out = render(
-        &world,
-        &tracer,
-        &settings,
-        &NoProgress,
-        &AtomicBool::new(false),
-    )
-    .unwrap();
+    let out = render(&world, &tracer, &settings, &NoProgress, &Cancel::new()).unwrap();
     out.film.get(0, 0)
 }
 

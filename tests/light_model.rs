@@ -7,14 +7,14 @@
 use glam::Vec3;
 use std::f64::consts::PI;
 use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
-use strahl::color::Rgb;
+use strahl::color::{Rgb, Rgb64};
+use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::report::{ObjectReport, Report};
 use strahl::scene::{Light, LightKind, Material, PolygonMesh, Scene, Shape};
-use strahl::trace::World;
-use strahl::trace::lighttracer::{LightTraceSettings, trace_light};
-use strahl::trace::render::NoProgress;
+use strahl::world::World;
 
 /// Traces `photons` photons with `seed` and returns the report.
 fn solve(scene: Scene, photons: u64, seed: u64) -> Report {
@@ -25,17 +25,17 @@ fn solve(scene: Scene, photons: u64, seed: u64) -> Report {
         seed,
         ..LightTraceSettings::default()
     };
-    let out = trace_light(&world, &settings, &NoProgress, &AtomicBool::new(false)).unwrap();
+    let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
     assert!(out.complete());
-    out.report(&name)
+    Report::new(&name, LightTraceOutput::SOLVER, &out.power, out.stats())
 }
 
 fn object<'a>(r: &'a Report, name: &str) -> &'a ObjectReport {
     r.objects.iter().find(|o| o.name == name).unwrap()
 }
 
-fn sum(c: [f64; 3]) -> f64 {
-    c.iter().sum()
+fn sum(c: Rgb64) -> f64 {
+    c.to_array().iter().sum()
 }
 
 /// A parallelogram from its corner and two edges (front side `u × v`).
@@ -314,7 +314,7 @@ fn patch_under_area_light_matches_the_form_factor() {
         let p = expected / phi;
         let sigma = expected * ((1.0 - p) / (n as f64 * p)).sqrt();
         let got = object(&report, &format!("patch{k}")).incident_power;
-        for g in got {
+        for g in got.to_array() {
             assert!(
                 (g - expected).abs() < 4.0 * sigma,
                 "patch{k}: {g} vs {expected} ± {sigma}"
@@ -396,7 +396,7 @@ fn spot_light_has_its_axis_intensity_and_no_light_outside_the_cone() {
         (got - expected).abs() < 4.0 * sigma,
         "{got} vs {expected} ± {sigma}"
     );
-    assert_eq!(object(&report, "outside").incident_power, [0.0; 3]);
+    assert_eq!(object(&report, "outside").incident_power, Rgb64::BLACK);
 }
 
 #[test]
@@ -487,12 +487,12 @@ fn ten_thousand_leaves_conserve_energy_and_almost_all_receive_light() {
 }
 
 /// Asks the run to stop at its first progress report.
-struct StopAtFirstBatch<'a>(&'a AtomicBool);
+struct StopAtFirstBatch<'a>(&'a Cancel);
 
-impl strahl::trace::render::ProgressListener for StopAtFirstBatch<'_> {
+impl strahl::progress::ProgressListener for StopAtFirstBatch<'_> {
     fn start(&self, _total: u64) {}
     fn advance(&self, _units: u64) {
-        self.0.store(true, std::sync::atomic::Ordering::SeqCst);
+        self.0.request();
     }
     fn finish(&self) {}
 }
@@ -505,12 +505,12 @@ fn cancelled_run_keeps_its_photons_scaled_to_the_full_count() {
         seed: 1,
         ..LightTraceSettings::default()
     };
-    let cancel = AtomicBool::new(false);
+    let cancel = Cancel::new();
     let out = trace_light(&world, &settings, &StopAtFirstBatch(&cancel), &cancel).unwrap();
     assert!(!out.complete());
     // One batch of N/200 photons.
     assert_eq!(out.photons_traced, 5_000);
-    let report = out.report("furnace");
+    let report = Report::new("furnace", LightTraceOutput::SOLVER, &out.power, out.stats());
     assert_eq!(report.stats.extra["complete"], false);
     // The radical-inverse source order keeps the prefix stratified: the van der Corput
     // star discrepancy bound n·D* ≤ log₂(n)/3 + 1 ≈ 5.1 at n = 5000 puts each face's count

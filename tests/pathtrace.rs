@@ -5,15 +5,16 @@
 
 use glam::Vec3;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Duration;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb;
+use strahl::progress::{Cancel, NoProgress, ProgressListener};
+use strahl::sampling::{Sampler, SequenceKind};
 use strahl::scene::{Camera, Light, LightKind, Material, Scene, Shape, builtin};
-use strahl::trace::progressive::{ProgressiveOutput, ProgressiveSettings, render_progressive};
-use strahl::trace::render::{NoProgress, ProgressListener};
-use strahl::trace::sampler::{Sampler, SequenceKind};
-use strahl::trace::{Integrator, PathTracer, StandardRayTracer, World};
+use strahl::trace::{Integrator, PathTracer, StandardRayTracer};
+use strahl::trace::{ProgressiveOutput, ProgressiveSettings, render_progressive};
+use strahl::world::World;
 
 /// Per-pixel luminance mean and squared standard error of that mean.
 struct PixelStats {
@@ -225,14 +226,7 @@ fn path_tracer_agrees_with_standard_tracer_on_direct_light() {
 }
 
 fn render(world: &World, tracer: &PathTracer, settings: &ProgressiveSettings) -> ProgressiveOutput {
-    render_progressive(
-        world,
-        tracer,
-        settings,
-        &NoProgress,
-        &AtomicBool::new(false),
-    )
-    .unwrap()
+    render_progressive(world, tracer, settings, &NoProgress, &Cancel::new()).unwrap()
 }
 
 /// The neon scene has no light source but its emissive sign: the room must be lit by it.
@@ -448,14 +442,14 @@ fn time_limit_stops_early_with_a_valid_partial_image() {
 struct CancelAfter<'a> {
     done: AtomicU64,
     after: u64,
-    cancel: &'a AtomicBool,
+    cancel: &'a Cancel,
 }
 
 impl ProgressListener for CancelAfter<'_> {
     fn start(&self, _total: u64) {}
     fn advance(&self, units: u64) {
         if self.done.fetch_add(units, Ordering::SeqCst) + units >= self.after {
-            self.cancel.store(true, Ordering::SeqCst);
+            self.cancel.request();
         }
     }
     fn finish(&self) {}
@@ -473,7 +467,7 @@ fn cancelling_keeps_the_finished_passes() {
         seed: 5,
         time_limit: None,
     };
-    let cancel = AtomicBool::new(false);
+    let cancel = Cancel::new();
     // Cancelled as the first pass (1 path per pixel) reports its last pixels.
     let listener = CancelAfter {
         done: AtomicU64::new(0),

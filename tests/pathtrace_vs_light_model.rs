@@ -10,18 +10,20 @@
 
 use std::collections::HashMap;
 use std::f64::consts::PI;
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
+use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::radiosity::mesh::{MeshOptions, MeshSize};
 use strahl::radiosity::solve::{
-    DisplaySettings, MatrixSettings, RadiositySystem, Shading, SystemOptions, radiosity_report,
-    render_solution, solve_matrix,
+    DisplaySettings, MatrixSettings, RadiositySystem, Shading, SystemOptions, render_solution,
+    solve_matrix,
 };
+use strahl::report::Report;
 use strahl::scene::builtin;
-use strahl::trace::lighttracer::{LightTraceSettings, trace_light};
-use strahl::trace::progressive::{ProgressiveSettings, render_progressive};
-use strahl::trace::render::NoProgress;
-use strahl::trace::{PathTracer, World};
+use strahl::trace::PathTracer;
+use strahl::trace::{ProgressiveSettings, render_progressive};
+use strahl::world::World;
 
 #[test]
 fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
@@ -38,15 +40,9 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
         time_limit: None,
     };
     let tracer = PathTracer::new(&world, u32::MAX, 1);
-    let image = render_progressive(
-        &world,
-        &tracer,
-        &settings,
-        &NoProgress,
-        &AtomicBool::new(false),
-    )
-    .unwrap()
-    .film;
+    let image = render_progressive(&world, &tracer, &settings, &NoProgress, &Cancel::new())
+        .unwrap()
+        .film;
     // Which object every pixel corner sees; pixels whose four corners see the same object lie
     // inside it. Each such pixel stands for the surface area t²·Ω/|cos θ| it covers, with the
     // pixel's solid angle Ω ∝ cos³α (α off the optical axis).
@@ -66,9 +62,14 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
         ..SystemOptions::default()
     };
     let system = RadiositySystem::new(&world, options).unwrap();
-    let cancel = AtomicBool::new(false);
+    let cancel = Cancel::new();
     let solution = solve_matrix(&system, &MatrixSettings::default(), &NoProgress, &cancel).unwrap();
-    let radiosity_report = radiosity_report(&system, &solution, "cornell");
+    let radiosity_report = Report::new(
+        "cornell",
+        solution.solver.name(),
+        &solution.surface_power(&system),
+        solution.stats(&system),
+    );
     let display = DisplaySettings {
         width: w,
         height: h,
@@ -121,9 +122,8 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
         seed: 9,
         max_bounces: 1000,
     };
-    let report = trace_light(&world, &photons, &NoProgress, &AtomicBool::new(false))
-        .unwrap()
-        .report("cornell");
+    let out = trace_light(&world, &photons, &NoProgress, &Cancel::new()).unwrap();
+    let report = Report::new("cornell", LightTraceOutput::SOLVER, &out.power, out.stats());
     // Objects the camera sees whole (the floor and the back wall are partly hidden by the
     // blocks, whose radiosity differs from the area they hide).
     for name in ["ceiling", "red_wall", "green_wall"] {

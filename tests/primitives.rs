@@ -6,7 +6,7 @@ use glam::{Mat4, Vec2, Vec3};
 use strahl::accel::AccelKind;
 use strahl::geometry::{Ray, Transform, spawn_ray};
 use strahl::scene::{Material, Object, Scene, Shape, Texture};
-use strahl::trace::{SurfaceHit, World};
+use strahl::world::{SurfaceHit, World};
 
 fn world_of(objects: Vec<(Shape, Transform)>) -> World {
     let mut scene = Scene::empty("test");
@@ -271,9 +271,9 @@ fn rays_from_nested_spheres_find_the_right_surface() {
         (outer, Transform::IDENTITY),
         (inner, Transform::IDENTITY),
     ]);
-    let mut sampler = strahl::trace::sampler::Sampler::new(Default::default(), 3, 0, 0);
+    let mut sampler = strahl::sampling::Sampler::new(Default::default(), 3, 0, 0);
     for _ in 0..2000 {
-        let d = strahl::trace::sampling::uniform_sphere(sampler.next_2d());
+        let d = strahl::sampling::warp::uniform_sphere(sampler.next_2d());
         let p = d; // on the inner sphere
         // Outward from the inner sphere: the outer sphere, from inside, at distance 1.
         let h = w.intersect(&spawn_ray(p, d, d)).unwrap();

@@ -2,20 +2,19 @@
 //! Jacobi against Gauss-Seidel, light links, the report, display and export.
 
 use glam::Vec3;
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb;
 use strahl::image::{ToneMap, ToneMapping};
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::radiosity::solve::{
     DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
-    Solution, SystemOptions, export_solution, radiosity_report, render_solution, solve_matrix,
-    solve_progressive,
+    Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
 };
 use strahl::radiosity::{MeshOptions, MeshSize};
-use strahl::report::luminance;
+use strahl::report::{Report, export_lit_mesh};
 use strahl::scene::{Light, LightKind, Material, Scene, Shape, builtin};
-use strahl::trace::World;
-use strahl::trace::render::NoProgress;
+use strahl::world::World;
 
 const RHO: f32 = 0.5;
 const L: f32 = 2.0;
@@ -59,7 +58,7 @@ fn matrix(system: &RadiositySystem, iteration: Iteration, tolerance: f64) -> Sol
         tolerance,
         max_iterations: 10_000,
     };
-    solve_matrix(system, &settings, &NoProgress, &AtomicBool::new(false)).unwrap()
+    solve_matrix(system, &settings, &NoProgress, &Cancel::new()).unwrap()
 }
 
 fn progressive(system: &RadiositySystem, overshoot: bool, tolerance: f64) -> Solution {
@@ -68,14 +67,14 @@ fn progressive(system: &RadiositySystem, overshoot: bool, tolerance: f64) -> Sol
         max_shots: 1_000_000,
         overshoot,
     };
-    solve_progressive(system, &settings, &NoProgress, &AtomicBool::new(false)).unwrap()
+    solve_progressive(system, &settings, &NoProgress, &Cancel::new()).unwrap()
 }
 
 fn assert_furnace(solution: &Solution) {
     let expected = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
     assert!(solution.converged, "{}", solution.solver);
     for b in &solution.radiosity {
-        for c in b {
+        for c in b.to_array() {
             assert!(
                 ((c - expected) / expected).abs() < 1e-4,
                 "{}: {c} vs {expected}",
@@ -101,7 +100,12 @@ fn furnace_report_balances_emission_and_absorption() {
     let world = furnace();
     let system = RadiositySystem::new(&world, options(1)).unwrap();
     let solution = matrix(&system, Iteration::GaussSeidel, 1e-9);
-    let report = radiosity_report(&system, &solution, "furnace");
+    let report = Report::new(
+        "furnace",
+        solution.solver.name(),
+        &solution.surface_power(&system),
+        solution.stats(&system),
+    );
     assert_eq!(report.objects.len(), 6);
     // Each face: area 1, H = B (closed box), incident = B, absorbed = (1 − ρ)·B = E.
     let b = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
@@ -111,7 +115,7 @@ fn furnace_report_balances_emission_and_absorption() {
         assert!((o.radiosity.unwrap()[0] - b).abs() / b < 1e-4);
     }
     let t = &report.totals;
-    let (emitted, absorbed) = (luminance(t.emitted_power), luminance(t.absorbed_power));
+    let (emitted, absorbed) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
     assert!((emitted - 6.0 * std::f64::consts::PI * L as f64).abs() < 1e-6);
     assert!(
         (absorbed - emitted).abs() / emitted < 1e-4,
@@ -131,18 +135,33 @@ fn cornell_matrix_and_progressive_agree_per_object() {
     let system = RadiositySystem::new(&world, options(2)).unwrap();
     let m = matrix(&system, Iteration::GaussSeidel, 1e-6);
     let p = progressive(&system, false, 1e-6);
-    let rm = radiosity_report(&system, &m, "cornell");
-    let rp = radiosity_report(&system, &p, "cornell");
+    let rm = Report::new(
+        "cornell",
+        m.solver.name(),
+        &m.surface_power(&system),
+        m.stats(&system),
+    );
+    let rp = Report::new(
+        "cornell",
+        p.solver.name(),
+        &p.surface_power(&system),
+        p.stats(&system),
+    );
     for (a, b) in rm.objects.iter().zip(&rp.objects) {
-        let (x, y) = (luminance(a.incident_power), luminance(b.incident_power));
+        let (x, y) = (a.incident_power.luminance(), b.incident_power.luminance());
         assert!(x > 0.0, "{} receives light", a.name);
         assert!((x - y).abs() / x < 0.005, "{}: {x} vs {y}", a.name);
     }
     // Overshooting converges to the same solution.
     let o = progressive(&system, true, 1e-6);
-    let ro = radiosity_report(&system, &o, "cornell");
+    let ro = Report::new(
+        "cornell",
+        o.solver.name(),
+        &o.surface_power(&system),
+        o.stats(&system),
+    );
     for (a, b) in rm.objects.iter().zip(&ro.objects) {
-        let (x, y) = (luminance(a.incident_power), luminance(b.incident_power));
+        let (x, y) = (a.incident_power.luminance(), b.incident_power.luminance());
         assert!((x - y).abs() / x < 0.005, "{}: {x} vs {y}", a.name);
     }
 }
@@ -200,7 +219,12 @@ fn point_light_link_gives_rho_i_cos_over_d_squared() {
         progressive(&system, false, 1e-9),
     ] {
         assert!((solution.radiosity[0][0] - 0.5 * h).abs() < 1e-6);
-        let report = radiosity_report(&system, &solution, "lamp");
+        let report = Report::new(
+            "lamp",
+            solution.solver.name(),
+            &solution.surface_power(&system),
+            solution.stats(&system),
+        );
         let floor = &report.objects[0];
         assert!((floor.irradiance.unwrap()[2] - h).abs() < 1e-6);
         assert!((floor.absorbed_power[1] - 0.5 * h).abs() < 1e-6);
@@ -229,7 +253,7 @@ fn display_renders_light_and_flat_and_smooth_have_equal_means() {
             camera,
             &settings,
             &NoProgress,
-            &AtomicBool::new(false),
+            &Cancel::new(),
         )
         .unwrap()
     };
@@ -266,9 +290,9 @@ fn exports_parse_as_gltf_and_ply() {
         exposure_ev: 0.0,
     };
     let glb = dir.join("furnace.glb");
-    export_solution(&system, &solution, &tone, &glb).unwrap();
+    export_lit_mesh(&solution.lit_mesh(&system), &tone, &glb).unwrap();
     let gltf_path = dir.join("furnace.gltf");
-    export_solution(&system, &solution, &tone, &gltf_path).unwrap();
+    export_lit_mesh(&solution.lit_mesh(&system), &tone, &gltf_path).unwrap();
     for path in [&glb, &gltf_path] {
         let (doc, buffers, _) = gltf::import(path).unwrap();
         let primitive = doc.meshes().next().unwrap().primitives().next().unwrap();
@@ -284,7 +308,7 @@ fn exports_parse_as_gltf_and_ply() {
         );
     }
     let ply = dir.join("furnace.ply");
-    export_solution(&system, &solution, &tone, &ply).unwrap();
+    export_lit_mesh(&solution.lit_mesh(&system), &tone, &ply).unwrap();
     let text = std::fs::read_to_string(&ply).unwrap();
     let (header, body) = text.split_once("end_header\n").unwrap();
     assert!(header.starts_with("ply\nformat ascii 1.0\n"));

@@ -5,17 +5,17 @@
 //! every subdivision level, while the light model's noise at 4·10⁶ photons is about 0.1 %.
 
 use std::collections::HashMap;
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
+use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::radiosity::mesh::{MeshOptions, MeshSize};
 use strahl::radiosity::solve::{
-    RadiositySystem, ShootingSettings, SystemOptions, radiosity_report, solve_progressive,
+    RadiositySystem, ShootingSettings, SystemOptions, solve_progressive,
 };
 use strahl::report::Report;
 use strahl::scene::builtin;
-use strahl::trace::World;
-use strahl::trace::lighttracer::{LightTraceSettings, trace_light};
-use strahl::trace::render::NoProgress;
+use strahl::world::World;
 
 fn cornell() -> World {
     World::new(builtin::load("cornell").unwrap().unwrap(), AccelKind::Bvh).unwrap()
@@ -43,9 +43,13 @@ fn radiosity_at(world: &World, levels: u32) -> HashMap<String, f64> {
         tolerance: 1e-5,
         ..Default::default()
     };
-    let solution =
-        solve_progressive(&system, &settings, &NoProgress, &AtomicBool::new(false)).unwrap();
-    incident(&radiosity_report(&system, &solution, "cornell"))
+    let solution = solve_progressive(&system, &settings, &NoProgress, &Cancel::new()).unwrap();
+    incident(&Report::new(
+        "cornell",
+        solution.solver.name(),
+        &solution.surface_power(&system),
+        solution.stats(&system),
+    ))
 }
 
 #[test]
@@ -56,11 +60,13 @@ fn radiosity_converges_to_the_light_model_as_the_mesh_is_refined() {
         seed: 5,
         max_bounces: 1000,
     };
-    let reference = incident(
-        &trace_light(&world, &settings, &NoProgress, &AtomicBool::new(false))
-            .unwrap()
-            .report("cornell"),
-    );
+    let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
+    let reference = incident(&Report::new(
+        "cornell",
+        LightTraceOutput::SOLVER,
+        &out.power,
+        out.stats(),
+    ));
     let worst: Vec<f64> = (2..=4)
         .map(|levels| {
             let r = radiosity_at(&world, levels);

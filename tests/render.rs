@@ -2,13 +2,16 @@
 //! images for every accelerator and every thread count, and adaptive antialiasing that never
 //! traces a grid point twice.
 
-use std::sync::atomic::AtomicBool;
 use strahl::accel::AccelKind;
-use strahl::image::{self, Film};
+use strahl::image;
+use strahl::measure::Film;
+use strahl::progress::Cancel;
+use strahl::progress::NoProgress;
 use strahl::scene::builtin;
-use strahl::trace::antialias::AntialiasMode;
-use strahl::trace::render::{NoProgress, RenderOutput, RenderSettings, render};
-use strahl::trace::{StandardRayTracer, World};
+use strahl::trace::AntialiasMode;
+use strahl::trace::StandardRayTracer;
+use strahl::trace::{RenderOutput, RenderSettings, render};
+use strahl::world::World;
 
 fn world(spec: &str, accel: AccelKind) -> World {
     World::new(builtin::load(spec).unwrap().unwrap(), accel).unwrap()
@@ -39,16 +42,7 @@ fn render_with_tracer(
         .num_threads(threads)
         .build()
         .unwrap();
-    pool.install(|| {
-        render(
-            world,
-            tracer,
-            settings,
-            &NoProgress,
-            &AtomicBool::new(false),
-        )
-        .unwrap()
-    })
+    pool.install(|| render(world, tracer, settings, &NoProgress, &Cancel::new()).unwrap())
 }
 
 /// Regenerate with `STRAHL_WRITE_REFERENCE=1 cargo test --release --test render` after a

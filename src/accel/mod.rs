@@ -92,8 +92,7 @@ pub trait Accelerator<P: PrimitiveSet>: Send + Sync {
 }
 
 /// Which accelerator to build.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AccelKind {
     /// SAH bounding-volume hierarchy.
     #[default]
@@ -103,6 +102,12 @@ pub enum AccelKind {
     /// Test every primitive.
     Naive,
 }
+
+crate::choice::named_values!(AccelKind {
+    AccelKind::Bvh = "bvh", "SAH bounding-volume hierarchy";
+    AccelKind::Octree = "octree", "The seed's octree with Glassner cell walking";
+    AccelKind::Naive = "naive", "Test every primitive";
+});
 
 impl AccelKind {
     /// Builds this accelerator over `prims` with default options.

@@ -9,17 +9,19 @@
 //! - `random`: 2²⁰ rays with origins uniform in the scene bounds and directions uniform on
 //!   the sphere, from a fixed seed.
 
+use super::choice::choice;
 use super::{source, with_threads};
-use crate::accel::AccelKind;
-use crate::geometry::Ray;
-use crate::trace::World;
-use crate::trace::sampler::{Sampler, SequenceKind};
-use crate::trace::sampling::uniform_sphere;
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Instant;
+use strahl::accel::AccelKind;
+use strahl::choice::Choice;
+use strahl::geometry::Ray;
+use strahl::sampling::warp::uniform_sphere;
+use strahl::sampling::{Sampler, SequenceKind};
+use strahl::world::World;
 
 /// Width of the primary-ray image.
 pub const PRIMARY_WIDTH: u32 = 1024;
@@ -47,7 +49,7 @@ pub struct BenchArgs {
     #[arg(long, value_enum, default_value_t = RaySet::Primary)]
     pub rays: RaySet,
     /// Accelerator.
-    #[arg(long, value_enum, default_value_t = AccelKind::Bvh)]
+    #[arg(long, value_parser = choice::<AccelKind>(), default_value_t = AccelKind::Bvh)]
     pub accel: AccelKind,
     /// Worker threads.
     #[arg(long, default_value_t = 1)]
@@ -67,7 +69,7 @@ struct QueryResult {
 #[derive(Serialize)]
 struct BenchResult<'a> {
     scene: &'a str,
-    accel: AccelKind,
+    accel: &'static str,
     threads: usize,
     rays: RaySet,
     ray_count: usize,
@@ -144,23 +146,20 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
     let rays = ray_set(&world, args.rays)?;
     let (closest, any) = with_threads(args.threads, || {
-        let g = &world.geometry;
         let closest = time_queries(&rays, args.repeat, |r| {
-            world.accel.closest_hit(g, r, f32::INFINITY).is_some()
+            world.closest_hit(r, f32::INFINITY).is_some()
         });
-        let any = time_queries(&rays, args.repeat, |r| {
-            world.accel.any_hit(g, r, f32::INFINITY)
-        });
+        let any = time_queries(&rays, args.repeat, |r| world.occluded(r, f32::INFINITY));
         (closest, any)
     })?;
     let result = BenchResult {
         scene: &args.scene,
-        accel: args.accel,
+        accel: args.accel.name(),
         threads: args.threads,
         rays: args.rays,
         ray_count: rays.len(),
-        primitives: world.accel.stats().primitives,
-        build_seconds: world.build_seconds,
+        primitives: world.accel_stats().primitives,
+        build_seconds: world.build_seconds(),
         closest_hit: closest,
         any_hit: any,
     };

@@ -1,12 +1,13 @@
 //! `strahl info`: validate a scene and print its statistics.
 
+use super::choice::choice;
 use super::source;
-use crate::accel::AccelKind;
-use crate::scene::LightKind;
-use crate::trace::World;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::collections::BTreeMap;
+use strahl::accel::AccelKind;
+use strahl::scene::LightKind;
+use strahl::world::World;
 
 /// Arguments of `strahl info`.
 #[derive(Debug, Args)]
@@ -14,7 +15,7 @@ pub struct InfoArgs {
     /// Scene: a built-in name, a .toml scene file or a mesh file.
     pub scene: String,
     /// Accelerator whose statistics to show.
-    #[arg(long, value_enum, default_value_t = AccelKind::Bvh)]
+    #[arg(long, value_parser = choice::<AccelKind>(), default_value_t = AccelKind::Bvh)]
     pub accel: AccelKind,
 }
 
@@ -78,10 +79,15 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         b.min.to_array(),
         b.max.to_array()
     );
-    let s = world.accel.stats();
+    let s = world.accel_stats();
     println!(
         "{:<11} built in {:.3} s: {} nodes, {} leaves, depth {}, {} primitive references",
-        s.kind, world.build_seconds, s.nodes, s.leaves, s.max_depth, s.references
+        s.kind,
+        world.build_seconds(),
+        s.nodes,
+        s.leaves,
+        s.max_depth,
+        s.references
     );
     Ok(())
 }

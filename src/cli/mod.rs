@@ -1,13 +1,15 @@
-//! The `strahl` command line: `render`, `solve`, `scenes`, `info` and `bench`.
+//! The `strahl` command line: `render`, `solve`, `scenes`, `info` and `bench`. The only part
+//! of strahl that knows the argument parser; everything it runs is in the library.
 
 mod bench;
+mod choice;
 mod info;
 mod progress;
 mod radiosity;
 mod render;
-mod render_radiosity;
 mod solve;
 mod source;
+mod tone;
 
 use clap::{Parser, Subcommand};
 
@@ -42,7 +44,7 @@ pub fn main() -> std::process::ExitCode {
         Command::Render(args) => render::run(&args),
         Command::Solve(args) => solve::run(&args),
         Command::Scenes => {
-            for (name, description) in crate::scene::builtin::names() {
+            for (name, description) in strahl::scene::builtin::names() {
                 println!("{name:18} {description}");
             }
             Ok(())

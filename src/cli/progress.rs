@@ -1,9 +1,8 @@
 //! Progress bars on the terminal and Ctrl-C handling.
 
-use crate::trace::render::ProgressListener;
 use indicatif::{ProgressBar, ProgressStyle};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
+use strahl::progress::{Cancel, ProgressListener};
 
 /// A progress bar on standard error (hidden with `--quiet`).
 pub struct Bar {
@@ -43,23 +42,21 @@ impl ProgressListener for Bar {
     }
 }
 
-/// The flag set by Ctrl-C. The first Ctrl-C asks running work to stop and keep what it has;
-/// a second one ends the process at once.
-pub fn cancel_flag() -> Arc<AtomicBool> {
-    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
-    FLAG.get_or_init(|| {
-        let flag = Arc::new(AtomicBool::new(false));
-        let handler_flag = flag.clone();
-        let installed = ctrlc::set_handler(move || {
-            if handler_flag.swap(true, Ordering::SeqCst) {
+/// The stop request set by Ctrl-C. The first Ctrl-C asks running work to stop and keep what
+/// it has; a second one ends the process at once.
+pub fn cancel_flag() -> &'static Cancel {
+    static CANCEL: Cancel = Cancel::new();
+    static HANDLER: OnceLock<()> = OnceLock::new();
+    HANDLER.get_or_init(|| {
+        let installed = ctrlc::set_handler(|| {
+            if CANCEL.request() {
                 std::process::exit(130);
             }
-            eprintln!("\ninterrupted: finishing the current tiles and keeping what is done");
+            eprintln!("\ninterrupted: finishing the current work unit and keeping what is done");
         });
         if let Err(e) = installed {
             eprintln!("warning: Ctrl-C will not stop cleanly: {e}");
         }
-        flag
-    })
-    .clone()
+    });
+    &CANCEL
 }

@@ -1,27 +1,32 @@
-//! Radiosity options shared by `strahl solve --solver matrix|progressive` and
-//! `strahl render --method radiosity`, and the solve they drive.
+//! The solvers a user picks (`--solver`), the radiosity options shared by `strahl solve` and
+//! `strahl render --method radiosity`, and the radiosity solve and display they drive.
 
+use super::choice::choice;
 use super::{progress, with_threads};
-use crate::image::ToneMapping;
-use crate::radiosity::solve::{
-    Iteration, MatrixSettings, RadiositySystem, ShootingSettings, Solution, SystemOptions,
-    export_solution, solve_matrix, solve_progressive,
-};
-use crate::radiosity::{
-    FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,
-};
-use crate::trace::World;
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
+use strahl::image::ToneMapping;
+use strahl::measure::Film;
+use strahl::progress::Cancel;
+use strahl::radiosity::solve::{
+    DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
+    Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
+};
+use strahl::radiosity::{
+    FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,
+};
+use strahl::report::export_lit_mesh;
+use strahl::world::World;
 
-/// The radiosity solvers.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
-pub enum RadiositySolver {
-    /// Full form-factor matrix, Jacobi or Gauss-Seidel sweeps.
+/// The light solvers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Solver {
+    /// The light model: photons traced from all lights and the sky, Monte Carlo.
+    LightTrace,
+    /// Radiosity: full form-factor matrix, Jacobi or Gauss-Seidel.
     Matrix,
-    /// Progressive refinement: shoot the patch with the most unshot power.
-    #[default]
+    /// Radiosity: progressive refinement (shoot the patch with the most unshot power).
     Progressive,
 }
 
@@ -37,7 +42,7 @@ pub struct RadiosityArgs {
     #[arg(long, default_value_t = 16)]
     pub segments: u32,
     /// Form-factor approximation.
-    #[arg(long, value_enum, default_value_t = FormFactorMethod::Analytic)]
+    #[arg(long, value_parser = choice::<FormFactorMethod>(), default_value_t = FormFactorMethod::Analytic)]
     pub form_factor: FormFactorMethod,
     /// Receiver points per axis for the analytic form factor (1 = the centroid).
     #[arg(long, default_value_t = 1)]
@@ -52,7 +57,7 @@ pub struct RadiosityArgs {
     #[arg(long, default_value_t = 2)]
     pub link_samples: u32,
     /// matrix: the iteration scheme.
-    #[arg(long, value_enum, default_value_t = Iteration::GaussSeidel)]
+    #[arg(long, value_parser = choice::<Iteration>(), default_value_t = Iteration::GaussSeidel)]
     pub iteration: Iteration,
     /// Stop when the residual (matrix) or the unshot power (progressive) is at most this
     /// fraction of the emitted power.
@@ -70,6 +75,24 @@ pub struct RadiosityArgs {
     /// Write the solution as a mesh with radiosity vertex colours (.glb, .gltf or .ply).
     #[arg(long)]
     pub export: Option<PathBuf>,
+}
+
+/// Options of the radiosity display.
+#[derive(Debug, Args)]
+#[command(next_help_heading = "Radiosity display (--method radiosity)")]
+pub struct RadiosityDisplayArgs {
+    /// The radiosity solver: matrix or progressive.
+    #[arg(long, value_enum, default_value_t = Solver::Progressive)]
+    pub solver: Solver,
+    /// Flat patches or radiosity interpolated to the vertices.
+    #[arg(long, value_parser = choice::<Shading>(), default_value_t = Shading::Smooth)]
+    pub shading: Shading,
+    /// Draw the patch edges.
+    #[arg(long)]
+    pub wireframe: bool,
+    /// Solver options.
+    #[command(flatten)]
+    pub solve: RadiosityArgs,
 }
 
 impl RadiosityArgs {
@@ -101,88 +124,148 @@ impl RadiosityArgs {
     }
 }
 
-/// Meshes and solves `world` with `solver` on `threads` threads (0 = one per core), with
-/// progress bars unless `quiet`; Ctrl-C keeps the state reached. Writes `--export` with
-/// `tone_mapping`.
+/// How a radiosity run is carried out.
+pub struct RunOptions<'a> {
+    /// Seed of the visibility jitter.
+    pub seed: u64,
+    /// Worker threads (0 = one per core).
+    pub threads: usize,
+    /// No progress bars or summary.
+    pub quiet: bool,
+    /// Colours of the exported mesh (`--export`).
+    pub tone_mapping: &'a ToneMapping,
+}
+
+/// Meshes and solves `world` with the radiosity `solver`, with progress bars unless quiet;
+/// Ctrl-C keeps the state reached. Writes `--export`.
 pub fn solve<'w>(
     world: &'w World,
     args: &RadiosityArgs,
-    solver: RadiositySolver,
-    seed: u64,
-    threads: usize,
-    quiet: bool,
-    tone_mapping: &ToneMapping,
+    solver: Solver,
+    run: &RunOptions,
 ) -> Result<(RadiositySystem<'w>, Solution)> {
-    let options = args.system_options(seed)?;
+    let options = args.system_options(run.seed)?;
     let cancel = progress::cancel_flag();
-    let (system, solution) = with_threads(threads, || -> Result<_> {
+    let (system, solution) = with_threads(run.threads, || -> Result<_> {
         let system = RadiositySystem::new(world, options)?;
         let solution = match solver {
-            RadiositySolver::Matrix => {
+            Solver::Matrix => {
                 let settings = MatrixSettings {
                     iteration: args.iteration,
                     tolerance: args.tolerance,
                     max_iterations: args.max_iterations,
                 };
-                let bar = progress::Bar::new("form factors", quiet);
-                solve_matrix(&system, &settings, &bar, &cancel)?
+                let bar = progress::Bar::new("form factors", run.quiet);
+                solve_matrix(&system, &settings, &bar, cancel)?
             }
-            RadiositySolver::Progressive => {
+            Solver::Progressive => {
                 let settings = ShootingSettings {
                     tolerance: args.tolerance,
                     max_shots: args.max_shots,
                     overshoot: args.overshoot,
                 };
-                let bar = progress::Bar::new("shooting", quiet);
-                solve_progressive(&system, &settings, &bar, &cancel)?
+                let bar = progress::Bar::new("shooting", run.quiet);
+                solve_progressive(&system, &settings, &bar, cancel)?
             }
+            Solver::LightTrace => bail!("light-trace is not a radiosity solver"),
         };
         Ok((system, solution))
     })??;
-    if !quiet {
-        let last = solution.convergence.last().copied().unwrap_or(0.0);
-        eprintln!(
-            "{}: {} patches, {} form factors, {} iterations, residual {last:.3e}{}; \
-             {:.2} s setup, {:.2} s form factors, {:.2} s iterations",
-            solution.solver,
-            system.len(),
-            system.form_factor_count(),
-            solution.iterations(),
-            if solution.interrupted {
-                " (interrupted)"
-            } else if !solution.converged {
-                " (not converged)"
-            } else {
-                ""
-            },
-            solution.seconds.setup,
-            solution.seconds.form_factors,
-            solution.seconds.iterations,
-        );
-        if system.unlinked_sky_lights > 0 {
-            eprintln!(
-                "warning: {} sky light(s) are not linked into the radiosity mesh",
-                system.unlinked_sky_lights
-            );
-        }
+    if !run.quiet {
+        print_summary(&system, &solution);
     }
     if let Some(path) = &args.export {
-        export_solution(&system, &solution, tone_mapping, path)?;
-        if !quiet {
+        export_lit_mesh(&solution.lit_mesh(&system), run.tone_mapping, path)?;
+        if !run.quiet {
             eprintln!("export: {}", path.display());
         }
     }
     Ok((system, solution))
 }
 
+/// Prints one line on the solve (and a warning for sky lights the mesh does not see).
+fn print_summary(system: &RadiositySystem, solution: &Solution) {
+    let last = solution.convergence.last().copied().unwrap_or(0.0);
+    eprintln!(
+        "{}: {} patches, {} form factors, {} iterations, {} {last:.3e}{}; \
+         {:.2} s setup, {:.2} s form factors, {:.2} s iterations",
+        solution.solver.name(),
+        system.len(),
+        system.form_factor_count(),
+        solution.iterations(),
+        solution.solver.convergence_measure(),
+        if solution.interrupted {
+            " (interrupted)"
+        } else if !solution.converged {
+            " (not converged)"
+        } else {
+            ""
+        },
+        solution.seconds.setup,
+        solution.seconds.form_factors,
+        solution.seconds.iterations,
+    );
+    if system.unlinked_sky_lights > 0 {
+        eprintln!(
+            "warning: {} sky light(s) are not linked into the radiosity mesh",
+            system.unlinked_sky_lights
+        );
+    }
+}
+
 /// Prints the convergence history, one line per iteration, to standard error.
 pub fn print_convergence(solution: &Solution) {
-    let unit = if solution.solver == "progressive" {
-        "unshot"
-    } else {
-        "residual"
-    };
+    let measure = solution.solver.convergence_measure();
     for (k, value) in solution.convergence.iter().enumerate() {
-        eprintln!("iteration {:6}  {unit} {value:.6e}", k + 1);
+        eprintln!("iteration {:6}  {measure} {value:.6e}", k + 1);
     }
+}
+
+/// A radiosity solution shown through the camera.
+pub struct RadiosityImage {
+    /// Linear radiance per pixel.
+    pub film: Film,
+    /// One phrase on the solve.
+    pub summary: String,
+    /// False when Ctrl-C stopped the solve or the display.
+    pub complete: bool,
+}
+
+/// Solves `world` as `display` asks and renders the solution through the scene camera at
+/// `width × height` with `samples_per_pixel` camera rays (rounded up to a square).
+pub fn render(
+    world: &World,
+    display: &RadiosityDisplayArgs,
+    run: &RunOptions,
+    (width, height): (u32, u32),
+    samples_per_pixel: u32,
+    bar: &progress::Bar,
+    cancel: &Cancel,
+) -> Result<RadiosityImage> {
+    if display.solver == Solver::LightTrace {
+        bail!("--method radiosity needs --solver matrix or progressive");
+    }
+    let (system, solution) = solve(world, &display.solve, display.solver, run)?;
+    let settings = DisplaySettings {
+        width,
+        height,
+        shading: display.shading,
+        wireframe: display.wireframe,
+        samples_per_axis: (samples_per_pixel.max(1) as f64).sqrt().ceil() as u32,
+    };
+    let camera = &world.scene.camera;
+    let film = with_threads(run.threads, || {
+        render_solution(&system, &solution, camera, &settings, bar, cancel)
+    })?
+    .context("the camera is degenerate")?;
+    Ok(RadiosityImage {
+        film,
+        summary: format!(
+            "{} patches by {} ({} iterations)",
+            system.len(),
+            solution.solver.name(),
+            solution.iterations()
+        ),
+        complete: !solution.interrupted && !cancel.is_requested(),
+    })
 }

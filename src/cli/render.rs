@@ -1,19 +1,24 @@
 //! `strahl render`: render an image of a scene.
 
+use super::choice::choice;
+use super::radiosity::{self, RadiosityDisplayArgs, RunOptions};
+use super::tone::ToneArgs;
 use super::{progress, source, with_threads};
-use crate::accel::AccelKind;
-use crate::color::Rgb;
-use crate::image::{self, Film, ToneMap, ToneMapping};
-use crate::trace::antialias::AntialiasMode;
-use crate::trace::direct::ShadowMode;
-use crate::trace::progressive::{ProgressiveSettings, render_progressive};
-use crate::trace::render::{RenderSettings, render};
-use crate::trace::sampler::SequenceKind;
-use crate::trace::{PathTracer, StandardRayTracer, World};
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
+use strahl::accel::AccelKind;
+use strahl::color::Rgb;
+use strahl::image::{self, ToneMap, ToneMapping};
+use strahl::measure::Film;
+use strahl::progress::Cancel;
+use strahl::sampling::SequenceKind;
+use strahl::trace::{
+    AntialiasMode, PathTracer, ProgressiveSettings, RenderSettings, ShadowMode, StandardRayTracer,
+    render, render_progressive,
+};
+use strahl::world::World;
 
 /// Rendering methods.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -63,7 +68,7 @@ pub struct RenderArgs {
     #[arg(long, default_value_t = 16)]
     pub light_samples: u32,
     /// raytrace: antialiasing method (pathtrace always jitters its samples over the pixel).
-    #[arg(long, value_enum, default_value_t = AntialiasMode::Stochastic)]
+    #[arg(long, value_parser = choice::<AntialiasMode>(), default_value_t = AntialiasMode::Stochastic)]
     pub aa: AntialiasMode,
     /// Colour difference that makes adaptive antialiasing subdivide.
     #[arg(long, default_value_t = 0.05)]
@@ -72,17 +77,14 @@ pub struct RenderArgs {
     #[arg(long)]
     pub aa_map: Option<PathBuf>,
     /// Acceleration structure.
-    #[arg(long, value_enum, default_value_t = AccelKind::Bvh)]
+    #[arg(long, value_parser = choice::<AccelKind>(), default_value_t = AccelKind::Bvh)]
     pub accel: AccelKind,
     /// Shadows from all objects, or only self-shadowing by facing.
-    #[arg(long, value_enum, default_value_t = ShadowMode::On)]
+    #[arg(long, value_parser = choice::<ShadowMode>(), default_value_t = ShadowMode::On)]
     pub shadows: ShadowMode,
-    /// Tone mapping for 8-bit output.
-    #[arg(long, value_enum, default_value_t = ToneMap::Auto)]
-    pub tonemap: ToneMap,
-    /// Exposure in stops applied before tone mapping.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    pub exposure: f32,
+    /// Tone mapping.
+    #[command(flatten)]
+    pub tone: ToneArgs,
     /// Worker threads (0 = one per core).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
@@ -94,7 +96,7 @@ pub struct RenderArgs {
     pub quiet: bool,
     /// Radiosity options.
     #[command(flatten)]
-    pub radiosity: super::render_radiosity::RadiosityDisplayArgs,
+    pub radiosity: RadiosityDisplayArgs,
 }
 
 /// Runs `strahl render`.
@@ -128,11 +130,27 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let cancel = progress::cancel_flag();
     let bar = progress::Bar::new("rendering", args.quiet);
     let start = Instant::now();
+    let tone_mapping = args.tone.mapping();
     let output = match args.method {
-        Method::Raytrace => render_standard(args, &world, width, height, &bar, &cancel)?,
-        Method::Pathtrace => render_path_traced(args, &world, width, height, &bar, &cancel)?,
+        Method::Raytrace => render_standard(args, &world, width, height, &bar, cancel)?,
+        Method::Pathtrace => render_path_traced(args, &world, width, height, &bar, cancel)?,
         Method::Radiosity => {
-            let out = super::render_radiosity::render(args, &world, width, height, &bar, &cancel)?;
+            let run = RunOptions {
+                seed: args.seed,
+                threads: args.threads,
+                quiet: args.quiet,
+                tone_mapping: &tone_mapping,
+            };
+            let spp = args.spp.unwrap_or(4);
+            let out = radiosity::render(
+                &world,
+                &args.radiosity,
+                &run,
+                (width, height),
+                spp,
+                &bar,
+                cancel,
+            )?;
             Rendered {
                 film: out.film,
                 subdivisions: Vec::new(),
@@ -142,10 +160,6 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
     };
     let seconds = start.elapsed().as_secs_f64();
-    let tone_mapping = ToneMapping {
-        operator: args.tonemap,
-        exposure_ev: args.exposure,
-    };
     image::save(&output.film, &args.output, &tone_mapping)?;
     if let Some(map) = &args.aa_map {
         save_subdivision_map(&output.subdivisions, width, height, map)?;
@@ -184,7 +198,7 @@ fn render_standard(
     width: u32,
     height: u32,
     bar: &progress::Bar,
-    cancel: &std::sync::atomic::AtomicBool,
+    cancel: &Cancel,
 ) -> Result<Rendered> {
     if args.first_hit_paths.is_some() || args.time_limit.is_some() {
         bail!("--first-hit-paths and --time-limit need --method pathtrace");
@@ -222,7 +236,7 @@ fn render_path_traced(
     width: u32,
     height: u32,
     bar: &progress::Bar,
-    cancel: &std::sync::atomic::AtomicBool,
+    cancel: &Cancel,
 ) -> Result<Rendered> {
     if args.aa != AntialiasMode::Stochastic || args.aa_map.is_some() {
         bail!("--aa and --aa-map apply to --method raytrace only");

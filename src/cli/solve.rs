@@ -1,26 +1,17 @@
 //! `strahl solve`: compute the light on every object of a scene and report it per object
 //! (or per face) as JSON or CSV.
 
-use super::radiosity::{RadiosityArgs, RadiositySolver, print_convergence};
+use super::choice::choice;
+use super::radiosity::{RadiosityArgs, RunOptions, Solver, print_convergence};
+use super::tone::ToneArgs;
 use super::{progress, radiosity, source, with_threads};
-use crate::accel::AccelKind;
-use crate::report::{ObjectReport, Report, ReportFormat, luminance, write_report};
-use crate::trace::World;
-use crate::trace::lighttracer::{LightTraceSettings, trace_light};
 use anyhow::{Context, Result};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use std::path::PathBuf;
-
-/// Light solvers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Solver {
-    /// The light model: photons traced from all lights and the sky, Monte Carlo.
-    LightTrace,
-    /// Radiosity: full form-factor matrix, Jacobi or Gauss-Seidel.
-    Matrix,
-    /// Radiosity: progressive refinement.
-    Progressive,
-}
+use strahl::accel::AccelKind;
+use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::report::{ExportFormat, ObjectReport, Report, ReportFormat, write_report};
+use strahl::world::World;
 
 /// Options of the light-trace solver.
 #[derive(Debug, Args)]
@@ -53,7 +44,7 @@ pub struct SolveArgs {
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
     /// Acceleration structure for ray queries.
-    #[arg(long, value_enum, default_value_t = AccelKind::Bvh)]
+    #[arg(long, value_parser = choice::<AccelKind>(), default_value_t = AccelKind::Bvh)]
     pub accel: AccelKind,
     /// No progress bar or summary.
     #[arg(short, long, conflicts_with = "verbose")]
@@ -67,6 +58,10 @@ pub struct SolveArgs {
     /// Radiosity options.
     #[command(flatten)]
     pub radiosity: RadiosityArgs,
+    /// Colours of the exported mesh (`--export`).
+    #[command(flatten)]
+    #[command(next_help_heading = "Export colours (--export)")]
+    pub tone: ToneArgs,
 }
 
 /// Runs `strahl solve`.
@@ -75,7 +70,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         ReportFormat::from_path(path)?;
     }
     if let Some(path) = &args.radiosity.export {
-        crate::radiosity::solve::ExportFormat::from_path(path)?;
+        ExportFormat::from_path(path)?;
     }
     let scene = source::load(&args.scene)?;
     let name = scene.name.clone();
@@ -90,7 +85,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
             };
             let bar = progress::Bar::new("photons", args.quiet);
             let out = with_threads(args.threads, || {
-                trace_light(&world, &settings, &bar, &cancel)
+                trace_light(&world, &settings, &bar, cancel)
             })??;
             if !args.quiet {
                 eprintln!(
@@ -106,36 +101,34 @@ pub fn run(args: &SolveArgs) -> Result<()> {
                     }
                 );
             }
-            out.report(&name)
+            Report::new(&name, LightTraceOutput::SOLVER, &out.power, out.stats())
         }
         Solver::Matrix | Solver::Progressive => {
-            let solver = match args.solver {
-                Solver::Matrix => RadiositySolver::Matrix,
-                _ => RadiositySolver::Progressive,
+            let run = RunOptions {
+                seed: args.seed,
+                threads: args.threads,
+                quiet: args.quiet,
+                tone_mapping: &args.tone.mapping(),
             };
-            let tone = crate::image::ToneMapping::default();
-            let (system, solution) = radiosity::solve(
-                &world,
-                &args.radiosity,
-                solver,
-                args.seed,
-                args.threads,
-                args.quiet,
-                &tone,
-            )?;
+            let (system, solution) = radiosity::solve(&world, &args.radiosity, args.solver, &run)?;
             if args.verbose {
                 print_convergence(&solution);
             }
-            crate::radiosity::solve::radiosity_report(&system, &solution, &name)
+            Report::new(
+                &name,
+                solution.solver.name(),
+                &solution.surface_power(&system),
+                solution.stats(&system),
+            )
         }
     };
     if !args.quiet {
         let t = &report.totals;
         eprintln!(
             "emitted {:.4} W, absorbed {:.4} W, escaped {:.4} W (luminance-weighted)",
-            luminance(t.emitted_power),
-            luminance(t.absorbed_power),
-            luminance(t.escaped_power)
+            t.emitted_power.luminance(),
+            t.absorbed_power.luminance(),
+            t.escaped_power.luminance()
         );
     }
     if args.verbose {
@@ -174,8 +167,8 @@ fn table_row(o: &ObjectReport) -> String {
     format!(
         "{name:24} {:>10} {:>12.5} {:>12} {:>12}",
         opt(o.area),
-        luminance(o.absorbed_power),
-        opt(o.irradiance.map(luminance)),
+        o.absorbed_power.luminance(),
+        opt(o.irradiance.map(|e| e.luminance())),
         opt(o.illuminance_lux)
     )
 }

@@ -1,10 +1,10 @@
 //! Turning a SCENE argument into a scene: a built-in name, a scene file (`.toml`) or a bare
 //! mesh file (`.obj`, `.gltf`, `.glb`) viewed from the centre of its bounds.
 
-use crate::scene::{self, Scene};
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use std::path::Path;
+use strahl::scene::{self, Scene};
 
 /// True for paths that name a mesh file rather than a scene file.
 pub fn is_mesh_file(spec: &str) -> bool {
@@ -47,7 +47,7 @@ fn load_bare_mesh(path: &Path) -> Result<Scene> {
          [[objects]]\nname = \"mesh\"\ntype = \"mesh\"\nfile = {file}\n"
     );
     let mut scene = scene::load_str(&text, &path.display().to_string(), Path::new("."))?;
-    let geometry = crate::trace::SceneGeometry::new(&scene)?;
+    let geometry = strahl::world::SceneGeometry::new(&scene)?;
     let bounds = geometry.bounds();
     if bounds.is_empty() {
         bail!("{}: the mesh has no faces", path.display());

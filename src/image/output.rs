@@ -1,12 +1,12 @@
 //! Image files chosen by extension: tone-mapped sRGB PNG, linear OpenEXR and linear PFM.
 
 use super::error::ImageError;
-use super::film::Film;
 use super::pfm::{read_pfm, write_pfm};
-use super::srgb::linear_to_srgb;
+use crate::measure::Film;
+
 use super::tonemap::ToneMapping;
 use crate::color::Rgb;
-use crate::scene::srgb_to_linear;
+use crate::color::{linear_to_srgb, srgb_to_linear};
 use std::io::{BufWriter, Write};
 use std::path::Path;
 

@@ -4,8 +4,8 @@
 //! from colour (`PF`) or greyscale (`Pf`) files of either byte order (negative scale: little
 //! endian, positive: big endian); the magnitude of the scale is ignored.
 
-use super::film::Film;
 use crate::color::Rgb;
+use crate::measure::Film;
 use std::io::{self, Write};
 
 /// Writes `film` as a little-endian colour PFM.

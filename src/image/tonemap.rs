@@ -5,20 +5,19 @@
 //! negative or not finite, and pixels with a non-finite channel, are shown black; every
 //! output channel is clamped to `[0, 1]`.
 
-use super::film::Film;
 use crate::color::Rgb;
+use crate::measure::Film;
 
 /// The Reinhard (2002) key value: the display luminance of a log-average-luminance pixel
 /// before compression.
 pub const REINHARD_KEY: f32 = 0.18;
 
 /// A tone-mapping operator.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ToneMap {
     /// Radiance × 2^EV, clamped.
     Linear,
     /// Luminance `Ld = ln(1 + L·2^EV) / ln(1 + Lmax·2^EV)`, `Lmax` the largest luminance.
-    #[value(name = "log")]
     Logarithmic,
     /// Global Reinhard (2002): luminance scaled by key 0.18 / log-average luminance and by
     /// 2^EV, then compressed with `L / (1 + L)`. The log-average is taken over pixels with
@@ -31,6 +30,13 @@ pub enum ToneMap {
     #[default]
     Auto,
 }
+
+crate::choice::named_values!(ToneMap {
+    ToneMap::Linear = "linear", "Radiance × 2^EV, clamped";
+    ToneMap::Logarithmic = "log", "Logarithmic luminance up to the brightest pixel";
+    ToneMap::Reinhard = "reinhard", "Global Reinhard (2002), key 0.18";
+    ToneMap::Auto = "auto", "Automatic exposure: log-average luminance to middle grey 0.18, clamped";
+});
 
 /// A tone-mapping operator with an exposure adjustment.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -267,16 +273,9 @@ mod tests {
 
     #[test]
     fn command_line_names() {
-        use clap::ValueEnum;
-        let names: Vec<String> = ToneMap::value_variants()
-            .iter()
-            .map(|v| {
-                v.to_possible_value()
-                    .expect("visible")
-                    .get_name()
-                    .to_string()
-            })
-            .collect();
+        use crate::choice::Choice;
+        let names: Vec<&str> = ToneMap::VALUES.iter().map(|v| v.1).collect();
         assert_eq!(names, ["linear", "log", "reinhard", "auto"]);
+        assert_eq!("log".parse(), Ok(ToneMap::Logarithmic));
     }
 }

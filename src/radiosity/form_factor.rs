@@ -15,8 +15,7 @@ use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 
 /// Which form-factor approximation to use (`--form-factor`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum FormFactorMethod {
     /// Point-to-polygon contour integral at receiver points (exact for a differential
     /// receiver).
@@ -28,6 +27,15 @@ pub enum FormFactorMethod {
     /// otherwise ([`FormFactorOptions::hybrid_ratio`]).
     Hybrid,
 }
+
+crate::choice::named_values!(FormFactorMethod {
+    FormFactorMethod::Analytic = "analytic",
+        "Point-to-polygon contour integral at receiver points (exact for a differential receiver)";
+    FormFactorMethod::Point = "point",
+        "Centroid-to-centroid point approximation cosθᵢ cosθⱼ Aⱼ / (π d²), clamped to 1";
+    FormFactorMethod::Hybrid = "hybrid",
+        "Point approximation for patches far apart relative to their size, analytic otherwise";
+});
 
 /// Settings of the patch-to-patch form factor.
 #[derive(Clone, Copy, Debug, PartialEq)]

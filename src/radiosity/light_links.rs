@@ -10,7 +10,7 @@ use super::visibility::occluded_except;
 use crate::color::Rgb;
 use crate::geometry::{Ray, offset_origin};
 use crate::scene::LightKind;
-use crate::trace::World;
+use crate::world::World;
 use glam::DVec3;
 
 /// Irradiance in W·m⁻² that `light` sends to the front side of `patch`, averaged over

@@ -113,15 +113,13 @@ impl Patch {
     /// triangle the area-preserving square-to-triangle map (so uniform `(s, t)` give uniform
     /// points and strata stay strata).
     pub fn point_at(&self, s: f64, t: f64) -> DVec3 {
-        let c = self.corners();
-        if self.is_triangle() {
-            let r = s.sqrt();
-            c[0] * (1.0 - r) + c[1] * (r * (1.0 - t)) + c[2] * (r * t)
-        } else {
-            let bottom = c[0].lerp(c[1], s);
-            let top = c[3].lerp(c[2], s);
-            bottom.lerp(top, t)
-        }
+        parametric(self.corners(), s, t)
+    }
+
+    /// The texture coordinates at parametric coordinates `(s, t)`, by the map of
+    /// [`Patch::point_at`].
+    pub fn uv_at(&self, s: f64, t: f64) -> DVec2 {
+        parametric(self.uvs(), s, t)
     }
 
     /// The four children's corners and texture coordinates, by midpoint subdivision.
@@ -481,6 +479,22 @@ fn planar_pieces(corners: &[DVec3], uvs: &[DVec2]) -> Vec<(Vec<DVec3>, Vec<DVec2
             )
         })
         .collect()
+}
+
+/// The value at parametric `(s, t)` of per-corner values `c` (3 for a triangle, 4 for a quad)
+/// by the map of [`Patch::point_at`].
+fn parametric<T>(c: &[T], s: f64, t: f64) -> T
+where
+    T: Copy + std::ops::Add<Output = T> + std::ops::Mul<f64, Output = T>,
+{
+    // The same operations as glam's `lerp`: a·(1 − s) + b·s.
+    let lerp = |a: T, b: T, s: f64| a * (1.0 - s) + b * s;
+    if c.len() == 3 {
+        let r = s.sqrt();
+        c[0] * (1.0 - r) + c[1] * (r * (1.0 - t)) + c[2] * (r * t)
+    } else {
+        lerp(lerp(c[0], c[1], s), lerp(c[3], c[2], s), t)
+    }
 }
 
 #[cfg(test)]

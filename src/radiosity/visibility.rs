@@ -20,7 +20,7 @@ use super::shaft::{Bounds, Shaft};
 use crate::accel::PrimitiveSet;
 use crate::geometry::{Ray, offset_origin, surface_offset};
 use crate::scene::Shape;
-use crate::trace::World;
+use crate::world::World;
 use glam::DVec3;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -326,7 +326,7 @@ pub fn occluded_except(world: &World, mut ray: Ray, mut t_max: f32, ignored: &[u
         return world.occluded(&ray, t_max);
     }
     for _ in 0..MAX_IGNORED_HITS {
-        let Some(hit) = world.accel.closest_hit(&world.geometry, &ray, t_max) else {
+        let Some(hit) = world.closest_hit(&ray, t_max) else {
             return false;
         };
         if !ignored.contains(&world.geometry.owner(hit.prim).0) {

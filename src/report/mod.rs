@@ -1,13 +1,12 @@
-//! Per-object light reports (`strahl solve --report OUT.json|OUT.csv`): the schema shared by
-//! every solver ([`Report`]), the surfaces it lists ([`SurfaceTable`]), a solver-neutral
-//! accumulator ([`PowerAccumulator`]) and the JSON/CSV writers ([`write_report`]).
+//! Reports and exports of what the solvers measured: the per-object light report shared by
+//! every solver ([`Report`], built from a [`crate::measure::SurfacePower`]) with its JSON/CSV
+//! writers ([`write_report`]), and the export of a [`crate::measure::LitMesh`] as glTF or
+//! PLY ([`export_lit_mesh`]).
 
-mod accumulate;
+mod export;
 mod schema;
-mod surfaces;
 mod write;
 
-pub use accumulate::PowerAccumulator;
-pub use schema::{ObjectReport, PowerBalance, Report, Rgb64, Stats, Totals, Units, add, luminance};
-pub use surfaces::{ReportSurface, SurfaceTable};
+pub use export::{ExportError, ExportFormat, export_lit_mesh};
+pub use schema::{ObjectReport, Report, Units};
 pub use write::{ReportError, ReportFormat, write_report};

@@ -1,5 +1,6 @@
-//! The per-object light report: one schema for every solver (light tracing now, radiosity
-//! later), serialised as JSON (and flattened to CSV by [`super::write`]).
+//! The per-object light report: one schema for every solver (the light model and every
+//! radiosity solver), built from the [`SurfacePower`] a solver measured and serialised as
+//! JSON (and flattened to CSV by [`super::write`]).
 //!
 //! Definitions (per channel, linear Rec.709 RGB):
 //! - `incident_power`: power arriving at the surface from both sides, W (watts of the scene's
@@ -18,12 +19,9 @@
 //! (infinite planes) have no area: `area`, `irradiance`, `radiosity` and `illuminance_lux`
 //! are then `null`.
 
-use crate::color::LUMINOUS_EFFICACY;
+use crate::color::{LUMINOUS_EFFICACY, Rgb64};
+use crate::measure::{PowerBalance, Stats, SurfacePower, Totals};
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
-
-/// An RGB power or power density in `f64`, channels `[r, g, b]`.
-pub type Rgb64 = [f64; 3];
 
 /// A complete report.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -61,18 +59,6 @@ impl Default for Units {
     }
 }
 
-/// Run statistics: wall-clock seconds, rays traced, and solver-specific counts.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Stats {
-    /// Wall-clock seconds of the solve (without scene loading).
-    pub seconds: f64,
-    /// Rays traced (closest-hit queries).
-    pub rays: u64,
-    /// Solver-specific counts, written next to `seconds` and `rays`.
-    #[serde(flatten)]
-    pub extra: BTreeMap<String, serde_json::Value>,
-}
-
 /// The light report of one object (or one face of a per-face object).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ObjectReport {
@@ -101,22 +87,6 @@ pub struct ObjectReport {
     pub luminous_flux_lm: f64,
 }
 
-/// Scene-wide power balance, W.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Totals {
-    /// Power emitted by all lights and emissive surfaces.
-    pub emitted_power: Rgb64,
-    /// Power absorbed by all surfaces.
-    pub absorbed_power: Rgb64,
-    /// Power that left the scene (zero in a closed scene).
-    pub escaped_power: Rgb64,
-}
-
-/// Linear Rec.709 luminance Y of an `f64` RGB triple (same unit as the triple).
-pub fn luminance(c: Rgb64) -> f64 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
-}
-
 impl ObjectReport {
     /// The entry for a surface called `name` (`face` for per-face entries) of one-sided area
     /// `area` (squared length units; infinite or NaN for unbounded surfaces) with the given
@@ -125,7 +95,7 @@ impl ObjectReport {
         let bounded = area.is_finite() && area > 0.0;
         let per_area = |v: Rgb64| bounded.then(|| v.map(|c| c / area));
         let irradiance = per_area(powers.incident);
-        let leaving = add(powers.emitted, powers.reflected);
+        let leaving = powers.emitted + powers.reflected;
         ObjectReport {
             name,
             face,
@@ -136,28 +106,32 @@ impl ObjectReport {
             reflected_power: powers.reflected,
             irradiance,
             radiosity: per_area(leaving),
-            illuminance_lux: irradiance.map(|e| LUMINOUS_EFFICACY * luminance(e)),
-            luminous_flux_lm: LUMINOUS_EFFICACY * luminance(powers.incident),
+            illuminance_lux: irradiance.map(|e| LUMINOUS_EFFICACY * e.luminance()),
+            luminous_flux_lm: LUMINOUS_EFFICACY * powers.incident.luminance(),
         }
     }
 }
 
-/// The power balance of one surface, W per channel.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PowerBalance {
-    /// Power arriving on either side.
-    pub incident: Rgb64,
-    /// Power absorbed.
-    pub absorbed: Rgb64,
-    /// Power emitted by the surface itself.
-    pub emitted: Rgb64,
-    /// Power reflected or transmitted.
-    pub reflected: Rgb64,
-}
-
-/// Channel-wise sum.
-pub fn add(a: Rgb64, b: Rgb64) -> Rgb64 {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+impl Report {
+    /// The report of scene `scene` solved by `solver`, from the power it measured per
+    /// surface and its statistics, in metres and watts.
+    pub fn new(scene: &str, solver: &str, power: &SurfacePower, stats: Stats) -> Self {
+        let objects = power
+            .table()
+            .surfaces()
+            .iter()
+            .enumerate()
+            .map(|(e, s)| ObjectReport::new(s.name.clone(), s.face, s.area, power.balance(e)))
+            .collect();
+        Report {
+            scene: scene.to_string(),
+            solver: solver.to_string(),
+            units: Units::default(),
+            stats,
+            objects,
+            totals: power.totals(),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -167,14 +141,14 @@ mod tests {
     #[test]
     fn derived_values_follow_the_definitions() {
         let p = PowerBalance {
-            incident: [2.0, 4.0, 6.0],
-            absorbed: [1.0, 1.0, 1.0],
-            emitted: [0.5, 0.0, 0.0],
-            reflected: [1.0, 3.0, 5.0],
+            incident: Rgb64::new(2.0, 4.0, 6.0),
+            absorbed: Rgb64::new(1.0, 1.0, 1.0),
+            emitted: Rgb64::new(0.5, 0.0, 0.0),
+            reflected: Rgb64::new(1.0, 3.0, 5.0),
         };
         let r = ObjectReport::new("leaf".into(), None, 2.0, &p);
-        assert_eq!(r.irradiance, Some([1.0, 2.0, 3.0]));
-        assert_eq!(r.radiosity, Some([0.75, 1.5, 2.5]));
+        assert_eq!(r.irradiance, Some(Rgb64::new(1.0, 2.0, 3.0)));
+        assert_eq!(r.radiosity, Some(Rgb64::new(0.75, 1.5, 2.5)));
         let y = 0.2126 + 0.7152 * 2.0 + 0.0722 * 3.0;
         assert!((r.illuminance_lux.unwrap() - 683.0 * y).abs() < 1e-9);
         assert!((r.luminous_flux_lm - 683.0 * 2.0 * y).abs() < 1e-9);

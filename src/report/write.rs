@@ -6,7 +6,8 @@
 //! luminous_flux_lm`. Empty cells stand for absent values (no face; unbounded area). The
 //! scene name, solver, units, statistics and totals are in the JSON form only.
 
-use super::schema::{Report, Rgb64};
+use super::schema::Report;
+use crate::color::Rgb64;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
@@ -115,7 +116,7 @@ fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
     let num = |v: f64| v.to_string();
     let opt = |v: Option<f64>| v.map(num).unwrap_or_default();
     let rgb = |row: &mut Vec<String>, v: Option<Rgb64>| match v {
-        Some(c) => row.extend(c.map(num)),
+        Some(c) => row.extend(c.to_array().map(num)),
         None => row.extend([String::new(), String::new(), String::new()]),
     };
     for o in &report.objects {
@@ -144,12 +145,13 @@ fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::schema::{ObjectReport, PowerBalance, Stats, Totals, Units};
+    use super::super::schema::{ObjectReport, Units};
     use super::*;
+    use crate::measure::{PowerBalance, Stats, Totals};
 
     fn sample() -> Report {
         let p = PowerBalance {
-            incident: [1.0, 2.0, 3.0],
+            incident: Rgb64::new(1.0, 2.0, 3.0),
             ..PowerBalance::default()
         };
         Report {

@@ -1,19 +1,17 @@
 //! Direct light at a surface point from every light of the scene, with shadow rays (or, with
 //! shadows off, only self-shadowing by facing: seed 002 §4.4, `NoShadows`).
 
-use super::bsdf::SurfaceMaterial;
-use super::sampler::Sampler;
-use super::sampling::{cosine_hemisphere, stratified};
-use super::{SurfaceHit, World};
+use super::shading::ShadingPoint;
 use crate::color::Rgb;
-use crate::geometry::{Frame, Ray, spawn_ray, spawn_ray_to};
+use crate::geometry::Frame;
+use crate::sampling::Sampler;
+use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::scene::Incidence;
-use glam::Vec3;
+use crate::world::World;
 use std::f32::consts::PI;
 
 /// How shadows are decided (seed 002 §4.4: `Shadows` and `NoShadows` processors).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ShadowMode {
     /// Every object of the scene can block a light.
     #[default]
@@ -22,50 +20,15 @@ pub enum ShadowMode {
     Off,
 }
 
-/// A surface point prepared for lighting: where it is, which way it faces the viewer, and its
-/// material.
-#[derive(Clone, Copy, Debug)]
-pub struct ShadingPoint {
-    /// The hit.
-    pub hit: SurfaceHit,
-    /// Unit direction toward the viewer.
-    pub wo: Vec3,
-    /// Unit shading normal turned toward the viewer.
-    pub n: Vec3,
-    /// Unit geometric normal turned toward the viewer.
-    pub ng: Vec3,
-    /// Material with textures applied.
-    pub material: SurfaceMaterial,
-}
+crate::choice::named_values!(ShadowMode {
+    ShadowMode::On = "on", "Shadows from every object";
+    ShadowMode::Off = "off", "Only self-shadowing by facing: lights behind a surface are ignored";
+});
 
-impl ShadingPoint {
-    /// Prepares `hit`, found along a ray with direction `dir`.
-    #[inline(always)]
-    pub fn new(world: &World, hit: SurfaceHit, dir: Vec3) -> Self {
-        let side = if hit.front_face { 1.0 } else { -1.0 };
-        ShadingPoint {
-            hit,
-            wo: -dir,
-            n: hit.ns * side,
-            ng: hit.ng * side,
-            material: SurfaceMaterial::at(&world.scene, &hit),
-        }
-    }
-
-    /// Unblocked (or, with shadows off, assumed unblocked) toward `target`?
-    fn sees(&self, world: &World, target: Vec3, shadows: ShadowMode) -> bool {
-        shadows == ShadowMode::Off || {
-            let (ray, t_max) = spawn_ray_to(self.hit.p, self.ng, target);
-            !world.occluded(&ray, t_max)
-        }
-    }
-
-    /// Unblocked toward infinity along `dir`?
-    fn sees_sky(&self, world: &World, dir: Vec3, shadows: ShadowMode) -> bool {
-        shadows == ShadowMode::Off || {
-            let ray: Ray = spawn_ray(self.hit.p, self.ng, dir);
-            !world.occluded(&ray, f32::INFINITY)
-        }
+impl ShadowMode {
+    /// Whether light passes, given the shadow-ray test `unblocked` (run only with shadows on).
+    fn lets_through(self, unblocked: impl FnOnce() -> bool) -> bool {
+        self == ShadowMode::Off || unblocked()
     }
 }
 
@@ -94,9 +57,9 @@ pub fn direct_light(
             continue;
         }
         let visible = if dist.is_finite() {
-            sp.sees(world, x + wi * dist, shadows)
+            shadows.lets_through(|| sp.sees(world, x + wi * dist))
         } else {
-            sp.sees_sky(world, wi, shadows)
+            shadows.lets_through(|| sp.sees_along(world, wi))
         };
         if visible {
             total += sp.material.eval(sp.n, sp.wo, wi) * irradiance_normal * cos;
@@ -125,7 +88,7 @@ pub fn direct_light(
                 world
                     .lights
                     .area_radiance(&world.scene, &world.geometry, index, &s, cos_y > 0.0);
-            if le.is_black() || !sp.sees(world, s.p, shadows) {
+            if le.is_black() || !shadows.lets_through(|| sp.sees(world, s.p)) {
                 continue;
             }
             let geometric = cos_x * cos_y.abs() / (dist2 * s.pdf_area);
@@ -138,7 +101,7 @@ pub fn direct_light(
         let mut sum = Rgb::BLACK;
         for k in 0..count {
             let wi = frame.to_world(cosine_hemisphere(stratified(k, n_side, sampler.next_2d())));
-            if sp.ng.dot(wi) > 0.0 && sp.sees_sky(world, wi, shadows) {
+            if sp.ng.dot(wi) > 0.0 && shadows.lets_through(|| sp.sees_along(world, wi)) {
                 // L·f·cos / (cos/π) = π·L·f.
                 sum += sp.material.eval(sp.n, sp.wo, wi) * sky * PI;
             }

@@ -1,37 +1,32 @@
-//! Ray tracing: the scene flattened for ray queries ([`World`]), light sampling, the
-//! integrators (the standard ray tracer and the path tracer), antialiasing, the tiled image
-//! loop and the progressive one for Monte Carlo integrators.
+//! Ray tracing: images of a scene by integrators that follow rays from the camera.
+//!
+//! - integrators: the standard (Whitted-style) ray tracer ([`StandardRayTracer`], with the
+//!   direct light of [`direct`]) and the path tracer ([`PathTracer`], one path at a time or
+//!   eight side by side);
+//! - shading: what an integrator evaluates at a surface point — the [`shading`] point, the
+//!   sampled BSDF and the choice of a light for next-event estimation;
+//! - render: the image loops that drive an integrator over the camera's pixels — tiles with
+//!   antialiasing ([`render()`]) and progressive passes for Monte Carlo integrators
+//!   ([`render_progressive`]).
 
-pub mod antialias;
-pub mod bsdf;
-pub mod bsdf_sampling;
 pub mod direct;
-mod geometry;
-mod lanes;
-pub mod light_sampling;
-mod lights;
-pub mod lighttracer;
-mod path_packet;
-pub mod pathtracer;
-pub mod photon_scatter;
-pub mod photon_sources;
-pub mod progressive;
+mod path;
 pub mod render;
-pub mod sampler;
-pub mod sampling;
+pub mod shading;
 mod whitted;
-mod world;
 
-pub use geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
-pub use lights::{AreaLight, AreaSample, LightSet};
-pub use pathtracer::PathTracer;
+pub use direct::ShadowMode;
+pub use path::PathTracer;
+pub use render::{
+    AntialiasMode, ProgressiveOutput, ProgressiveSettings, RenderOutput, RenderSettings, render,
+    render_progressive,
+};
 pub use whitted::StandardRayTracer;
-pub use world::World;
 
 use crate::color::Rgb;
 use crate::geometry::Ray;
-use sampler::Sampler;
-
+use crate::sampling::Sampler;
+use crate::world::World;
 /// A ray processor (seed 002 §4.3, `RayProcessor`): the radiance arriving along a camera ray.
 pub trait Integrator: Sync {
     /// Radiance (W·sr⁻¹·m⁻²) arriving at the ray origin from direction `-ray.dir`.

@@ -2,12 +2,14 @@
 //! shadows on every surface, ideal mirror reflection and ideal refraction with Fresnel,
 //! recursion to a fixed depth; indirect diffuse light is ignored.
 
-use super::bsdf::{emitted, fresnel_dielectric, reflect, refract};
-use super::direct::{ShadingPoint, ShadowMode, direct_light};
-use super::sampler::Sampler;
-use super::{Integrator, World};
+use super::Integrator;
+use super::direct::{ShadowMode, direct_light};
+use super::shading::ShadingPoint;
 use crate::color::Rgb;
 use crate::geometry::{Ray, spawn_ray};
+use crate::sampling::Sampler;
+use crate::world::optics::{fresnel_dielectric, reflect, refract};
+use crate::world::{World, emitted};
 
 /// Settings of the standard ray tracer.
 #[derive(Clone, Debug)]

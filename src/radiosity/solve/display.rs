@@ -9,21 +9,20 @@ use super::solution::Solution;
 use super::system::RadiositySystem;
 use crate::accel::{AccelKind, Accelerator, PrimHit, PrimitiveSet};
 use crate::color::Rgb;
+use crate::color::Rgb64;
 use crate::geometry::{Aabb, Ray, Triangle};
-use crate::image::Film;
-use crate::report::Rgb64;
+use crate::measure::Film;
+use crate::progress::{Cancel, ProgressListener};
 use crate::scene::Camera;
-use crate::trace::render::ProgressListener;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Wireframe line half-width in pixels.
 const LINE_HALF_WIDTH_PIXELS: f64 = 0.6;
 
 /// How radiosity is shown across a patch (`--shading`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Shading {
     /// One colour per leaf patch.
     Flat,
@@ -31,6 +30,11 @@ pub enum Shading {
     #[default]
     Smooth,
 }
+
+crate::choice::named_values!(Shading {
+    Shading::Flat = "flat", "One colour per leaf patch";
+    Shading::Smooth = "smooth", "Radiosity interpolated to the patch corners";
+});
 
 /// Image settings of the display.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,7 +108,7 @@ pub fn render_solution(
     camera: &Camera,
     settings: &DisplaySettings,
     progress: &dyn ProgressListener,
-    cancel: &AtomicBool,
+    cancel: &Cancel,
 ) -> Option<Film> {
     let rays = camera
         .with_resolution(settings.width, settings.height)
@@ -131,7 +135,7 @@ pub fn render_solution(
     let pixels: Vec<Rgb> = (0..settings.height)
         .into_par_iter()
         .flat_map_iter(|y| {
-            let row: Vec<Rgb> = if cancel.load(Ordering::Relaxed) {
+            let row: Vec<Rgb> = if cancel.is_requested() {
                 vec![Rgb::BLACK; settings.width as usize]
             } else {
                 (0..settings.width)
@@ -190,10 +194,12 @@ impl Viewer<'_> {
             Shading::Smooth => {
                 let c = &self.corners[leaf];
                 let w = [1.0 - b1 - b2, b1, b2];
-                std::array::from_fn(|ch| (0..3).map(|v| w[v] * c[corner_ids[v] as usize][ch]).sum())
+                Rgb64::from(std::array::from_fn(|ch| {
+                    (0..3).map(|v| w[v] * c[corner_ids[v] as usize][ch]).sum()
+                }))
             }
         };
-        Rgb::new((b[0] / PI) as f32, (b[1] / PI) as f32, (b[2] / PI) as f32)
+        b.map(|x| x / PI).to_f32()
     }
 }
 

@@ -9,8 +9,8 @@
 //! (coplanar faces of one object count as one surface); corners between different surfaces
 //! (a wall meeting the floor) keep separate values.
 
+use crate::color::Rgb64;
 use crate::radiosity::{Patch, PatchId, PatchMesh};
-use crate::report::Rgb64;
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -59,19 +59,23 @@ pub fn vertex_radiosity(
     for (k, p) in patches.iter().enumerate() {
         for &c in p.corners() {
             let v = *index.entry(key(group_of[k], c)).or_insert_with(|| {
-                sums.push(([0.0; 3], 0.0));
+                sums.push((Rgb64::BLACK, 0.0));
                 sums.len() - 1
             });
             let (sum, weight) = &mut sums[v];
-            for ch in 0..3 {
-                sum[ch] += p.area * values[k][ch];
-            }
+            *sum += values[k] * p.area;
             *weight += p.area;
         }
     }
     let mut vertex: Vec<Rgb64> = sums
         .iter()
-        .map(|(s, w)| if *w > 0.0 { s.map(|x| x / w) } else { [0.0; 3] })
+        .map(|(s, w)| {
+            if *w > 0.0 {
+                s.map(|x| x / w)
+            } else {
+                Rgb64::BLACK
+            }
+        })
         .collect();
     let mut order: Vec<usize> = (0..patches.len()).collect();
     order.sort_by_key(|&k| patches[k].depth);
@@ -88,7 +92,7 @@ pub fn vertex_radiosity(
         .iter()
         .enumerate()
         .map(|(k, p)| {
-            let mut out = [[0.0; 3]; 4];
+            let mut out = [Rgb64::BLACK; 4];
             for (slot, &c) in out.iter_mut().zip(p.corners()) {
                 *slot = vertex[index[&key(group_of[k], c)]];
             }
@@ -113,7 +117,7 @@ fn fix_edge(
     let Some(vm) = lookup(m) else {
         return;
     };
-    vertex[vm] = std::array::from_fn(|c| 0.5 * (vertex[va][c] + vertex[vb][c]));
+    vertex[vm] = (vertex[va] + vertex[vb]) * 0.5;
     fix_edge(lookup, vertex, (a, m), (va, vm), depth - 1);
     fix_edge(lookup, vertex, (m, b), (vm, vb), depth - 1);
 }
@@ -147,7 +151,7 @@ mod tests {
         let leaves = mesh.leaves();
         assert_eq!(leaves.len(), 5);
         // Left square 1, right children 2, 4, 6, 8 (any distinct values).
-        let values: Vec<Rgb64> = (0..5).map(|k| [(1 + 2 * k) as f64; 3]).collect();
+        let values: Vec<Rgb64> = (0..5).map(|k| Rgb64::splat((1 + 2 * k) as f64)).collect();
         let corners = vertex_radiosity(&mesh, &leaves, &values);
         let at = |p: DVec3| {
             leaves.iter().enumerate().find_map(|(k, &id)| {

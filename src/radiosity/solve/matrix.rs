@@ -5,19 +5,18 @@
 //! light not yet reflected, so the measure matches the progressive solver's unshot power.
 
 use super::SolveError;
-use super::solution::{Solution, power_fraction};
+use super::solution::{Solution, SolverKind, power_fraction};
 use super::system::{Couplings, RadiositySystem};
-use crate::report::Rgb64;
-use crate::trace::render::ProgressListener;
+use crate::color::Rgb64;
+use crate::progress::{Cancel, ProgressListener};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// Largest `patches²` the matrix solver accepts (at most 12 bytes per stored coupling).
 pub const MAX_MATRIX_ENTRIES: u64 = 200_000_000;
 
 /// The iteration scheme (`--iteration`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Iteration {
     /// Every sweep uses only the previous sweep's radiosities.
     Jacobi,
@@ -25,6 +24,11 @@ pub enum Iteration {
     #[default]
     GaussSeidel,
 }
+
+crate::choice::named_values!(Iteration {
+    Iteration::Jacobi = "jacobi", "Every sweep uses only the previous sweep's radiosities";
+    Iteration::GaussSeidel = "gauss-seidel", "Every update uses the newest radiosities";
+});
 
 /// Settings of the matrix solver.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,7 +59,7 @@ pub fn solve_matrix(
     system: &RadiositySystem,
     settings: &MatrixSettings,
     progress: &dyn ProgressListener,
-    cancel: &AtomicBool,
+    cancel: &Cancel,
 ) -> Result<Solution, SolveError> {
     let n = system.len();
     if (n as u64) * (n as u64) > MAX_MATRIX_ENTRIES {
@@ -64,17 +68,13 @@ pub fn solve_matrix(
             limit: MAX_MATRIX_ENTRIES,
         });
     }
-    let name = match settings.iteration {
-        Iteration::Jacobi => "matrix-jacobi",
-        Iteration::GaussSeidel => "matrix-gauss-seidel",
-    };
-    let mut solution = Solution::start(system, name);
+    let mut solution = Solution::start(system, SolverKind::Matrix(settings.iteration));
     let start = Instant::now();
     progress.start(n as u64);
     let rows: Vec<Option<Couplings>> = (0..n)
         .into_par_iter()
         .map(|i| {
-            if cancel.load(Ordering::Relaxed) {
+            if cancel.is_requested() {
                 return None;
             }
             let row = system.row(i);
@@ -93,7 +93,7 @@ pub fn solve_matrix(
     let source: Vec<Rgb64> = (0..n).map(|k| system.source(k)).collect();
     let b = &mut solution.radiosity;
     for _ in 0..settings.max_iterations {
-        if cancel.load(Ordering::Relaxed) {
+        if cancel.is_requested() {
             solution.interrupted = true;
             break;
         }
@@ -112,11 +112,7 @@ pub fn solve_matrix(
     progress.finish();
     solution.irradiance = (0..n)
         .into_par_iter()
-        .map(|i| {
-            let g = gather(&rows[i], b);
-            let h = system.light_irradiance[i];
-            std::array::from_fn(|c| h[c] + g[c])
-        })
+        .map(|i| system.light_irradiance[i] + gather(&rows[i], b))
         .collect();
     solution.seconds.iterations = start.elapsed().as_secs_f64();
     Ok(solution)
@@ -124,12 +120,9 @@ pub fn solve_matrix(
 
 /// `Σ_j F_ij V_ij B_j` over one row, W·m⁻².
 fn gather(row: &Couplings, b: &[Rgb64]) -> Rgb64 {
-    let mut sum = [0.0; 3];
+    let mut sum = Rgb64::BLACK;
     for (&j, &f) in row.leaves.iter().zip(&row.values) {
-        let bj = b[j as usize];
-        for c in 0..3 {
-            sum[c] += f * bj[c];
-        }
+        sum += b[j as usize] * f;
     }
     sum
 }
@@ -142,9 +135,7 @@ fn update(
     b: &[Rgb64],
     i: usize,
 ) -> Rgb64 {
-    let g = gather(&rows[i], b);
-    let (s, r) = (source[i], system.reflectance[i]);
-    std::array::from_fn(|c| s[c] + r[c] * g[c])
+    source[i] + system.reflectance[i] * gather(&rows[i], b)
 }
 
 /// One Jacobi sweep (rows in parallel); returns the change per leaf.
@@ -158,11 +149,7 @@ fn jacobi_sweep(
         .into_par_iter()
         .map(|i| update(system, rows, source, b, i))
         .collect();
-    let change = next
-        .iter()
-        .zip(b.iter())
-        .map(|(x, y)| std::array::from_fn(|c| x[c] - y[c]))
-        .collect();
+    let change = next.iter().zip(b.iter()).map(|(&x, &y)| x - y).collect();
     *b = next;
     change
 }
@@ -178,7 +165,7 @@ fn gauss_seidel_sweep(
         .map(|i| {
             let next = update(system, rows, source, b, i);
             let old = std::mem::replace(&mut b[i], next);
-            std::array::from_fn(|c| next[c] - old[c])
+            next - old
         })
         .collect()
 }

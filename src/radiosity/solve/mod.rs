@@ -1,24 +1,21 @@
 //! Radiosity solvers on the leaf patches of the mesh: the full matrix with Jacobi or
 //! Gauss-Seidel sweeps and progressive refinement (seed 000 ch. 5), both with the
-//! emitter-only links of point, spot and directional lights; the per-object report, display
-//! (flat or smooth, with wireframe) and export of a solution as a coloured mesh.
+//! emitter-only links of point, spot and directional lights; display of a solution (flat or
+//! smooth, with wireframe), and what a solution hands on: its power per reported surface,
+//! its statistics and its lit mesh.
 
 mod display;
-mod export;
 mod interpolate;
 mod matrix;
 mod progressive;
-mod report;
 mod solution;
 mod system;
 
 pub use display::{DisplaySettings, Shading, render_solution};
-pub use export::{ExportError, ExportFormat, export_solution};
 pub use interpolate::{CornerValues, vertex_radiosity};
 pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};
-pub use report::radiosity_report;
-pub use solution::{PhaseTimes, Solution, power_fraction, source_power};
+pub use solution::{PhaseTimes, Solution, SolverKind, power_fraction, source_power};
 pub use system::{Couplings, RadiositySystem, SystemOptions};
 
 use super::MeshError;

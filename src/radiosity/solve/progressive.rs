@@ -12,11 +12,10 @@
 //! no form factors.
 
 use super::SolveError;
-use super::solution::{Solution, power_fraction};
+use super::solution::{Solution, SolverKind, power_fraction};
 use super::system::{Couplings, RadiositySystem};
-use crate::report::{Rgb64, luminance};
-use crate::trace::render::ProgressListener;
-use std::sync::atomic::{AtomicBool, Ordering};
+use crate::color::Rgb64;
+use crate::progress::{Cancel, ProgressListener};
 use std::time::Instant;
 
 /// Memory for cached coupling columns, bytes.
@@ -54,20 +53,20 @@ pub fn solve_progressive(
     system: &RadiositySystem,
     settings: &ShootingSettings,
     progress: &dyn ProgressListener,
-    cancel: &AtomicBool,
+    cancel: &Cancel,
 ) -> Result<Solution, SolveError> {
     let n = system.len();
-    let mut solution = Solution::start(system, "progressive");
+    let mut solution = Solution::start(system, SolverKind::Progressive);
     let mut unshot: Vec<Rgb64> = solution.radiosity.clone();
     let mut cache: Vec<Option<Couplings>> = vec![None; n];
     let mut cached_bytes = 0usize;
     let total_area = system.total_area();
-    let mean_reflectance: Rgb64 = std::array::from_fn(|c| {
+    let mean_reflectance = Rgb64::from(std::array::from_fn(|c| {
         (0..n)
             .map(|k| system.reflectance[k][c] * system.area[k])
             .sum::<f64>()
             / total_area
-    });
+    }));
     let interreflection = mean_reflectance.map(|r| 1.0 / (1.0 - r.min(0.999_999)));
     let log_tolerance = settings.tolerance.max(1e-300).ln();
     let mut shown = 0;
@@ -77,17 +76,17 @@ pub fn solve_progressive(
     let mut fraction = power_fraction(system, &unshot);
     solution.ambient = ambient(system, &unshot, total_area, interreflection);
     while fraction > settings.tolerance && (solution.iterations() as u64) < settings.max_shots {
-        if cancel.load(Ordering::Relaxed) {
+        if cancel.is_requested() {
             solution.interrupted = true;
             break;
         }
         let j = brightest(system, &unshot);
-        let overshoot: Rgb64 = if settings.overshoot {
-            std::array::from_fn(|c| (system.reflectance[j][c] * solution.ambient[c]).max(0.0))
+        let overshoot = if settings.overshoot {
+            (system.reflectance[j] * solution.ambient).map(|v| v.max(0.0))
         } else {
-            [0.0; 3]
+            Rgb64::BLACK
         };
-        let shot: Rgb64 = std::array::from_fn(|c| unshot[j][c] + overshoot[c]);
+        let shot = unshot[j] + overshoot;
         if cache[j].is_none() {
             let t = Instant::now();
             let column = system.column(j);
@@ -102,7 +101,7 @@ pub fn solve_progressive(
         if let Some(column) = &cache[j] {
             distribute(system, column, shot, &mut solution, &mut unshot);
         }
-        unshot[j] = std::array::from_fn(|c| unshot[j][c] - shot[c]);
+        unshot[j] -= shot;
         fraction = power_fraction(system, &unshot);
         solution.ambient = ambient(system, &unshot, total_area, interreflection);
         solution.convergence.push(fraction);
@@ -133,13 +132,10 @@ fn distribute(
 ) {
     for (&i, &f) in column.leaves.iter().zip(&column.values) {
         let i = i as usize;
-        let rho = system.reflectance[i];
-        for c in 0..3 {
-            let dh = f * shot[c];
-            solution.irradiance[i][c] += dh;
-            solution.radiosity[i][c] += rho[c] * dh;
-            unshot[i][c] += rho[c] * dh;
-        }
+        let (rho, dh) = (system.reflectance[i], shot * f);
+        solution.irradiance[i] += dh;
+        solution.radiosity[i] += rho * dh;
+        unshot[i] += rho * dh;
     }
 }
 
@@ -147,7 +143,7 @@ fn distribute(
 fn brightest(system: &RadiositySystem, unshot: &[Rgb64]) -> usize {
     let mut best = (0, f64::NEG_INFINITY);
     for (k, d) in unshot.iter().enumerate() {
-        let power = luminance(d.map(f64::abs)) * system.area[k];
+        let power = d.map(f64::abs).luminance() * system.area[k];
         if power > best.1 {
             best = (k, power);
         }
@@ -157,8 +153,8 @@ fn brightest(system: &RadiositySystem, unshot: &[Rgb64]) -> usize {
 
 /// The ambient radiosity `R · Σ ΔB_k A_k / Σ A_k` per channel.
 fn ambient(system: &RadiositySystem, unshot: &[Rgb64], total_area: f64, r: Rgb64) -> Rgb64 {
-    std::array::from_fn(|c| {
+    Rgb64::from(std::array::from_fn(|c| {
         let sum: f64 = unshot.iter().zip(&system.area).map(|(d, a)| d[c] * a).sum();
         r[c] * sum / total_area
-    })
+    }))
 }

@@ -1,8 +1,49 @@
 //! A radiosity solution: radiosity and irradiance per leaf patch, the convergence history
-//! and the time spent per phase.
+//! and the time spent per phase; and what it hands on — the power per reported surface, the
+//! run's statistics and the lit mesh.
+//!
+//! Per leaf `i` with area `A_i`, irradiance `H_i`, emitted radiosity `E_i` and reflectance
+//! `ρ_i`, the surface power is: incident `A_i H_i`, absorbed `(1 − ρ_i) A_i H_i`, emitted
+//! `A_i E_i`, reflected `ρ_i A_i H_i`, summed per reported surface. Scene-wide, the point,
+//! spot and directional lights count with the power they send into the mesh
+//! (`Σ A_i H_light,i`), and the escaped power is what is emitted but not absorbed by any
+//! patch (light leaving an open scene, plus the small imbalance of the discretisation).
 
+use super::interpolate::vertex_radiosity;
+use super::matrix::Iteration;
 use super::system::RadiositySystem;
-use crate::report::{Rgb64, luminance};
+use crate::color::Rgb64;
+use crate::measure::{LitMesh, Stats, SurfacePower, SurfaceTable};
+use glam::Vec3;
+
+/// Which solver produced a solution.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SolverKind {
+    /// The full matrix, iterated by the given scheme.
+    Matrix(Iteration),
+    /// Progressive refinement (shooting).
+    Progressive,
+}
+
+impl SolverKind {
+    /// The solver's name in reports: `matrix-jacobi`, `matrix-gauss-seidel`, `progressive`.
+    pub fn name(self) -> &'static str {
+        match self {
+            SolverKind::Matrix(Iteration::Jacobi) => "matrix-jacobi",
+            SolverKind::Matrix(Iteration::GaussSeidel) => "matrix-gauss-seidel",
+            SolverKind::Progressive => "progressive",
+        }
+    }
+
+    /// What the convergence history measures: the `residual` of a sweep or the `unshot`
+    /// power after a shot.
+    pub fn convergence_measure(self) -> &'static str {
+        match self {
+            SolverKind::Matrix(_) => "residual",
+            SolverKind::Progressive => "unshot",
+        }
+    }
+}
 
 /// Wall-clock seconds per phase of a solve.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -15,11 +56,17 @@ pub struct PhaseTimes {
     pub iterations: f64,
 }
 
+impl std::fmt::Display for SolverKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The result of a radiosity solver, per leaf of its [`RadiositySystem`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
-    /// Solver name (`matrix-jacobi`, `matrix-gauss-seidel`, `progressive`).
-    pub solver: String,
+    /// The solver that produced it.
+    pub solver: SolverKind,
     /// Radiosity `B` per leaf, W·m⁻² (front side).
     pub radiosity: Vec<Rgb64>,
     /// Irradiance `H` gathered per leaf (light links included), W·m⁻².
@@ -49,17 +96,86 @@ impl Solution {
         self.radiosity
             .iter()
             .zip(&system.reflectance)
-            .map(|(b, r)| std::array::from_fn(|c| b[c] + r[c] * self.ambient[c]))
+            .map(|(&b, &r)| b + r * self.ambient)
             .collect()
     }
 
+    /// The power per reported surface of `system`'s scene, W, as the module describes.
+    pub fn surface_power(&self, system: &RadiositySystem) -> SurfacePower {
+        let world = system.world();
+        let mut power = SurfacePower::new(SurfaceTable::new(&world.scene, &world.geometry));
+        let mut light_power = Rgb64::BLACK;
+        for k in 0..system.len() {
+            let patch = system.patch(k);
+            let entry = power.table().entry(patch.object, patch.face);
+            let (a, h, e, r) = (
+                system.area[k],
+                self.irradiance[k],
+                system.emission[k],
+                system.reflectance[k],
+            );
+            let balance = power.balance_mut(entry);
+            balance.incident += h * a;
+            balance.absorbed += (Rgb64::WHITE - r) * a * h;
+            balance.emitted += e * a;
+            balance.reflected += r * a * h;
+            light_power += system.light_irradiance[k] * a;
+        }
+        power.add_light_emission(light_power);
+        let totals = power.totals();
+        power.add_escaped(totals.emitted_power - totals.absorbed_power);
+        power
+    }
+
+    /// The statistics of the solve: time per phase, rays, patches, form factors, iterations
+    /// and the convergence history.
+    pub fn stats(&self, system: &RadiositySystem) -> Stats {
+        let s = &self.seconds;
+        let mut stats = Stats {
+            seconds: s.setup + s.form_factors + s.iterations,
+            rays: system.visibility_ray_count(),
+            ..Stats::default()
+        };
+        stats.insert("patches", system.len());
+        stats.insert("patch_nodes", system.mesh.len());
+        stats.insert("form_factors", system.form_factor_count());
+        stats.insert("visibility_rays", system.visibility_ray_count());
+        stats.insert("iterations", self.iterations());
+        stats.insert("converged", self.converged);
+        stats.insert("interrupted", self.interrupted);
+        stats.insert("convergence", self.convergence.clone());
+        stats.insert("source_power", source_power(system));
+        stats.insert("unlinked_sky_lights", system.unlinked_sky_lights);
+        stats.insert("seconds_setup", s.setup);
+        stats.insert("seconds_form_factors", s.form_factors);
+        stats.insert("seconds_iterations", s.iterations);
+        stats
+    }
+
+    /// The solution as a lit mesh: every leaf a polygon with the smooth corner values of
+    /// [`vertex_radiosity`] (display radiosity, ambient term included).
+    pub fn lit_mesh(&self, system: &RadiositySystem) -> LitMesh {
+        let corners = vertex_radiosity(
+            &system.mesh,
+            &system.leaves,
+            &self.display_radiosity(system),
+        );
+        let mut lit = LitMesh::default();
+        for (k, values) in corners.iter().enumerate() {
+            let patch = system.patch(k);
+            let points: Vec<Vec3> = patch.corners().iter().map(|c| c.as_vec3()).collect();
+            lit.push_polygon(&points, patch.normal.as_vec3(), &values[..points.len()]);
+        }
+        lit
+    }
+
     /// The initial state: radiosity = source term, irradiance = light-link irradiance.
-    pub(super) fn start(system: &RadiositySystem, solver: &str) -> Solution {
+    pub(super) fn start(system: &RadiositySystem, solver: SolverKind) -> Solution {
         Solution {
-            solver: solver.to_string(),
+            solver,
             radiosity: (0..system.len()).map(|k| system.source(k)).collect(),
             irradiance: system.light_irradiance.clone(),
-            ambient: [0.0; 3],
+            ambient: Rgb64::BLACK,
             convergence: Vec::new(),
             converged: false,
             interrupted: false,
@@ -82,7 +198,7 @@ pub fn power_fraction(system: &RadiositySystem, d: &[Rgb64]) -> f64 {
     let change: f64 = d
         .iter()
         .zip(&system.area)
-        .map(|(v, a)| a * luminance(v.map(f64::abs)))
+        .map(|(v, a)| a * v.map(f64::abs).luminance())
         .sum();
     change / source
 }
@@ -90,6 +206,6 @@ pub fn power_fraction(system: &RadiositySystem, d: &[Rgb64]) -> f64 {
 /// Luminance of the source power `Σ_i A_i S_i`, W.
 pub fn source_power(system: &RadiositySystem) -> f64 {
     (0..system.len())
-        .map(|k| system.area[k] * luminance(system.source(k)))
+        .map(|k| system.area[k] * system.source(k).luminance())
         .sum()
 }

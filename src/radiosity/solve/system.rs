@@ -16,14 +16,14 @@
 //! points to); a surface lit from behind stays dark on its front in the solution.
 
 use super::SolveError;
+use crate::color::{Rgb, Rgb64};
 use crate::radiosity::{
     Facing, FormFactorOptions, MeshOptions, Patch, PatchId, PatchMesh, Visibility,
     VisibilityOptions, facing, form_factor, light_irradiance,
 };
-use crate::report::Rgb64;
 use crate::scene::{LightKind, Texture};
-use crate::trace::World;
-use glam::{DVec2, Vec2};
+use crate::world::World;
+use glam::Vec2;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -118,8 +118,7 @@ impl<'w> RadiositySystem<'w> {
             .iter()
             .map(|p| {
                 let m = &scene.materials[p.material as usize];
-                let tex = texture_mean(texture(m.emission_texture), p);
-                std::array::from_fn(|c| PI * m.emission.to_f64()[c] * tex[c])
+                PI * m.emission.to_f64() * texture_mean(texture(m.emission_texture), p)
             })
             .collect();
         let reflectance = patches
@@ -127,7 +126,7 @@ impl<'w> RadiositySystem<'w> {
             .map(|p| {
                 let m = &scene.materials[p.material as usize];
                 let tex = texture_mean(texture(m.diffuse_texture), p);
-                std::array::from_fn(|c| (m.diffuse.to_f64()[c] * tex[c]).clamp(0.0, 1.0))
+                (m.diffuse.to_f64() * tex).map(|v| v.clamp(0.0, 1.0))
             })
             .collect();
         let linked: Vec<&LightKind> = scene
@@ -140,10 +139,9 @@ impl<'w> RadiositySystem<'w> {
         let light_irradiance = patches
             .par_iter()
             .map(|p| {
-                linked.iter().fold([0.0; 3], |sum: Rgb64, kind| {
-                    let e = light_irradiance(world, kind, p, options.link_samples)
-                        .map_or([0.0; 3], |e| e.to_f64());
-                    std::array::from_fn(|c| sum[c] + e[c])
+                linked.iter().fold(Rgb64::BLACK, |sum, kind| {
+                    sum + light_irradiance(world, kind, p, options.link_samples)
+                        .map_or(Rgb64::BLACK, Rgb::to_f64)
                 })
             })
             .collect();
@@ -191,12 +189,7 @@ impl<'w> RadiositySystem<'w> {
 
     /// The source term `S_i = E_i + ρ_i H_light,i` of leaf `k`, W·m⁻².
     pub fn source(&self, k: usize) -> Rgb64 {
-        let (e, r, h) = (
-            self.emission[k],
-            self.reflectance[k],
-            self.light_irradiance[k],
-        );
-        std::array::from_fn(|c| e[c] + r[c] * h[c])
+        self.emission[k] + self.reflectance[k] * self.light_irradiance[k]
     }
 
     /// Total area of all leaves, scene units².
@@ -270,30 +263,16 @@ fn collect(entries: impl Iterator<Item = (usize, f64)>) -> Couplings {
 /// `[1, 1, 1]` without a texture.
 fn texture_mean(texture: Option<&Texture>, patch: &Patch) -> Rgb64 {
     let Some(texture) = texture else {
-        return [1.0; 3];
+        return Rgb64::WHITE;
     };
     let n = TEXTURE_SAMPLES;
-    let mut sum = [0.0; 3];
+    let mut sum = Rgb64::BLACK;
     for a in 0..n {
         for b in 0..n {
             let (s, t) = ((a as f64 + 0.5) / n as f64, (b as f64 + 0.5) / n as f64);
-            let uv = uv_at(patch, s, t);
-            let c = texture.color(Vec2::new(uv.x as f32, uv.y as f32)).to_f64();
-            for k in 0..3 {
-                sum[k] += c[k];
-            }
+            let uv = patch.uv_at(s, t);
+            sum += texture.color(Vec2::new(uv.x as f32, uv.y as f32)).to_f64();
         }
     }
     sum.map(|v| v / (n * n) as f64)
-}
-
-/// Texture coordinates at parametric `(s, t)`, with the same map as [`Patch::point_at`].
-fn uv_at(patch: &Patch, s: f64, t: f64) -> DVec2 {
-    let u = patch.uvs();
-    if patch.is_triangle() {
-        let r = s.sqrt();
-        u[0] * (1.0 - r) + u[1] * (r * (1.0 - t)) + u[2] * (r * t)
-    } else {
-        u[0].lerp(u[1], s).lerp(u[3].lerp(u[2], s), t)
-    }
 }

@@ -11,7 +11,8 @@
 
 use super::{ImportError, ImportedMaterial, ImportedMesh, TextureSource, append_mesh};
 use crate::color::Rgb;
-use crate::scene::{ColorSpace, Material, PolygonMesh, Texture, srgb_to_linear};
+use crate::color::srgb_to_linear;
+use crate::scene::{ColorSpace, Material, PolygonMesh, Texture};
 use ::gltf::mesh::Mode;
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use std::collections::HashMap;

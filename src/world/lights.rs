@@ -1,10 +1,10 @@
-//! The lights of a scene as the integrators see them: area lights (emissive objects, sampled
+//! The lights of a scene as the algorithms see them: area lights (emissive objects, sampled
 //! by area), point, spot and directional lights, and the sky.
 
 use super::SceneGeometry;
-use super::bsdf::emitted_toward;
-use super::sampling::uniform_triangle;
+use super::surface_material::emitted_toward;
 use crate::color::Rgb;
+use crate::sampling::warp::uniform_triangle;
 use crate::scene::{LightKind, Scene};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;

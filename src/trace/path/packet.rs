@@ -9,14 +9,14 @@
 //! is bit for bit that of the paths traced alone (tested): the packet is only a faster way to
 //! evaluate the same estimator.
 
-use super::World;
-use super::direct::ShadingPoint;
-use super::lanes::{self, LANES, Vec3x8};
-use super::light_sampling::UniformAreaPoint;
-use super::pathtracer::{Arrival, BounceNumbers, PathTracer, survive_roulette};
-use super::sampler::Sampler;
+use super::super::shading::ShadingPoint;
+use super::super::shading::light_sampling::UniformAreaPoint;
+use super::{Arrival, BounceNumbers, PathTracer, survive_roulette};
 use crate::color::Rgb;
 use crate::geometry::Ray;
+use crate::lanes::{self, LANES, Vec3x8};
+use crate::sampling::Sampler;
+use crate::world::World;
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
 use wide::{CmpGt, CmpNe, f32x8};

@@ -2,7 +2,7 @@
 //! direction toward it.
 //!
 //! Power estimates (luminance, watts) used only to choose lights:
-//! - area light: [`super::AreaLight::power`], π·L·A per emitting side (texture mean applied);
+//! - area light: [`crate::world::AreaLight::power`], π·L·A per emitting side (texture mean applied);
 //! - point light: 4π·I;
 //! - spot light: I·2π(1 − cos θ_m), θ_m the mean of the inner and outer cone angles;
 //! - directional light: E·πr², r the radius of the bounding sphere of the bounded geometry;
@@ -11,10 +11,10 @@
 //! Area lights are sampled uniformly by area and their density turned into solid angle,
 //! `pdf_ω = pdf_A·d²/|cos θ_y|`; the sky is sampled cosine-weighted about the shading normal.
 
-use super::World;
-use super::sampling::cosine_hemisphere;
 use crate::color::Rgb;
 use crate::geometry::Frame;
+use crate::sampling::warp::cosine_hemisphere;
+use crate::world::World;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 

@@ -9,13 +9,13 @@
 //! multiple importance sampling is the one the sampler actually draws from. The delta lobes
 //! (mirror, dielectric) have no density and never take part in multiple importance sampling.
 
-use super::bsdf::{SurfaceMaterial, fresnel_dielectric, reflect, refract};
-use super::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::color::Rgb;
 use crate::geometry::Frame;
+use crate::sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::scene::Material;
+use crate::world::SurfaceMaterial;
+use crate::world::optics::{fresnel_dielectric, phong_pdf, reflect, refract, sample_phong};
 use glam::{Vec2, Vec3};
-use std::f32::consts::{FRAC_1_PI, PI};
 
 /// A scattered direction with its path weight.
 #[derive(Clone, Copy, Debug)]
@@ -109,16 +109,6 @@ impl LobeChoice {
     }
 }
 
-/// Density (1/sr) of the Phong sampling lobe `(s+1)/(2π)·cosˢα` for `cos α` to the mirror
-/// direction.
-fn phong_pdf(cos_alpha: f32, shininess: f32) -> f32 {
-    if cos_alpha <= 0.0 {
-        0.0
-    } else {
-        (shininess + 1.0) * (0.5 * FRAC_1_PI) * cos_alpha.powf(shininess)
-    }
-}
-
 /// The local view of a surface point that scattering needs.
 #[derive(Clone, Copy, Debug)]
 pub struct ViewSide {
@@ -153,11 +143,7 @@ pub fn sample_bsdf(
         let wi = if u_lobe < choice.diffuse {
             Frame::from_normal(n).to_world(cosine_hemisphere(u))
         } else {
-            let cos_alpha = u.x.powf(1.0 / (m.shininess + 1.0));
-            let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
-            let phi = 2.0 * PI * u.y;
-            let local = Vec3::new(sin_alpha * phi.cos(), sin_alpha * phi.sin(), cos_alpha);
-            Frame::from_normal(reflect(wo, n)).to_world(local)
+            sample_phong(n, wo, m.shininess, u)
         };
         let cos = n.dot(wi);
         if cos <= 0.0 || ng.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
@@ -217,8 +203,8 @@ pub fn sample_bsdf(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::trace::sampler::{Sampler, SequenceKind};
-    use crate::trace::sampling::hemisphere_integral;
+    use crate::sampling::warp::hemisphere_integral;
+    use crate::sampling::{Sampler, SequenceKind};
 
     fn material(diffuse: f32, specular: f32, shininess: f32) -> SurfaceMaterial {
         SurfaceMaterial {

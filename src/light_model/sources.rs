@@ -20,13 +20,12 @@
 //! Unbounded shapes (infinite planes) are outside the bounding sphere's measure: they receive
 //! directional and sky light only where it falls inside the sphere's shadow cylinder.
 
-use super::World;
-use super::bsdf::emitted_toward;
-use super::sampler::Sampler;
-use super::sampling::{concentric_disk, cosine_hemisphere, uniform_sphere, uniform_triangle};
 use crate::color::Rgb;
 use crate::geometry::{Frame, Ray, spawn_ray};
+use crate::sampling::Sampler;
+use crate::sampling::warp::{concentric_disk, cosine_hemisphere, uniform_sphere, uniform_triangle};
 use crate::scene::LightKind;
+use crate::world::{World, emitted_toward};
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -37,7 +36,7 @@ const SPOT_ATTEMPTS: u32 = 64;
 /// What a source is.
 #[derive(Clone, Debug)]
 enum SourceKind {
-    /// Area light `light` of [`super::LightSet::area`], triangles chosen through `cdf`.
+    /// Area light `light` of [`crate::world::LightSet::area`], triangles chosen through `cdf`.
     Surface {
         light: usize,
         cdf: Vec<f32>,
@@ -184,11 +183,6 @@ impl PhotonSources {
             center,
             radius,
         }
-    }
-
-    /// Radius of the bounding sphere used for directional and sky light, scene units.
-    pub fn radius(&self) -> f32 {
-        self.radius
     }
 
     /// A photon from source `index`.

@@ -1,33 +1,16 @@
-//! The light model (seed 002 §1.2, like the "enviro" light model of plant modelling): photons
-//! traced from all lights and the sky in proportion to their power, followed through
-//! reflections and transmissions with Russian roulette, accumulating per object (or per face)
-//! the incident, absorbed, emitted and reflected power.
-//!
-//! Estimator. Source s (power Φₛ, see [`super::photon_sources`]) sends exactly Nₛ of the N
-//! photons, Nₛ ≈ N·Φₛ/ΣΦ: photon i takes the source whose cumulative power interval holds
-//! the radical inverse (base 2) of i, so every prefix of the photon sequence, and so every
-//! partial run, is stratified over the sources. Each photon starts with power Φₛ/Nₛ (exactly
-//! so for untextured sources, so the emitted totals are exact), and scatters as
-//! [`super::photon_scatter`] describes. The error falls as 1/√N.
-//!
-//! Exact bookkeeping. Powers are tallied in 128-bit fixed point (2⁶² units for the total
-//! emitted power), and at every hit `absorbed = incident − carried on` in those units, so
-//! Σ absorbed + escaped = Σ emitted holds exactly per photon, and integer sums do not depend
-//! on the order of addition: a fixed seed gives identical reports for any thread count.
-//! Each photon draws its random numbers from its own stream (seed, photon index).
-//!
-//! Photons stop after `max_bounces` scattering events (the last hit absorbs them; counted as
-//! `truncated_paths`), which only matters for scenes of near-perfect mirrors.
+//! A light-tracing run: photons from every source traced in parallel batches into fixed-point
+//! tallies, merged into the power per reported surface.
 
-use super::World;
-use super::photon_scatter::scatter_photon;
-use super::photon_sources::PhotonSources;
-use super::render::ProgressListener;
-use super::sampler::{Sampler, SequenceKind};
+use super::scatter::scatter_photon;
+use super::sources::PhotonSources;
+use super::tally::{Fixed, FixedBalance, Tally, add_fixed};
+use crate::color::{Rgb, Rgb64};
 use crate::geometry::spawn_ray;
-use crate::report::{PowerAccumulator, Report, Rgb64, Stats, SurfaceTable};
+use crate::measure::{Stats, SurfacePower, SurfaceTable};
+use crate::progress::{Cancel, ProgressListener};
+use crate::sampling::{Sampler, SequenceKind};
+use crate::world::World;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// Fixed-point units of the total emitted power (largest channel).
@@ -77,7 +60,7 @@ pub enum LightTraceError {
 pub struct LightTraceOutput {
     /// Per-surface and scene-wide power, W, scaled to the full photon count when the run was
     /// cancelled early.
-    pub power: PowerAccumulator,
+    pub power: SurfacePower,
     /// Photons asked for.
     pub photons: u64,
     /// Photons traced (less than `photons` when cancelled).
@@ -99,85 +82,31 @@ pub struct LightTraceOutput {
 }
 
 impl LightTraceOutput {
+    /// The solver's name in reports.
+    pub const SOLVER: &'static str = "light-trace";
+
     /// True when every photon asked for was traced.
     pub fn complete(&self) -> bool {
         self.photons_traced == self.photons
     }
 
-    /// The report of this run for the scene called `scene` (solver `light-trace`).
-    pub fn report(&self, scene: &str) -> Report {
+    /// The statistics of this run: time, rays, photons and sources.
+    pub fn stats(&self) -> Stats {
         let mut stats = Stats {
             seconds: self.seconds,
             rays: self.rays,
             ..Stats::default()
         };
-        let mut put = |k: &str, v: serde_json::Value| {
-            stats.extra.insert(k.to_string(), v);
-        };
-        put("photons", self.photons.into());
-        put("photons_traced", self.photons_traced.into());
-        put("complete", self.complete().into());
-        put("seed", self.settings.seed.into());
-        put("max_bounces", self.settings.max_bounces.into());
-        put("escaped_photons", self.escaped_photons.into());
-        put("truncated_paths", self.truncated_paths.into());
-        put("sources", self.sources.into());
-        put("unsampled_sources", self.unsampled_sources.into());
-        self.power.report(scene, "light-trace", stats)
-    }
-}
-
-/// Fixed-point power triple.
-type Fixed = [i128; 3];
-
-/// Per-entry quantities in a tally.
-#[derive(Clone, Copy, Default)]
-struct FixedBalance {
-    incident: Fixed,
-    absorbed: Fixed,
-    emitted: Fixed,
-    reflected: Fixed,
-}
-
-/// What one worker has accumulated.
-#[derive(Clone)]
-struct Tally {
-    entries: Vec<FixedBalance>,
-    light_emission: Fixed,
-    escaped: Fixed,
-    rays: u64,
-    escaped_photons: u64,
-    truncated_paths: u64,
-}
-
-fn add_fixed(a: &mut Fixed, b: Fixed) {
-    a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
-}
-
-impl Tally {
-    fn new(entries: usize) -> Self {
-        Tally {
-            entries: vec![FixedBalance::default(); entries],
-            light_emission: [0; 3],
-            escaped: [0; 3],
-            rays: 0,
-            escaped_photons: 0,
-            truncated_paths: 0,
-        }
-    }
-
-    fn merge(&mut self, o: &Tally) {
-        for (a, b) in self.entries.iter_mut().zip(&o.entries) {
-            add_fixed(&mut a.incident, b.incident);
-            add_fixed(&mut a.absorbed, b.absorbed);
-            add_fixed(&mut a.emitted, b.emitted);
-            add_fixed(&mut a.reflected, b.reflected);
-        }
-        add_fixed(&mut self.light_emission, o.light_emission);
-        add_fixed(&mut self.escaped, o.escaped);
-        self.rays += o.rays;
-        self.escaped_photons += o.escaped_photons;
-        self.truncated_paths += o.truncated_paths;
+        stats.insert("photons", self.photons);
+        stats.insert("photons_traced", self.photons_traced);
+        stats.insert("complete", self.complete());
+        stats.insert("seed", self.settings.seed);
+        stats.insert("max_bounces", self.settings.max_bounces);
+        stats.insert("escaped_photons", self.escaped_photons);
+        stats.insert("truncated_paths", self.truncated_paths);
+        stats.insert("sources", self.sources);
+        stats.insert("unsampled_sources", self.unsampled_sources);
+        stats
     }
 }
 
@@ -209,11 +138,11 @@ impl Tracer<'_> {
     }
 
     fn quantize(&self, p: Rgb64) -> Fixed {
-        p.map(|c| (c * self.scale).round() as i128)
+        p.to_array().map(|c| (c * self.scale).round() as i128)
     }
 
     fn watts(&self, q: Fixed) -> Rgb64 {
-        q.map(|c| c as f64 / self.scale)
+        Rgb64::from(q.map(|c| c as f64 / self.scale))
     }
 
     fn trace_photon(&self, index: u64, tally: &mut Tally) {
@@ -289,13 +218,13 @@ fn photons_per_source(cdf: &[f64], photons: u64) -> Vec<u64> {
 }
 
 /// Traces `settings.photons` photons through `world` on the current rayon pool. Progress is
-/// reported in photons; when `cancel` becomes true the run stops after the current batch and
+/// reported in photons; when `cancel` is requested the run stops after the current batch and
 /// the result is scaled to the full photon count.
 pub fn trace_light(
     world: &World,
     settings: &LightTraceSettings,
     progress: &dyn ProgressListener,
-    cancel: &AtomicBool,
+    cancel: &Cancel,
 ) -> Result<LightTraceOutput, LightTraceError> {
     let start = Instant::now();
     if settings.photons == 0 {
@@ -308,7 +237,7 @@ pub fn trace_light(
     let weights: Vec<f64> = sources
         .sources
         .iter()
-        .map(|s| s.power.to_f64().iter().sum())
+        .map(|s| s.power.to_f64().to_array().iter().sum())
         .collect();
     let total: f64 = weights.iter().sum();
     let mut cdf: Vec<f64> = weights
@@ -326,7 +255,7 @@ pub fn trace_light(
         .sources
         .iter()
         .map(|s| s.power)
-        .sum::<crate::color::Rgb>()
+        .sum::<Rgb>()
         .max_channel() as f64;
     let table = SurfaceTable::new(&world.scene, &world.geometry);
     let tracer = Tracer {
@@ -345,7 +274,7 @@ pub fn trace_light(
     let batch = settings.photons.div_ceil(BATCHES).max(MIN_BATCH);
     progress.start(settings.photons);
     let mut done = 0u64;
-    while done < settings.photons && !cancel.load(Ordering::Relaxed) {
+    while done < settings.photons && !cancel.is_requested() {
         let end = (done + batch).min(settings.photons);
         let span = end - done;
         tallies
@@ -366,7 +295,7 @@ pub fn trace_light(
     for t in &tallies {
         sum.merge(t);
     }
-    let mut power = PowerAccumulator::new(table.clone());
+    let mut power = SurfacePower::new(table.clone());
     for (e, b) in sum.entries.iter().enumerate() {
         let out = power.balance_mut(e);
         out.incident = tracer.watts(b.incident);

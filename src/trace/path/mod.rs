@@ -17,15 +17,17 @@
 //! Path length counts scattering events: with `max_depth = 0` only emitters seen directly
 //! contribute, with 1 direct light only, and so on; `u32::MAX` leaves the length to roulette.
 
-use super::bsdf::emitted;
-use super::bsdf_sampling::{LobeChoice, ViewSide, sample_bsdf};
-use super::direct::ShadingPoint;
-use super::lanes::LANES;
-use super::light_sampling::{LightPicker, LightSample, ShadowTarget};
-use super::sampler::Sampler;
-use super::{Integrator, SurfaceHit, World};
+mod packet;
+
+use super::Integrator;
+use super::shading::ShadingPoint;
+use super::shading::bsdf::{LobeChoice, ViewSide, sample_bsdf};
+use super::shading::light_sampling::{LightPicker, LightSample, ShadowTarget};
 use crate::color::Rgb;
-use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
+use crate::geometry::{Ray, spawn_ray};
+use crate::lanes::LANES;
+use crate::sampling::Sampler;
+use crate::world::{SurfaceHit, World, emitted};
 use glam::{Vec2, Vec3};
 
 /// Scattering events a path has had before Russian roulette may end it (a path continuing
@@ -191,16 +193,11 @@ impl PathTracer {
         if f.is_black() {
             return Rgb::BLACK;
         }
-        let blocked = match ls.target {
-            ShadowTarget::Point(p) => {
-                let (ray, t_max) = spawn_ray_to(sp.hit.p, sp.ng, p);
-                world.occluded(&ray, t_max)
-            }
-            ShadowTarget::Infinity => {
-                world.occluded(&spawn_ray(sp.hit.p, sp.ng, ls.wi), f32::INFINITY)
-            }
+        let visible = match ls.target {
+            ShadowTarget::Point(p) => sp.sees(world, p),
+            ShadowTarget::Infinity => sp.sees_along(world, ls.wi),
         };
-        if blocked {
+        if !visible {
             return Rgb::BLACK;
         }
         let weight = if ls.pdf > 0.0 {

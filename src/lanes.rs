@@ -190,7 +190,7 @@ pub fn spawn_ray_to(p: &Vec3x8, n: &Vec3x8, target: &Vec3x8) -> (Vec3x8, Vec3x8,
 mod tests {
     use super::*;
     use crate::geometry::Frame;
-    use crate::trace::sampling;
+    use crate::sampling::warp as sampling;
     use glam::{Vec2, Vec3};
 
     impl Vec3x8 {

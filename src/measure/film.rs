@@ -1,6 +1,6 @@
 //! The film: a rectangle of linear HDR radiance values, one per pixel.
 
-use crate::color::Rgb;
+use crate::color::{Rgb, Rgb64};
 
 /// Linear HDR radiance per pixel (W·sr⁻¹·m⁻², linear Rec.709 RGB), row-major, row 0 at the
 /// top of the image and column 0 at the left.
@@ -73,18 +73,9 @@ impl Film {
         if self.pixels.is_empty() {
             return Rgb::BLACK;
         }
-        let mut sum = [0.0f64; 3];
-        for p in &self.pixels {
-            for (s, c) in sum.iter_mut().zip(p.to_f64()) {
-                *s += c;
-            }
-        }
+        let sum: Rgb64 = self.pixels.iter().map(|p| p.to_f64()).sum();
         let n = self.pixels.len() as f64;
-        Rgb::new(
-            (sum[0] / n) as f32,
-            (sum[1] / n) as f32,
-            (sum[2] / n) as f32,
-        )
+        sum.map(|c| c / n).to_f32()
     }
 
     /// Root-mean-square difference to `other` over all pixels and all three channels, in the
@@ -100,7 +91,7 @@ impl Film {
             .pixels
             .iter()
             .zip(&other.pixels)
-            .flat_map(|(a, b)| a.to_f64().into_iter().zip(b.to_f64()))
+            .flat_map(|(a, b)| a.to_f64().to_array().into_iter().zip(b.to_f64().to_array()))
             .map(|(a, b)| (a - b) * (a - b))
             .sum();
         Some((sum_sq / (3.0 * self.pixels.len() as f64)).sqrt())

@@ -1,9 +1,9 @@
-//! Export of a radiosity solution as a coloured mesh: binary glTF (`.glb`), glTF with its
-//! buffer in a `.bin` file beside it (`.gltf`), or ASCII PLY (`.ply`).
+//! Export of a [`LitMesh`] (a radiosity solution, or any lit mesh) as a coloured mesh: binary
+//! glTF (`.glb`), glTF with its buffer in a `.bin` file beside it (`.gltf`), or ASCII PLY
+//! (`.ply`).
 //!
-//! Every leaf patch becomes a polygon with its own vertices (triangles in glTF, the leaf's
-//! triangle or quad in PLY), carrying the smooth corner radiosity of [`vertex_radiosity`]
-//! (display radiosity, ambient term included):
+//! Every polygon keeps its own vertices (triangles in glTF, the triangle or quad in PLY),
+//! carrying its per-corner radiosity:
 //! - glTF: `COLOR_0` holds the tone-mapped colour (display-linear, in `[0, 1]`: what any
 //!   viewer shows; the material is unlit), `COLOR_1` the linear radiosity in W·m⁻² (a
 //!   standard attribute that viewers carry along but do not show), plus `POSITION` (scene
@@ -13,12 +13,9 @@
 //!
 //! Tone mapping acts on the radiance `B/π` of the vertices as on an image's pixels.
 
-use super::interpolate::vertex_radiosity;
-use super::solution::Solution;
-use super::system::RadiositySystem;
-use crate::color::Rgb;
-use crate::image::{Film, ToneMapping, linear_to_srgb};
-use crate::report::Rgb64;
+use crate::color::{Rgb, linear_to_srgb};
+use crate::image::ToneMapping;
+use crate::measure::{Film, LitMesh};
 use serde_json::json;
 use std::f64::consts::PI;
 use std::path::Path;
@@ -87,19 +84,19 @@ struct ExportMesh {
     radiosity: Vec<[f32; 3]>,
     /// Tone-mapped, display-linear colours in `[0, 1]`.
     colors: Vec<[f32; 3]>,
-    /// Vertex indices of each leaf polygon (3 or 4).
+    /// Vertex indices of each polygon (3 or 4).
     polygons: Vec<Vec<u32>>,
 }
 
-/// Writes `solution` as a mesh to `path` in the format its extension names.
-pub fn export_solution(
-    system: &RadiositySystem,
-    solution: &Solution,
+/// Writes `lit` to `path` in the format its extension names, with display colours from
+/// `tone_mapping` applied to the vertices' radiance `B/π`.
+pub fn export_lit_mesh(
+    lit: &LitMesh,
     tone_mapping: &ToneMapping,
     path: &Path,
 ) -> Result<(), ExportError> {
     let format = ExportFormat::from_path(path)?;
-    let mesh = build(system, solution, tone_mapping);
+    let mesh = build(lit, tone_mapping);
     let io = |source| ExportError::Io {
         path: path.display().to_string(),
         source,
@@ -126,31 +123,22 @@ pub fn export_solution(
     }
 }
 
-fn build(system: &RadiositySystem, solution: &Solution, tone_mapping: &ToneMapping) -> ExportMesh {
-    let flat = solution.display_radiosity(system);
-    let corners = vertex_radiosity(&system.mesh, &system.leaves, &flat);
+fn build(lit: &LitMesh, tone_mapping: &ToneMapping) -> ExportMesh {
     let mut mesh = ExportMesh {
-        positions: Vec::new(),
-        normals: Vec::new(),
-        radiosity: Vec::new(),
+        positions: lit.positions.iter().map(|p| p.to_array()).collect(),
+        normals: lit.normals.iter().map(|n| n.to_array()).collect(),
+        radiosity: lit
+            .radiosity
+            .iter()
+            .map(|b| b.to_f32().to_array())
+            .collect(),
         colors: Vec::new(),
-        polygons: Vec::new(),
+        polygons: lit.polygons.clone(),
     };
-    for (k, values) in corners.iter().enumerate() {
-        let patch = system.patch(k);
-        let first = mesh.positions.len() as u32;
-        for (c, &value) in patch.corners().iter().zip(values) {
-            mesh.positions.push(c.as_vec3().to_array());
-            mesh.normals.push(patch.normal.as_vec3().to_array());
-            mesh.radiosity.push(to_f32(value));
-        }
-        mesh.polygons
-            .push((first..first + patch.corners().len() as u32).collect());
-    }
     let radiance: Vec<Rgb> = mesh
         .radiosity
         .iter()
-        .map(|b| Rgb::new(b[0], b[1], b[2]) * (1.0 / PI as f32))
+        .map(|&b| Rgb::from(b) * (1.0 / PI as f32))
         .collect();
     if let Some(film) = Film::from_pixels(radiance.len() as u32, 1, radiance) {
         mesh.colors = tone_mapping
@@ -160,10 +148,6 @@ fn build(system: &RadiositySystem, solution: &Solution, tone_mapping: &ToneMappi
             .collect();
     }
     mesh
-}
-
-fn to_f32(v: Rgb64) -> [f32; 3] {
-    v.map(|x| x as f32)
 }
 
 /// The PLY text.

@@ -6,16 +6,17 @@
 //!   depth 4. Samples sit on a fixed grid of [`ADAPTIVE_GRID`] units per pixel side and are
 //!   cached, so no grid point is traced twice — not across pixels, rows or threads.
 
-use super::sampler::{Sampler, SequenceKind, hash64};
-use super::{Integrator, World};
+use super::super::Integrator;
 use crate::color::Rgb;
+use crate::sampling::warp::stratified;
+use crate::sampling::{Sampler, SequenceKind, hash64};
 use crate::scene::CameraRays;
+use crate::world::World;
 use std::collections::HashMap;
 use std::sync::Mutex;
 
 /// Antialiasing method.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AntialiasMode {
     /// One ray through each pixel centre.
     None,
@@ -25,6 +26,12 @@ pub enum AntialiasMode {
     /// Adaptive supersampling.
     Adaptive,
 }
+
+crate::choice::named_values!(AntialiasMode {
+    AntialiasMode::None = "none", "One ray through each pixel centre";
+    AntialiasMode::Stochastic = "stochastic", "Jittered n×n subpixels, one ray each";
+    AntialiasMode::Adaptive = "adaptive", "Corners and centre, subdivided where they differ (depth 4)";
+});
 
 /// Maximum subdivision depth of adaptive supersampling.
 pub const ADAPTIVE_MAX_DEPTH: u32 = 4;
@@ -79,7 +86,7 @@ impl SampleContext<'_> {
         let mut sum = Rgb::BLACK;
         for k in 0..count {
             let mut jitter = Sampler::new(self.sequence, self.seed ^ 0x5eed, stream, k);
-            let u = super::sampling::stratified(k % (n * n), n, jitter.next_2d());
+            let u = stratified(k % (n * n), n, jitter.next_2d());
             sum += self.trace(px as f32 + u.x, py as f32 + u.y, stream, k);
         }
         sum / count as f32

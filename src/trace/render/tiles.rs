@@ -1,17 +1,18 @@
-//! The image loop: work split into tiles rendered on all threads of the current rayon pool,
-//! progress reported to a listener, cancellation honoured between tiles (what is done is
-//! kept). Every sample's random numbers depend only on the seed and its image position, so
-//! the image does not depend on the thread count.
+//! The tile loop: the image split into tiles (strips with adaptive antialiasing) rendered on
+//! all threads of the current rayon pool, progress reported per row, cancellation honoured
+//! between tiles (what is done is kept).
 
+use super::super::Integrator;
 use super::antialias::{AdaptiveCache, AntialiasMode, SampleContext, stochastic_count};
-use super::sampler::SequenceKind;
-use super::{Integrator, World};
 use crate::color::Rgb;
-use crate::image::Film;
+use crate::measure::Film;
+use crate::progress::{Cancel, ProgressListener};
+use crate::sampling::SequenceKind;
+use crate::world::World;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Side of the square tiles used without adaptive antialiasing.
 const TILE: u32 = 32;
@@ -51,25 +52,6 @@ impl Default for RenderSettings {
     }
 }
 
-/// Receives progress of long work (seed 002 §5.1, `RTProgressListener`).
-pub trait ProgressListener: Sync {
-    /// Work of `total` units starts.
-    fn start(&self, total: u64);
-    /// `units` more units are done.
-    fn advance(&self, units: u64);
-    /// The work ended (completed or cancelled).
-    fn finish(&self);
-}
-
-/// A listener that ignores everything.
-pub struct NoProgress;
-
-impl ProgressListener for NoProgress {
-    fn start(&self, _total: u64) {}
-    fn advance(&self, _units: u64) {}
-    fn finish(&self) {}
-}
-
 /// A rendered image and what it took.
 #[derive(Clone, Debug)]
 pub struct RenderOutput {
@@ -101,7 +83,7 @@ pub fn render(
     integrator: &dyn Integrator,
     settings: &RenderSettings,
     progress: &dyn ProgressListener,
-    cancel: &AtomicBool,
+    cancel: &Cancel,
 ) -> Option<RenderOutput> {
     let camera = world
         .scene
@@ -143,7 +125,7 @@ pub fn render(
     let results: Vec<Option<TileResult>> = tiles
         .par_iter()
         .map(|tile| {
-            if cancel.load(Ordering::Relaxed) {
+            if cancel.is_requested() {
                 return None;
             }
             let n = ((tile.x1 - tile.x0) * (tile.y1 - tile.y0)) as usize;

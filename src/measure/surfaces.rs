@@ -2,7 +2,7 @@
 //! `per_face = true`, with their areas, and the map from a hit's object and face to its entry.
 
 use crate::scene::Scene;
-use crate::trace::SceneGeometry;
+use crate::world::SceneGeometry;
 
 /// Segments of the coarser of the two tessellations that measure curved analytic shapes.
 const AREA_SEGMENTS: u32 = 64;

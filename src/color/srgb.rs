@@ -1,4 +1,14 @@
-//! The sRGB transfer curve for 8-bit output (its inverse lives with the textures).
+//! The sRGB transfer curve and its inverse: linear values to the encoded values of 8-bit
+//! images and textures, and back.
+
+/// The sRGB electro-optical transfer function: encoded value in `[0, 1]` to linear.
+pub fn srgb_to_linear(v: f32) -> f32 {
+    if v <= 0.04045 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
 
 /// The sRGB opto-electronic transfer function: display-linear value to encoded value, both
 /// in `[0, 1]`. Inputs are clamped to `[0, 1]` first; NaN encodes as 0.
@@ -15,7 +25,13 @@ pub fn linear_to_srgb(v: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::srgb_to_linear;
+
+    #[test]
+    fn decoding_matches_reference_points() {
+        assert_eq!(srgb_to_linear(0.0), 0.0);
+        assert!((srgb_to_linear(1.0) - 1.0).abs() < 1e-6);
+        assert!((srgb_to_linear(0.5) - 0.214_041).abs() < 1e-5);
+    }
 
     #[test]
     fn encoding_matches_reference_points() {

@@ -11,15 +11,14 @@
 //! refraction directions use the shading normal, and a direction that would leave on the
 //! wrong side of the geometric normal is absorbed.
 
-use super::SurfaceHit;
-use super::bsdf::{SurfaceMaterial, fresnel_dielectric, reflect, refract};
-use super::sampler::Sampler;
-use super::sampling::cosine_hemisphere;
-use crate::color::Rgb;
+use crate::color::{Rgb, Rgb64};
 use crate::geometry::Frame;
+use crate::sampling::Sampler;
+use crate::sampling::warp::cosine_hemisphere;
 use crate::scene::Scene;
+use crate::world::optics::{fresnel_dielectric, reflect, refract, sample_phong};
+use crate::world::{SurfaceHit, SurfaceMaterial};
 use glam::{Vec2, Vec3};
-use std::f32::consts::PI;
 
 /// A photon leaving a surface.
 #[derive(Clone, Copy, Debug)]
@@ -27,7 +26,7 @@ pub struct Scattered {
     /// Unit direction away from the surface.
     pub dir: Vec3,
     /// Power it carries on, W per channel.
-    pub power: [f64; 3],
+    pub power: Rgb64,
 }
 
 /// The fate of a photon of power `power` (W per channel) arriving along the unit direction
@@ -36,14 +35,14 @@ pub fn scatter_photon(
     scene: &Scene,
     hit: &SurfaceHit,
     dir: Vec3,
-    power: [f64; 3],
+    power: Rgb64,
     sampler: &mut Sampler,
 ) -> Option<Scattered> {
     let m = SurfaceMaterial::at(scene, hit);
     if m.is_black_from(hit.front_face) {
         return None;
     }
-    let total: f64 = power.iter().sum();
+    let total: f64 = power.to_array().iter().sum();
     if total <= 0.0 {
         return None;
     }
@@ -53,7 +52,7 @@ pub fn scatter_photon(
     let wo = -dir;
     let parts = [m.diffuse, m.specular, m.mirror, m.transmission];
     let choice =
-        |w: Rgb| (power[0] * w.r as f64 + power[1] * w.g as f64 + power[2] * w.b as f64) / total;
+        |w: Rgb| (power.r * w.r as f64 + power.g * w.g as f64 + power.b * w.b as f64) / total;
     let u = sampler.next_1d() as f64;
     let mut cumulative = 0.0;
     let mut chosen = None;
@@ -83,23 +82,15 @@ pub fn scatter_photon(
     let scale = factor as f64 / p;
     Some(Scattered {
         dir: out,
-        power: [
-            power[0] * w.r as f64 * scale,
-            power[1] * w.g as f64 * scale,
-            power[2] * w.b as f64 * scale,
-        ],
+        power: power * w.to_f64() * scale,
     })
 }
 
-/// A direction from the normalised Phong lobe about the mirror direction of `wo`, sampled
-/// with density `(s+1)/(2π)·cosˢα`, and the lobe's weight factor `(s+2)/(s+1)·cos θ`;
-/// `None` below the surface.
+/// A direction from the normalised Phong lobe about the mirror direction of `wo`
+/// ([`sample_phong`]) and the lobe's weight factor `(s+2)/(s+1)·cos θ`; `None` below the
+/// surface.
 fn phong_direction(n: Vec3, wo: Vec3, shininess: f32, u: Vec2) -> Option<(Vec3, f32)> {
-    let cos_alpha = u.x.powf(1.0 / (shininess + 1.0));
-    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    let local = Vec3::new(sin_alpha * phi.cos(), sin_alpha * phi.sin(), cos_alpha);
-    let wi = Frame::from_normal(reflect(wo, n)).to_world(local);
+    let wi = sample_phong(n, wo, shininess, u);
     let cos = wi.dot(n);
     (cos > 0.0).then(|| (wi, (shininess + 2.0) / (shininess + 1.0) * cos))
 }
@@ -118,9 +109,9 @@ fn dielectric_direction(n: Vec3, wo: Vec3, front_face: bool, ior: f32, u: f32) -
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sampling::SequenceKind;
     use crate::scene::{Material, Shape};
-    use crate::trace::SceneGeometry;
-    use crate::trace::sampler::SequenceKind;
+    use crate::world::SceneGeometry;
 
     /// The hit of a ray coming straight down onto an upward unit quad with material `m`.
     fn hit_on_quad(m: Material) -> (Scene, SurfaceHit) {
@@ -156,7 +147,7 @@ mod tests {
         let mut sum_sq = [0.0f64; 3];
         for i in 0..n {
             let mut s = Sampler::new(SequenceKind::Random, 3, i, 0);
-            if let Some(out) = scatter_photon(&scene, &hit, -Vec3::Y, [1.0, 1.0, 1.0], &mut s) {
+            if let Some(out) = scatter_photon(&scene, &hit, -Vec3::Y, Rgb64::WHITE, &mut s) {
                 assert!(out.dir.y > 0.0);
                 for c in 0..3 {
                     sum[c] += out.power[c];
@@ -196,8 +187,9 @@ mod tests {
         let mut reflected = 0;
         for i in 0..n {
             let mut s = Sampler::new(SequenceKind::Random, 5, i, 0);
-            let out = scatter_photon(&scene, &hit, -Vec3::Y, [1.0, 2.0, 3.0], &mut s).unwrap();
-            assert!((out.power[0] - 1.0).abs() < 1e-12 && (out.power[2] - 3.0).abs() < 1e-12);
+            let out =
+                scatter_photon(&scene, &hit, -Vec3::Y, Rgb64::new(1.0, 2.0, 3.0), &mut s).unwrap();
+            assert!((out.power.r - 1.0).abs() < 1e-12 && (out.power.b - 3.0).abs() < 1e-12);
             if out.dir.y > 0.0 {
                 reflected += 1;
             } else {

@@ -7,14 +7,14 @@
 //! rest), and each pixel's samples are summed in sample order, so the image depends neither
 //! on the thread count nor on how the samples were split into passes.
 
-use super::render::ProgressListener;
-use super::sampler::{Sampler, SequenceKind};
-use super::{Integrator, World};
+use super::super::Integrator;
 use crate::color::Rgb;
 use crate::geometry::Ray;
-use crate::image::Film;
+use crate::measure::Film;
+use crate::progress::{Cancel, ProgressListener};
+use crate::sampling::{Sampler, SequenceKind};
+use crate::world::World;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 /// Pixel rows per parallel work item.
@@ -112,7 +112,7 @@ pub fn render_progressive(
     integrator: &dyn Integrator,
     settings: &ProgressiveSettings,
     progress: &dyn ProgressListener,
-    cancel: &AtomicBool,
+    cancel: &Cancel,
 ) -> Option<ProgressiveOutput> {
     let camera = world
         .scene
@@ -135,7 +135,7 @@ pub fn render_progressive(
     let mut passes = 0u32;
     let mut last_pass_seconds_per_sample = 0.0f64;
     progress.start(u64::from(w) * u64::from(h) * u64::from(target));
-    while done < target && !cancel.load(Ordering::Relaxed) {
+    while done < target && !cancel.is_requested() {
         let count = pass_samples(passes).min(target - done);
         if let Some(deadline) = deadline {
             let expected = Duration::from_secs_f64(last_pass_seconds_per_sample * count as f64);
@@ -145,9 +145,8 @@ pub fn render_progressive(
         }
         let pass_start = Instant::now();
         let first = passes == 0;
-        let stop = |now: Instant| {
-            cancel.load(Ordering::Relaxed) || (!first && deadline.is_some_and(|d| now > d))
-        };
+        let stop =
+            |now: Instant| cancel.is_requested() || (!first && deadline.is_some_and(|d| now > d));
         let mut next = sums.clone();
         let finished = next
             .par_chunks_mut(w as usize * STRIP_ROWS)

@@ -1,0 +1,27 @@
+//! The light model (seed 002 §1.2, like the "enviro" light model of plant modelling): photons
+//! traced from all lights and the sky in proportion to their power, followed through
+//! reflections and transmissions with Russian roulette, accumulating per object (or per face)
+//! the incident, absorbed, emitted and reflected power.
+//!
+//! Estimator. Source s (power Φₛ, see [`sources`]) sends exactly Nₛ of the N
+//! photons, Nₛ ≈ N·Φₛ/ΣΦ: photon i takes the source whose cumulative power interval holds
+//! the radical inverse (base 2) of i, so every prefix of the photon sequence, and so every
+//! partial run, is stratified over the sources. Each photon starts with power Φₛ/Nₛ (exactly
+//! so for untextured sources, so the emitted totals are exact), and scatters as
+//! [`scatter`] describes. The error falls as 1/√N.
+//!
+//! Exact bookkeeping. Powers are tallied in 128-bit fixed point (2⁶² units for the total
+//! emitted power), and at every hit `absorbed = incident − carried on` in those units, so
+//! Σ absorbed + escaped = Σ emitted holds exactly per photon, and integer sums do not depend
+//! on the order of addition: a fixed seed gives identical reports for any thread count.
+//! Each photon draws its random numbers from its own stream (seed, photon index).
+//!
+//! Photons stop after `max_bounces` scattering events (the last hit absorbs them; counted as
+//! `truncated_paths`), which only matters for scenes of near-perfect mirrors.
+
+mod scatter;
+mod sources;
+mod tally;
+mod trace;
+
+pub use trace::{LightTraceError, LightTraceOutput, LightTraceSettings, trace_light};

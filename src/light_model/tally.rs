@@ -1,0 +1,65 @@
+//! Fixed-point tallies of photon power: integer sums do not depend on the order of addition,
+//! so a fixed seed gives identical totals for any thread count.
+
+/// Fixed-point power triple.
+pub(super) type Fixed = [i128; 3];
+
+/// Per-entry quantities in a tally: incident, absorbed, emitted and reflected power.
+#[derive(Clone, Copy, Default)]
+pub(super) struct FixedBalance {
+    pub incident: Fixed,
+    pub absorbed: Fixed,
+    pub emitted: Fixed,
+    pub reflected: Fixed,
+}
+
+/// What one worker has accumulated.
+#[derive(Clone)]
+pub(super) struct Tally {
+    /// Per report entry.
+    pub entries: Vec<FixedBalance>,
+    /// Emission of lights that are not surfaces.
+    pub light_emission: Fixed,
+    /// Power that left the scene.
+    pub escaped: Fixed,
+    /// Closest-hit queries.
+    pub rays: u64,
+    /// Photons that left the scene.
+    pub escaped_photons: u64,
+    /// Photons stopped by the bounce limit.
+    pub truncated_paths: u64,
+}
+
+/// Adds `b` to `a` channel by channel.
+pub(super) fn add_fixed(a: &mut Fixed, b: Fixed) {
+    a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
+}
+
+impl Tally {
+    /// Zeros for `entries` report entries.
+    pub fn new(entries: usize) -> Self {
+        Tally {
+            entries: vec![FixedBalance::default(); entries],
+            light_emission: [0; 3],
+            escaped: [0; 3],
+            rays: 0,
+            escaped_photons: 0,
+            truncated_paths: 0,
+        }
+    }
+
+    /// Adds everything `o` holds.
+    pub fn merge(&mut self, o: &Tally) {
+        for (a, b) in self.entries.iter_mut().zip(&o.entries) {
+            add_fixed(&mut a.incident, b.incident);
+            add_fixed(&mut a.absorbed, b.absorbed);
+            add_fixed(&mut a.emitted, b.emitted);
+            add_fixed(&mut a.reflected, b.reflected);
+        }
+        add_fixed(&mut self.light_emission, o.light_emission);
+        add_fixed(&mut self.escaped, o.escaped);
+        self.rays += o.rays;
+        self.escaped_photons += o.escaped_photons;
+        self.truncated_paths += o.truncated_paths;
+    }
+}

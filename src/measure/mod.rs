@@ -1,0 +1,16 @@
+//! What the algorithms measure, in plain containers that they fill and that `report` and
+//! `image` turn into files: the [`Film`] (radiance per pixel), the [`SurfacePower`] (power
+//! per reported surface, over the [`SurfaceTable`] of a scene), the [`LitMesh`] (radiosity
+//! per polygon corner) and the run's [`Stats`].
+
+mod film;
+mod lit_mesh;
+mod stats;
+mod surface_power;
+mod surfaces;
+
+pub use film::Film;
+pub use lit_mesh::LitMesh;
+pub use stats::Stats;
+pub use surface_power::{PowerBalance, SurfacePower, Totals};
+pub use surfaces::{ReportSurface, SurfaceTable};

@@ -1,0 +1,105 @@
+//! Power per reported surface, the way every light solver hands it on: incident, absorbed,
+//! emitted and reflected power per entry of a [`SurfaceTable`], plus the scene-wide emission
+//! of lights that are not surfaces and the power that left the scene.
+
+use super::surfaces::SurfaceTable;
+use crate::color::Rgb64;
+use serde::{Deserialize, Serialize};
+
+/// The power balance of one surface, W per channel.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PowerBalance {
+    /// Power arriving on either side.
+    pub incident: Rgb64,
+    /// Power absorbed.
+    pub absorbed: Rgb64,
+    /// Power emitted by the surface itself.
+    pub emitted: Rgb64,
+    /// Power reflected or transmitted.
+    pub reflected: Rgb64,
+}
+
+/// Scene-wide power balance, W per channel.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Totals {
+    /// Power emitted by all lights and emissive surfaces.
+    pub emitted_power: Rgb64,
+    /// Power absorbed by all surfaces.
+    pub absorbed_power: Rgb64,
+    /// Power that left the scene (zero in a closed scene).
+    pub escaped_power: Rgb64,
+}
+
+/// Power per entry of a surface table plus the scene-wide terms, W per channel.
+#[derive(Clone, Debug)]
+pub struct SurfacePower {
+    table: SurfaceTable,
+    balances: Vec<PowerBalance>,
+    light_emission: Rgb64,
+    escaped: Rgb64,
+}
+
+impl SurfacePower {
+    /// All zeros for the entries of `table`.
+    pub fn new(table: SurfaceTable) -> Self {
+        SurfacePower {
+            balances: vec![PowerBalance::default(); table.len()],
+            table,
+            light_emission: Rgb64::BLACK,
+            escaped: Rgb64::BLACK,
+        }
+    }
+
+    /// The entries.
+    pub fn table(&self) -> &SurfaceTable {
+        &self.table
+    }
+
+    /// The balance of entry `entry` (an index from [`SurfaceTable::entry`]) to add to.
+    pub fn balance_mut(&mut self, entry: usize) -> &mut PowerBalance {
+        &mut self.balances[entry]
+    }
+
+    /// The balance of entry `entry`.
+    pub fn balance(&self, entry: usize) -> &PowerBalance {
+        &self.balances[entry]
+    }
+
+    /// Adds power (W) emitted by lights that are not surfaces (point, spot, directional, sky).
+    pub fn add_light_emission(&mut self, power: Rgb64) {
+        self.light_emission += power;
+    }
+
+    /// Adds power (W) that left the scene.
+    pub fn add_escaped(&mut self, power: Rgb64) {
+        self.escaped += power;
+    }
+
+    /// Multiplies every power by `factor` (e.g. to scale a partial run to its full size).
+    pub fn scale(&mut self, factor: f64) {
+        for b in &mut self.balances {
+            b.incident *= factor;
+            b.absorbed *= factor;
+            b.emitted *= factor;
+            b.reflected *= factor;
+        }
+        self.light_emission *= factor;
+        self.escaped *= factor;
+    }
+
+    /// Scene-wide totals: emission of surfaces and lights, absorption, escape.
+    pub fn totals(&self) -> Totals {
+        let surface_emission = self
+            .balances
+            .iter()
+            .fold(Rgb64::BLACK, |a, b| a + b.emitted);
+        Totals {
+            emitted_power: surface_emission + self.light_emission,
+            absorbed_power: self
+                .balances
+                .iter()
+                .fold(Rgb64::BLACK, |a, b| a + b.absorbed),
+            escaped_power: self.escaped,
+        }
+    }
+}

@@ -1,0 +1,13 @@
+//! The image loops: an integrator driven over the camera's pixels on all threads of the
+//! current rayon pool, with progress and cancellation — tiles with antialiasing for any
+//! integrator ([`render`]), whole-image passes of a few samples per pixel for Monte Carlo
+//! integrators ([`render_progressive`]). Every sample's random numbers depend only on the
+//! seed and its image position, so images do not depend on the thread count.
+
+pub mod antialias;
+mod passes;
+mod tiles;
+
+pub use antialias::AntialiasMode;
+pub use passes::{ProgressiveOutput, ProgressiveSettings, render_progressive};
+pub use tiles::{RenderOutput, RenderSettings, render};

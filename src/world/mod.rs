@@ -1,0 +1,89 @@
+//! The scene compiled for ray queries: what every light-transport algorithm shares.
+//!
+//! A [`World`] holds the scene, its geometry flattened into world-space primitives
+//! ([`SceneGeometry`], the second stage of intersection included), an accelerator over them,
+//! and the lights as samplers see them ([`LightSet`]). [`SurfaceMaterial`] is a material at a
+//! surface point with its textures applied; [`optics`] holds the mirror, refraction, Fresnel
+//! and Phong formulas both the ray tracers and the light model scatter by.
+//!
+//! Invariant: primitive indices are fixed when the world is built (triangles first, sorted
+//! along a Morton curve, then analytic shapes), so every accelerator, light and hit refers to
+//! the same primitive by the same index.
+
+mod lights;
+pub mod optics;
+mod scene_geometry;
+mod surface_material;
+
+pub use lights::{AreaLight, AreaSample, LightSet};
+pub use scene_geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
+pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
+
+use crate::accel::{AccelKind, AccelStats, Accelerator, PrimHit};
+use crate::geometry::Ray;
+use crate::scene::{Material, Scene};
+use std::time::Instant;
+
+/// A scene with everything needed to answer ray queries.
+pub struct World {
+    /// The scene it was built from.
+    pub scene: Scene,
+    /// World-space primitives.
+    pub geometry: SceneGeometry,
+    /// The lights.
+    pub lights: LightSet,
+    /// The accelerator over `geometry`.
+    accel: Box<dyn Accelerator<SceneGeometry>>,
+    /// Wall-clock seconds the accelerator took to build.
+    build_seconds: f64,
+}
+
+impl World {
+    /// Flattens `scene` and builds the accelerator `kind` over it.
+    pub fn new(scene: Scene, kind: AccelKind) -> Result<World, GeometryError> {
+        let geometry = SceneGeometry::new(&scene)?;
+        let start = Instant::now();
+        let accel = kind.build(&geometry);
+        let build_seconds = start.elapsed().as_secs_f64();
+        let lights = LightSet::new(&scene, &geometry);
+        Ok(World {
+            scene,
+            geometry,
+            lights,
+            accel,
+            build_seconds,
+        })
+    }
+
+    /// The closest surface hit along `ray` (unbounded), described.
+    pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
+        self.closest_hit(ray, f32::INFINITY)
+            .map(|h| self.geometry.describe(&h, ray))
+    }
+
+    /// The closest primitive hit along `ray` with `t ∈ (0, t_max]`, not yet described (the
+    /// first stage of intersection: distance and primitive only).
+    pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<PrimHit> {
+        self.accel.closest_hit(&self.geometry, ray, t_max)
+    }
+
+    /// Whether anything blocks `ray` for `t ∈ (0, t_max]`.
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        self.accel.any_hit(&self.geometry, ray, t_max)
+    }
+
+    /// The material of `hit`.
+    pub fn material(&self, hit: &SurfaceHit) -> &Material {
+        &self.scene.materials[hit.material as usize]
+    }
+
+    /// Size and shape of the accelerator.
+    pub fn accel_stats(&self) -> AccelStats {
+        self.accel.stats()
+    }
+
+    /// Wall-clock seconds the accelerator took to build.
+    pub fn build_seconds(&self) -> f64 {
+        self.build_seconds
+    }
+}

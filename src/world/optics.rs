@@ -1,0 +1,105 @@
+//! Optics of smooth and glossy surfaces: mirror and refracted directions, the Fresnel
+//! reflectance of a dielectric, and the normalised Phong lobe with the direction sampling
+//! that follows it.
+
+use crate::geometry::Frame;
+use glam::{Vec2, Vec3};
+use std::f32::consts::{FRAC_1_PI, PI};
+
+/// Mirror direction of `w` (pointing away from the surface) about the unit normal `n`.
+pub fn reflect(w: Vec3, n: Vec3) -> Vec3 {
+    2.0 * w.dot(n) * n - w
+}
+
+/// Refracted direction of `w` (pointing away from the surface, on the side of `n`) for the
+/// relative index `eta = n_incident / n_transmitted`; `None` under total internal reflection.
+pub fn refract(w: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
+    let cos_i = w.dot(n);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some((-w * eta + n * (eta * cos_i - cos_t)).normalize())
+}
+
+/// Unpolarised Fresnel reflectance of a dielectric interface for incidence cosine `cos_i`
+/// and relative index `eta = n_incident / n_transmitted` (1 under total internal reflection).
+pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    0.5 * (r_s * r_s + r_p * r_p)
+}
+
+/// Normalised Phong lobe `(s+2)/(2π)·cosˢα`, α the angle between `wi` and the mirror
+/// direction of `wo`. Reflects at most the lobe weight for any incidence.
+pub fn phong_lobe(n: Vec3, wo: Vec3, wi: Vec3, shininess: f32) -> f32 {
+    let cos_alpha = reflect(wo, n).dot(wi);
+    if cos_alpha <= 0.0 {
+        0.0
+    } else {
+        (shininess + 2.0) / (2.0 * PI) * cos_alpha.powf(shininess)
+    }
+}
+
+/// A direction about the mirror direction of `wo` (unit, pointing away from the surface with
+/// unit normal `n`) from the uniform point `u`, distributed as `(s+1)/(2π)·cosˢα`
+/// ([`phong_pdf`]); it may point below the surface.
+pub fn sample_phong(n: Vec3, wo: Vec3, shininess: f32, u: Vec2) -> Vec3 {
+    let cos_alpha = u.x.powf(1.0 / (shininess + 1.0));
+    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    let local = Vec3::new(sin_alpha * phi.cos(), sin_alpha * phi.sin(), cos_alpha);
+    Frame::from_normal(reflect(wo, n)).to_world(local)
+}
+
+/// Density (1/sr) of [`sample_phong`] for `cos α` to the mirror direction.
+pub fn phong_pdf(cos_alpha: f32, shininess: f32) -> f32 {
+    if cos_alpha <= 0.0 {
+        0.0
+    } else {
+        (shininess + 1.0) * (0.5 * FRAC_1_PI) * cos_alpha.powf(shininess)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampling::warp::hemisphere_integral;
+
+    #[test]
+    fn fresnel_reference_values() {
+        // Normal incidence on glass (n = 1.5): ((1 - 1.5)/(1 + 1.5))² = 0.04.
+        assert!((fresnel_dielectric(1.0, 1.0 / 1.5) - 0.04).abs() < 1e-6);
+        // Grazing incidence reflects everything; beyond the critical angle inside glass too.
+        assert!((fresnel_dielectric(0.0, 1.0 / 1.5) - 1.0).abs() < 1e-6);
+        assert_eq!(fresnel_dielectric(0.3, 1.5), 1.0);
+    }
+
+    #[test]
+    fn refraction_obeys_snell() {
+        let n = Vec3::Z;
+        let w = Vec3::new(0.6, 0.0, 0.8);
+        let t = refract(w, n, 1.0 / 1.5).unwrap();
+        let sin_i = 0.6;
+        let sin_t = (1.0 - t.z * t.z).sqrt();
+        assert!((sin_i - 1.5 * sin_t).abs() < 1e-5 && t.z < 0.0 && t.x < 0.0);
+        assert!(refract(Vec3::new(0.9, 0.0, 0.436), n, 1.5).is_none());
+    }
+
+    #[test]
+    fn phong_lobe_reflects_at_most_its_weight() {
+        // ∫ lobe·cos dω ≤ 1 at normal incidence (numerical quadrature over the hemisphere).
+        let n = Vec3::Z;
+        for s in [1.0, 10.0, 100.0] {
+            let sum = hemisphere_integral(400, |wi| phong_lobe(n, n, wi, s) as f64);
+            assert!(sum <= 1.0 + 1e-3 && sum > 0.5, "s={s}: {sum}");
+        }
+    }
+}

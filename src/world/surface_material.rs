@@ -1,0 +1,89 @@
+//! Materials evaluated at a surface point: textures applied, emission, and the reflection
+//! function (Lambert plus a normalised Phong lobe) beside the mirror and refraction weights.
+
+use super::SurfaceHit;
+use super::optics::phong_lobe;
+use crate::color::Rgb;
+use crate::scene::{Material, Scene};
+use glam::Vec3;
+use std::f32::consts::FRAC_1_PI;
+
+/// A material at one surface point, with textures applied.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceMaterial {
+    /// Diffuse reflectance ρ.
+    pub diffuse: Rgb,
+    /// Phong lobe weight.
+    pub specular: Rgb,
+    /// Phong exponent.
+    pub shininess: f32,
+    /// Ideal mirror reflectance.
+    pub mirror: Rgb,
+    /// Ideal refraction weight.
+    pub transmission: Rgb,
+    /// Index of refraction behind the front face.
+    pub ior: f32,
+    /// The back face absorbs everything.
+    pub one_sided: bool,
+}
+
+impl SurfaceMaterial {
+    /// The material of `hit`, textures applied.
+    pub fn at(scene: &Scene, hit: &SurfaceHit) -> Self {
+        let m = &scene.materials[hit.material as usize];
+        let diffuse = match m.diffuse_texture {
+            Some(t) => m.diffuse * scene.textures[t as usize].color(hit.uv),
+            None => m.diffuse,
+        };
+        SurfaceMaterial {
+            diffuse,
+            specular: m.specular,
+            shininess: m.shininess,
+            mirror: m.mirror,
+            transmission: m.transmission,
+            ior: m.ior,
+            one_sided: m.one_sided,
+        }
+    }
+
+    /// True when the hit side reflects nothing (back of a one-sided material).
+    pub fn is_black_from(&self, front_face: bool) -> bool {
+        self.one_sided && !front_face
+    }
+
+    /// The non-delta reflection function `f(wo, wi)` (1/sr) for unit directions `wo` (toward
+    /// the viewer) and `wi` (toward the light) on the side of the unit normal `n`.
+    pub fn eval(&self, n: Vec3, wo: Vec3, wi: Vec3) -> Rgb {
+        if n.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
+            return Rgb::BLACK;
+        }
+        let mut f = self.diffuse * FRAC_1_PI;
+        if !self.specular.is_black() {
+            f += self.specular * phong_lobe(n, wo, wi, self.shininess);
+        }
+        f
+    }
+}
+
+/// Radiance emitted by `hit` back along the ray that found it (front face only unless the
+/// material is two-sided), emission texture applied.
+pub fn emitted(scene: &Scene, hit: &SurfaceHit) -> Rgb {
+    emitted_toward(
+        scene,
+        &scene.materials[hit.material as usize],
+        hit.uv,
+        hit.front_face,
+    )
+}
+
+/// Radiance emitted by material `m` at texture coordinate `uv` toward the front
+/// (`front = true`) or back side.
+pub fn emitted_toward(scene: &Scene, m: &Material, uv: glam::Vec2, front: bool) -> Rgb {
+    if m.emission.is_black() || !(front || m.two_sided) {
+        return Rgb::BLACK;
+    }
+    match m.emission_texture {
+        Some(t) => m.emission * scene.textures[t as usize].color(uv),
+        None => m.emission,
+    }
+}
