@@ -58,7 +58,7 @@ pub trait PrimitiveSet: Sync {
     fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit>;
     /// Primitive `prim` as a plain triangle, when [`PrimitiveSet::intersect`] for it is exactly
     /// [`Triangle::intersect`] (no cut-outs) with barycentrics as `local`. Accelerators may then
-    /// store it inline and test four at once.
+    /// store it inline and test eight at once.
     fn plain_triangle(&self, _prim: u32) -> Option<Triangle> {
         None
     }

@@ -20,10 +20,11 @@ mod triangle;
 mod triangle8;
 
 pub use bounds::Aabb;
-pub use frame::Frame;
+pub use frame::{Frame, to_world_about};
 pub use local_hit::LocalHit;
 pub use ray::{
-    OFFSET_ABSOLUTE, OFFSET_RELATIVE, Ray, offset_origin, spawn_ray, spawn_ray_to, surface_offset,
+    OFFSET_ABSOLUTE, OFFSET_RELATIVE, Ray, offset_origin, offset_origin_lanes, spawn_ray,
+    spawn_ray_to, spawn_ray_to_lanes, surface_offset, surface_offset_lanes,
 };
 pub use transform::Transform;
 pub use triangle::Triangle;

@@ -1,5 +1,8 @@
-//! Rays and the robust offset used to start secondary rays on a surface.
+//! Rays and the robust offset used to start secondary rays on a surface. The offset and the
+//! spawned rays are written once over [`Real`], for one ray or eight ([`offset_origin_lanes`],
+//! [`spawn_ray_to_lanes`]).
 
+use crate::lanes::{Real, V3};
 use glam::Vec3;
 
 /// A ray `origin + t·dir`. `dir` need not be unit length: rays carried into object space keep
@@ -33,18 +36,27 @@ pub const OFFSET_ABSOLUTE: f32 = 1e-7;
 /// `p` cannot make the ray hit the surface it starts on. It scales with the magnitude of the
 /// coordinates (the error of a computed hit point does too).
 pub fn surface_offset(p: Vec3) -> f32 {
-    p.abs().max_element() * OFFSET_RELATIVE + OFFSET_ABSOLUTE
+    surface_offset_lanes(V3::from(p))
+}
+
+/// [`surface_offset`] lane by lane.
+#[inline(always)]
+pub fn surface_offset_lanes<R: Real>(p: V3<R>) -> R {
+    let largest = p.x.abs().max(p.y.abs().max(p.z.abs()));
+    largest * R::splat(OFFSET_RELATIVE) + R::splat(OFFSET_ABSOLUTE)
 }
 
 /// The origin for a ray leaving surface point `p` (geometric normal `n`, any orientation) in
 /// direction `dir`: `p` moved along `±n` to the side `dir` points into.
 pub fn offset_origin(p: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
-    let d = surface_offset(p);
-    if n.dot(dir) >= 0.0 {
-        p + n * d
-    } else {
-        p - n * d
-    }
+    offset_origin_lanes(V3::from(p), V3::from(n), V3::from(dir)).into()
+}
+
+/// [`offset_origin`] lane by lane.
+#[inline(always)]
+pub fn offset_origin_lanes<R: Real>(p: V3<R>, n: V3<R>, dir: V3<R>) -> V3<R> {
+    let offset = n.scale(surface_offset_lanes(p));
+    V3::select(n.dot(dir).ge(R::splat(0.0)), p + offset, p - offset)
 }
 
 /// A ray leaving surface point `p` (geometric normal `n`) in direction `dir`.
@@ -55,11 +67,53 @@ pub fn spawn_ray(p: Vec3, n: Vec3, dir: Vec3) -> Ray {
 /// A ray from surface point `p` (geometric normal `n`) towards `target`, with the parameter
 /// range `(0, t_max)` that stops just short of the target. `dir` is unit length.
 pub fn spawn_ray_to(p: Vec3, n: Vec3, target: Vec3) -> (Ray, f32) {
-    let to = target - p;
-    let origin = offset_origin(p, n, to);
+    let (origin, dir, t_max) = spawn_ray_to_lanes(V3::from(p), V3::from(n), V3::from(target));
+    (Ray::new(origin.into(), dir.into()), t_max)
+}
+
+/// [`spawn_ray_to`] lane by lane: origin, unit direction and parameter limit.
+#[inline(always)]
+pub fn spawn_ray_to_lanes<R: Real>(p: V3<R>, n: V3<R>, target: V3<R>) -> (V3<R>, V3<R>, R) {
+    let origin = offset_origin_lanes(p, n, target - p);
     let d = target - origin;
-    let dist = d.length();
-    let dir = if dist > 0.0 { d * dist.recip() } else { n };
-    let t_max = (dist - surface_offset(target)).max(0.0);
-    (Ray::new(origin, dir), t_max)
+    let dist = d.dot(d).sqrt();
+    let zero = R::splat(0.0);
+    let dir = V3::select(dist.gt(zero), d.scale(R::splat(1.0) / dist), n);
+    let t_max = (dist - surface_offset_lanes(target)).max(zero);
+    (origin, dir, t_max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lanes::{LANES, Vec3x8};
+
+    #[test]
+    fn eight_lanes_spawn_the_rays_one_lane_spawns_bit_for_bit() {
+        let mut seed = 2024u32;
+        let mut next = |scale: f32| {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            ((seed >> 8) as f32 / 16_777_216.0 * 2.0 - 1.0) * scale
+        };
+        for _ in 0..300 {
+            let mut vec = |scale| Vec3::new(next(scale), next(scale), next(scale));
+            let p: [Vec3; LANES] = std::array::from_fn(|_| vec(40.0));
+            let n: [Vec3; LANES] = std::array::from_fn(|_| vec(1.0).normalize_or(Vec3::Y));
+            // One lane aims at its own point (zero distance).
+            let target: [Vec3; LANES] =
+                std::array::from_fn(|i| if i == 3 { p[i] } else { vec(40.0) });
+            let lanes = |v: &[Vec3; LANES]| Vec3x8::from_lanes(v);
+            let (origin, dir, t_max) = spawn_ray_to_lanes(lanes(&p), lanes(&n), lanes(&target));
+            let away = offset_origin_lanes(lanes(&p), lanes(&n), lanes(&target));
+            for i in 0..LANES {
+                let (ray, limit) = spawn_ray_to(p[i], n[i], target[i]);
+                assert_eq!(
+                    (origin.lane(i), dir.lane(i), t_max.as_array_ref()[i]),
+                    (ray.origin, ray.dir, limit),
+                    "lane {i}"
+                );
+                assert_eq!(away.lane(i), offset_origin(p[i], n[i], target[i]));
+            }
+        }
+    }
 }

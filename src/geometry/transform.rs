@@ -70,11 +70,6 @@ impl Transform {
         }
     }
 
-    /// True when this is exactly the identity.
-    pub fn is_identity(&self) -> bool {
-        self.to_world == Mat4::IDENTITY
-    }
-
     /// Object-space point to world space.
     pub fn point(&self, p: Vec3) -> Vec3 {
         self.to_world.transform_point3(p)

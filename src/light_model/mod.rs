@@ -19,8 +19,8 @@
 //! Photons stop after `max_bounces` scattering events (the last hit absorbs them; counted as
 //! `truncated_paths`), which only matters for scenes of near-perfect mirrors.
 
-mod scatter;
-mod sources;
+pub mod scatter;
+pub mod sources;
 mod tally;
 mod trace;
 

@@ -118,6 +118,9 @@ pub enum Facing {
     Facing,
     /// Each has a part in front of the other, but at least one straddles the other's plane:
     /// split (support-plane split) or clip before computing visibility and form factors.
+    /// The flat solvers treat such a pair as facing (the analytic form factor clips the
+    /// emitter to the receiver's front half-space); splitting at initial linking comes with
+    /// hierarchical radiosity.
     Partly,
     /// They cannot see each other (one lies entirely behind or in the plane of the other).
     Away,
@@ -148,7 +151,9 @@ pub fn centroids_face(receiver: &Patch, emitter: &Patch) -> bool {
 }
 
 /// True when the divisor's support plane must split `dividend` (seed §4.2 "target split"):
-/// its corners lie clearly on both sides of the plane.
+/// its corners lie clearly on both sides of the plane. Not used by a solver yet: the
+/// asymmetric split of receivers at initial linking (seed §6.3.1) comes with hierarchical
+/// radiosity.
 pub fn needs_split(divisor: &Patch, dividend: &Patch) -> bool {
     SideCounts::of(&Plane::of_patch(divisor), dividend.corners()).straddles()
 }
@@ -175,7 +180,7 @@ pub struct SplitPolygon {
 /// (Sutherland–Hodgman on both sides; seed §4.2.2). Corners within the epsilon band count as
 /// on the plane and go to both pieces; new corners are placed where edges cross the plane,
 /// with linearly interpolated texture coordinates. A piece with fewer than three corners is
-/// returned empty.
+/// returned empty. Not used by a solver yet (see [`needs_split`]).
 pub fn split(plane: &Plane, corners: &[DVec3], uvs: &[DVec2]) -> SplitPolygon {
     let eps = band(plane, corners);
     let n = corners.len().min(uvs.len());

@@ -96,11 +96,6 @@ impl Patch {
         self.sides == 3
     }
 
-    /// True when the patch has not been split.
-    pub fn is_leaf(&self) -> bool {
-        self.children.is_none()
-    }
-
     /// Longest edge length (scene units).
     pub fn longest_edge(&self) -> f64 {
         let c = self.corners();

@@ -155,11 +155,6 @@ impl Sampler {
     pub fn next_2d(&mut self) -> Vec2 {
         Vec2::new(self.next_1d(), self.next_1d())
     }
-
-    /// A uniform index in `0..n` (`n > 0`).
-    pub fn next_index(&mut self, n: usize) -> usize {
-        ((self.next_1d() * n as f32) as usize).min(n.saturating_sub(1))
-    }
 }
 
 #[cfg(test)]

@@ -88,9 +88,4 @@ impl Material {
     pub fn albedo_bound(&self) -> f32 {
         (self.diffuse + self.specular + self.mirror + self.transmission).max_channel()
     }
-
-    /// True when the surface only scatters diffusely (what radiosity can represent exactly).
-    pub fn is_purely_diffuse(&self) -> bool {
-        self.specular.is_black() && self.mirror.is_black() && self.transmission.is_black()
-    }
 }

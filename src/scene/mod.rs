@@ -98,12 +98,4 @@ impl Scene {
             .clone()
             .unwrap_or_else(|| format!("object-{index}"))
     }
-
-    /// The report name of light `index`: its name, or `light-<index>`.
-    pub fn light_name(&self, index: usize) -> String {
-        self.lights[index]
-            .name
-            .clone()
-            .unwrap_or_else(|| format!("light-{index}"))
-    }
 }

@@ -182,16 +182,6 @@ impl Shape {
         )
     }
 
-    /// True for the shapes that enclose a volume (solids).
-    pub fn is_solid(&self) -> bool {
-        match self {
-            Shape::Sphere { .. } | Shape::Box { .. } => true,
-            Shape::Cylinder { caps, .. } | Shape::Frustum { caps, .. } => *caps,
-            Shape::Cone { cap, .. } => *cap,
-            _ => false,
-        }
-    }
-
     /// Short name of the shape kind.
     pub fn kind_name(&self) -> &'static str {
         match self {

@@ -46,7 +46,7 @@ const WALL_V_SPAN: f32 = 0.5488;
 /// The 64 × 64 checkerboard floor texture.
 pub fn checker_texture() -> Texture {
     Texture::from_fn("floor_checker", SIZE, SIZE, |x, y| {
-        let v = if (x / CHECKER_SQUARE + y / CHECKER_SQUARE) % 2 == 0 {
+        let v = if (x / CHECKER_SQUARE + y / CHECKER_SQUARE).is_multiple_of(2) {
             CHECKER_LIGHT
         } else {
             CHECKER_DARK
@@ -58,7 +58,7 @@ pub fn checker_texture() -> Texture {
 /// The 64 × 64 vertical-stripe back wall texture.
 pub fn stripe_texture() -> Texture {
     Texture::from_fn("backwall_stripes", SIZE, SIZE, |x, _| {
-        let [r, g, b] = if (x / STRIPE_WIDTH) % 2 == 0 {
+        let [r, g, b] = if (x / STRIPE_WIDTH).is_multiple_of(2) {
             STRIPE_GREY
         } else {
             STRIPE_BLUE

@@ -88,7 +88,7 @@ fn convert_mesh(m: &tobj::Mesh) -> Result<PolygonMesh, String> {
             .collect()
     });
     let face_sizes = if m.face_arities.is_empty() {
-        if m.indices.len() % 3 != 0 {
+        if !m.indices.len().is_multiple_of(3) {
             return Err("index count is not a multiple of 3".into());
         }
         vec![3; m.indices.len() / 3]

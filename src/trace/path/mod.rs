@@ -27,6 +27,7 @@ use crate::color::Rgb;
 use crate::geometry::{Ray, spawn_ray};
 use crate::lanes::LANES;
 use crate::sampling::Sampler;
+use crate::sampling::mis::{light_sample_weight, power_heuristic};
 use crate::world::{SurfaceHit, World, emitted};
 use glam::{Vec2, Vec3};
 
@@ -108,12 +109,6 @@ impl BounceNumbers {
             }
         }
     }
-}
-
-/// Power heuristic (β = 2) weight of the strategy with density `a` against one with `b`.
-fn power_heuristic(a: f32, b: f32) -> f32 {
-    let (a2, b2) = (a * a, b * b);
-    if a2 + b2 > 0.0 { a2 / (a2 + b2) } else { 0.0 }
 }
 
 impl PathTracer {
@@ -200,11 +195,7 @@ impl PathTracer {
         if !visible {
             return Rgb::BLACK;
         }
-        let weight = if ls.pdf > 0.0 {
-            power_heuristic(ls.pdf, choice.pdf(&sp.material, sp.n, sp.wo, ls.wi))
-        } else {
-            1.0
-        };
+        let weight = light_sample_weight(ls.pdf, || choice.pdf(&sp.material, sp.n, sp.wo, ls.wi));
         f * ls.radiance_over_pdf * (sp.n.dot(ls.wi) * weight)
     }
 

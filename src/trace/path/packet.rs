@@ -10,16 +10,18 @@
 //! evaluate the same estimator.
 
 use super::super::shading::ShadingPoint;
-use super::super::shading::light_sampling::UniformAreaPoint;
+use super::super::shading::light_sampling::{UniformAreaPoint, toward_light};
 use super::{Arrival, BounceNumbers, PathTracer, survive_roulette};
 use crate::color::Rgb;
-use crate::geometry::Ray;
-use crate::lanes::{self, LANES, Vec3x8};
+use crate::geometry::{Ray, offset_origin_lanes, spawn_ray_to_lanes};
+use crate::lanes::{LANES, Real, Vec3x8};
 use crate::sampling::Sampler;
+use crate::sampling::mis::light_sample_weight;
+use crate::sampling::warp::{cosine_about, cosine_hemisphere_pdf_lanes};
 use crate::world::World;
 use glam::Vec3;
 use std::f32::consts::FRAC_1_PI;
-use wide::{CmpGt, CmpNe, f32x8};
+use wide::f32x8;
 
 /// One path of the packet.
 #[derive(Clone, Copy)]
@@ -66,15 +68,6 @@ struct LambertLanes {
 fn put(lanes: &mut [[f32; LANES]; 3], lane: usize, v: [f32; 3]) {
     for (axis, value) in lanes.iter_mut().zip(v) {
         axis[lane] = value;
-    }
-}
-
-/// Lanes of a component array as a vector.
-fn load(lanes: &[[f32; LANES]; 3]) -> Vec3x8 {
-    Vec3x8 {
-        x: f32x8::new(lanes[0]),
-        y: f32x8::new(lanes[1]),
-        z: f32x8::new(lanes[2]),
     }
 }
 
@@ -275,78 +268,66 @@ fn finish_lambert(
 }
 
 /// The light sample's contribution and the scattered direction of every vertex in `lambert`
-/// (unused lanes compute garbage that nobody reads), by the operations of
-/// [`super::light_sampling::LightPicker::sample`], [`PathTracer`]'s next-event estimation
-/// and [`super::bsdf_sampling::sample_bsdf`] for a Lambert lobe.
+/// (unused lanes compute garbage that nobody reads), by the functions the one-path code uses:
+/// [`toward_light`] and [`light_sample_weight`] as in next-event estimation, [`cosine_about`]
+/// as in [`crate::trace::shading::bsdf::sample_bsdf`] for a Lambert lobe.
 fn scatter_lambert(lambert: &LambertLanes) -> LambertScatter {
-    let x = load(&lambert.p);
-    let n = load(&lambert.n);
-    let ng = load(&lambert.ng);
-    let wo = load(&lambert.wo);
-    let rho = load(&lambert.rho);
-    let beta = load(&lambert.beta);
+    let x = Vec3x8::load(&lambert.p);
+    let n = Vec3x8::load(&lambert.n);
+    let ng = Vec3x8::load(&lambert.ng);
+    let wo = Vec3x8::load(&lambert.wo);
+    let rho = Vec3x8::load(&lambert.rho);
+    let beta = Vec3x8::load(&lambert.beta);
     let zero = f32x8::ZERO;
-    let n_wo = n.dot(&wo);
-    let viewer_side = n_wo.cmp_gt(zero);
+    let viewer_side = n.dot(wo).gt(zero);
 
     // The light sample (LightPicker::sample) and its next-event contribution.
-    let light_p = load(&lambert.light_p);
-    let d = light_p.sub(&x);
-    let dist2 = d.dot(&d);
-    let wi = d.scale(f32x8::ONE / dist2.sqrt());
-    let cos_y = load(&lambert.light_n).dot(&wi.neg());
-    let cos = n.dot(&wi);
-    let front = cos_y.cmp_gt(zero);
+    let light_p = Vec3x8::load(&lambert.light_p);
+    let toward = toward_light(x, light_p, Vec3x8::load(&lambert.light_n));
+    let (wi, cos_y) = (toward.wi, toward.cos_light);
+    let cos = n.dot(wi);
     let le = Vec3x8::select(
-        front,
-        &load(&lambert.light_front),
-        &load(&lambert.light_back),
+        cos_y.gt(zero),
+        Vec3x8::load(&lambert.light_front),
+        Vec3x8::load(&lambert.light_back),
     );
-    let pdf = f32x8::new(lambert.light_pdf_area) * dist2 / cos_y.abs();
+    let pdf = toward.solid_angle_pdf(f32x8::new(lambert.light_pdf_area));
     let radiance_over_pdf = le.scale(f32x8::ONE / pdf);
     // A Lambert-only material chooses its lobe with probability 1 (exactly: d/d), so the
-    // scalar code's factors p_d = 1/p_d = 1 leave every product unchanged and are left out.
-    let bsdf_pdf = viewer_side.blend(cos.fast_max(zero) * f32x8::splat(FRAC_1_PI), zero);
-    let (a2, b2) = (pdf * pdf, bsdf_pdf * bsdf_pdf);
-    let sum = a2 + b2;
-    let heuristic = sum.cmp_gt(zero).blend(a2 / sum, zero);
-    let weight = pdf.cmp_gt(zero).blend(heuristic, f32x8::ONE);
+    // one-path code's factors p_d = 1/p_d = 1 leave every product unchanged and are left out.
+    let weight = light_sample_weight(pdf, || {
+        viewer_side.blend(cosine_hemisphere_pdf_lanes(cos), zero)
+    });
     let f = rho.scale(f32x8::splat(FRAC_1_PI));
-    let light = beta.mul(&f.mul(&radiance_over_pdf).scale(cos * weight));
-    let carries = dist2.cmp_gt(zero)
-        & cos_y.cmp_ne(zero)
-        & cos.cmp_gt(zero)
-        & (le.x.cmp_ne(zero) | le.y.cmp_ne(zero) | le.z.cmp_ne(zero))
-        & ng.dot(&wi).cmp_gt(zero)
+    let light = beta * (f * radiance_over_pdf).scale(cos * weight);
+    let nonzero = |v: Vec3x8| v.x.ne(zero) | v.y.ne(zero) | v.z.ne(zero);
+    let carries = toward.dist2.gt(zero)
+        & cos_y.ne(zero)
+        & cos.gt(zero)
+        & nonzero(le)
+        & ng.dot(wi).gt(zero)
         & viewer_side
-        & (f.x.cmp_ne(zero) | f.y.cmp_ne(zero) | f.z.cmp_ne(zero));
+        & nonzero(f);
 
     // The scattered direction (sample_bsdf, Lambert lobe alone).
-    let local = lanes::cosine_hemisphere(
+    let wi_b = cosine_about(
+        n,
         f32x8::new(lambert.direction[0]),
         f32x8::new(lambert.direction[1]),
     );
-    let wi_b = lanes::to_world_about(&n, &local);
-    let cos_b = n.dot(&wi_b);
-    let leaves = cos_b.cmp_gt(zero) & ng.dot(&wi_b).cmp_gt(zero) & viewer_side;
-    let next_beta = beta.mul(&rho);
-    let pdf_b = cos_b.fast_max(zero) * f32x8::splat(FRAC_1_PI);
-    let (shadow_origin, shadow_dir, shadow_t_max) = lanes::spawn_ray_to(&x, &ng, &light_p);
+    let cos_b = n.dot(wi_b);
+    let leaves = cos_b.gt(zero) & ng.dot(wi_b).gt(zero) & viewer_side;
+    let (shadow_origin, shadow_dir, shadow_t_max) = spawn_ray_to_lanes(x, ng, light_p);
     LambertScatter {
         carries: carries.move_mask() as u32,
-        light: store(&light),
-        shadow_origin: store(&shadow_origin),
-        shadow_dir: store(&shadow_dir),
+        light: light.store(),
+        shadow_origin: shadow_origin.store(),
+        shadow_dir: shadow_dir.store(),
         shadow_t_max: shadow_t_max.to_array(),
         leaves: leaves.move_mask() as u32,
-        origin: store(&lanes::offset_origin(&x, &ng, &wi_b)),
-        wi: store(&wi_b),
-        beta: store(&next_beta),
-        pdf: pdf_b.to_array(),
+        origin: offset_origin_lanes(x, ng, wi_b).store(),
+        wi: wi_b.store(),
+        beta: (beta * rho).store(),
+        pdf: cosine_hemisphere_pdf_lanes(cos_b).to_array(),
     }
-}
-
-/// A vector's lanes as a component array.
-fn store(v: &Vec3x8) -> [[f32; LANES]; 3] {
-    [v.x.to_array(), v.y.to_array(), v.z.to_array()]
 }

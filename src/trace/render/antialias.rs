@@ -140,7 +140,7 @@ impl<'a> AdaptiveCache<'a> {
             let stream = hash64(((gy as u64) << 32 | gx as u64) ^ 0xada9_71fe);
             ctx.trace(gx as f32 / g, gy as f32 / g, stream, 0)
         };
-        if gy % self.boundary_every == 0 {
+        if gy.is_multiple_of(self.boundary_every) {
             let mut shared = self.shared.lock().unwrap_or_else(|e| e.into_inner());
             if let Some(&c) = shared.get(&(gx, gy)) {
                 return c;

@@ -10,8 +10,8 @@
 //! (mirror, dielectric) have no density and never take part in multiple importance sampling.
 
 use crate::color::Rgb;
-use crate::geometry::Frame;
-use crate::sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
+use crate::lanes::V3;
+use crate::sampling::warp::{cosine_about, cosine_hemisphere_pdf};
 use crate::scene::Material;
 use crate::world::SurfaceMaterial;
 use crate::world::optics::{fresnel_dielectric, phong_pdf, reflect, refract, sample_phong};
@@ -141,7 +141,7 @@ pub fn sample_bsdf(
     let non_delta = choice.diffuse + choice.specular;
     if u_lobe < non_delta {
         let wi = if u_lobe < choice.diffuse {
-            Frame::from_normal(n).to_world(cosine_hemisphere(u))
+            cosine_about(V3::from(n), u.x, u.y).into()
         } else {
             sample_phong(n, wo, m.shininess, u)
         };

@@ -2,10 +2,11 @@
 //! direction toward it.
 //!
 //! Power estimates (luminance, watts) used only to choose lights:
-//! - area light: [`crate::world::AreaLight::power`], π·L·A per emitting side (texture mean applied);
-//! - point light: 4π·I;
-//! - spot light: I·2π(1 − cos θ_m), θ_m the mean of the inner and outer cone angles;
-//! - directional light: E·πr², r the radius of the bounding sphere of the bounded geometry;
+//! - area light: [`crate::world::AreaLight::power`], π·L·A per emitting side (texture mean
+//!   applied);
+//! - point, spot and directional lights: [`crate::scene::LightKind::power`] — 4π·I, I times
+//!   the spot's exact solid angle ([`crate::scene::LightKind::spot_solid_angle`]), E·πr² with
+//!   r the radius of the bounding sphere of the bounded geometry;
 //! - sky: π·L·πr² (the radiance through the scene's cross-section from one hemisphere).
 //!
 //! Area lights are sampled uniformly by area and their density turned into solid angle,
@@ -13,6 +14,7 @@
 
 use crate::color::Rgb;
 use crate::geometry::Frame;
+use crate::lanes::{Real, V3};
 use crate::sampling::warp::cosine_hemisphere;
 use crate::world::World;
 use glam::{Vec2, Vec3};
@@ -55,6 +57,40 @@ pub struct UniformAreaPoint {
     pub radiance: [Rgb; 2],
     /// Density with respect to area (1/m²), the probability of choosing the light included.
     pub pdf_area: f32,
+}
+
+/// A point on an area light as seen from a shading point, lane by lane.
+#[derive(Clone, Copy, Debug)]
+pub struct TowardLight<R> {
+    /// Unit direction from the shading point to the light point.
+    pub wi: V3<R>,
+    /// Squared distance between them.
+    pub dist2: R,
+    /// Cosine at the light between its front normal and the way back (negative when the
+    /// shading point is behind the light).
+    pub cos_light: R,
+}
+
+/// How the light point `p` (unit front normal `n_light`) lies as seen from `x`.
+#[inline(always)]
+pub fn toward_light<R: Real>(x: V3<R>, p: V3<R>, n_light: V3<R>) -> TowardLight<R> {
+    let d = p - x;
+    let dist2 = d.dot(d);
+    let wi = d.scale(R::splat(1.0) / dist2.sqrt());
+    TowardLight {
+        wi,
+        dist2,
+        cos_light: n_light.dot(-wi),
+    }
+}
+
+impl<R: Real> TowardLight<R> {
+    /// The solid-angle density (1/sr) of a light point drawn with area density `pdf_area`
+    /// (1/m²): `pdf_area · d² / |cos θ_light|`.
+    #[inline(always)]
+    pub fn solid_angle_pdf(&self, pdf_area: R) -> R {
+        pdf_area * self.dist2 / self.cos_light.abs()
+    }
 }
 
 /// One entry of the light-choice distribution.
@@ -208,14 +244,9 @@ impl LightPicker {
         match choice {
             Choice::Area(light) => {
                 let s = world.lights.sample_area(&world.geometry, light, u_prim, u);
-                let d = s.p - x;
-                let dist2 = d.length_squared();
-                if dist2 <= 0.0 {
-                    return None;
-                }
-                let wi = d * dist2.sqrt().recip();
-                let cos_y = s.n.dot(-wi);
-                if cos_y == 0.0 || n.dot(wi) <= 0.0 {
+                let toward = toward_light(V3::from(x), V3::from(s.p), V3::from(s.n));
+                let (wi, cos_y) = (Vec3::from(toward.wi), toward.cos_light);
+                if toward.dist2 <= 0.0 || cos_y == 0.0 || n.dot(wi) <= 0.0 {
                     return None;
                 }
                 let le = world.lights.area_radiance(
@@ -228,7 +259,7 @@ impl LightPicker {
                 if le.is_black() {
                     return None;
                 }
-                let pdf = probability * s.pdf_area * dist2 / cos_y.abs();
+                let pdf = toward.solid_angle_pdf(probability * s.pdf_area);
                 Some(LightSample {
                     wi,
                     radiance_over_pdf: le / pdf,

@@ -1,0 +1,167 @@
+//! The layering of `docs/ARCHITECTURE.md`, checked on the source: every module of the library
+//! imports only the modules this table allows (the layers below it), the three algorithms
+//! never import each other, and only the binary's `cli` names the argument parser.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// Each library module and the modules it may import, layer by layer from the bottom.
+const ALLOWED: &[(&str, &[&str])] = &[
+    // Foundations.
+    ("color", &[]),
+    ("lanes", &[]),
+    ("choice", &[]),
+    ("progress", &[]),
+    ("geometry", &["lanes"]),
+    ("sampling", &["geometry", "lanes"]),
+    // The scene model and acceleration structures.
+    ("scene", &["color", "geometry"]),
+    ("accel", &["choice", "geometry"]),
+    // The scene compiled for ray queries.
+    ("world", &["accel", "color", "geometry", "lanes", "sampling", "scene"]),
+    // What the algorithms fill.
+    ("measure", &["color", "geometry", "scene", "world"]),
+    // The algorithms, side by side.
+    ("trace", ALGORITHM_BASE),
+    ("light_model", ALGORITHM_BASE),
+    ("radiosity", ALGORITHM_BASE),
+    // Files made from what was measured.
+    ("image", &["choice", "color", "measure"]),
+    ("report", &["color", "image", "measure"]),
+];
+
+/// What every algorithm may import: everything below the algorithms.
+const ALGORITHM_BASE: &[&str] = &[
+    "accel", "choice", "color", "geometry", "lanes", "measure", "progress", "sampling", "scene",
+    "world",
+];
+
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// The code of a file without its comments (doc links may name any module).
+fn code(path: &Path) -> String {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|line| match line.find("//") {
+            Some(i) => &line[..i],
+            None => line,
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The top-level modules a piece of code names through `crate::` paths, grouped imports
+/// (`crate::{a::X, b}`) included.
+fn crate_modules(code: &str) -> BTreeSet<String> {
+    let mut found = BTreeSet::new();
+    let mut rest = code;
+    while let Some(i) = rest.find("crate::") {
+        rest = &rest[i + "crate::".len()..];
+        if let Some(group) = rest.strip_prefix('{') {
+            let mut depth = 0;
+            let mut start = 0;
+            for (k, ch) in group.char_indices() {
+                match ch {
+                    '{' => depth += 1,
+                    '}' if depth == 0 => {
+                        found.extend(first_segment(&group[start..k]));
+                        break;
+                    }
+                    '}' => depth -= 1,
+                    ',' if depth == 0 => {
+                        found.extend(first_segment(&group[start..k]));
+                        start = k + 1;
+                    }
+                    _ => {}
+                }
+            }
+        } else {
+            found.extend(first_segment(rest));
+        }
+    }
+    found
+}
+
+fn first_segment(path: &str) -> Option<String> {
+    let name: String = path
+        .trim_start()
+        .chars()
+        .take_while(|c| c.is_alphanumeric() || *c == '_')
+        .collect();
+    (!name.is_empty() && name != "self").then_some(name)
+}
+
+/// The top-level module a file of `src/` belongs to (`None` for the crate roots).
+fn module_of(src: &Path, file: &Path) -> Option<String> {
+    let relative = file.strip_prefix(src).unwrap();
+    let first = relative.components().next()?.as_os_str().to_str()?.to_string();
+    let name = first.trim_end_matches(".rs").to_string();
+    (name != "lib" && name != "main").then_some(name)
+}
+
+#[test]
+fn modules_import_only_the_layers_below_them() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let allowed: BTreeMap<&str, &[&str]> = ALLOWED.iter().copied().collect();
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let mut violations = Vec::new();
+    let mut seen = BTreeSet::new();
+    for file in &files {
+        let Some(module) = module_of(&src, file) else {
+            continue;
+        };
+        if module == "cli" {
+            continue;
+        }
+        seen.insert(module.clone());
+        let Some(may) = allowed.get(module.as_str()) else {
+            violations.push(format!("{}: module '{module}' is not in the table", file.display()));
+            continue;
+        };
+        for used in crate_modules(&code(file)) {
+            if used != module && !may.contains(&used.as_str()) {
+                violations.push(format!("{}: {module} imports {used}", file.display()));
+            }
+        }
+    }
+    let listed: BTreeSet<String> = allowed.keys().map(|k| k.to_string()).collect();
+    assert_eq!(seen, listed, "the table lists exactly the library's modules");
+    assert!(violations.is_empty(), "{}", violations.join("\n"));
+}
+
+#[test]
+fn only_the_command_line_names_the_argument_parser() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    for file in &files {
+        if module_of(&src, file).as_deref() == Some("cli") || file.ends_with("main.rs") {
+            continue;
+        }
+        assert!(
+            !code(file).contains("clap"),
+            "{} names clap: only the binary's cli may",
+            file.display()
+        );
+    }
+    let lib = std::fs::read_to_string(src.join("lib.rs")).unwrap();
+    assert!(!lib.contains("mod cli"), "the command line is the binary's, not the library's");
+}
+
+#[test]
+fn the_import_reader_sees_grouped_and_nested_paths() {
+    let code = "use crate::{a::X, b::{c, d}, e};\nlet v = crate::f::g();\n$crate::h::i!();";
+    let found: Vec<String> = crate_modules(code).into_iter().collect();
+    assert_eq!(found, ["a", "b", "e", "f", "h"]);
+}
