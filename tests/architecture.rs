@@ -18,7 +18,10 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("scene", &["color", "geometry"]),
     ("accel", &["choice", "geometry"]),
     // The scene compiled for ray queries.
-    ("world", &["accel", "color", "geometry", "lanes", "sampling", "scene"]),
+    (
+        "world",
+        &["accel", "color", "geometry", "lanes", "sampling", "scene"],
+    ),
     // What the algorithms fill.
     ("measure", &["color", "geometry", "scene", "world"]),
     // The algorithms, side by side.
@@ -104,7 +107,12 @@ fn first_segment(path: &str) -> Option<String> {
 /// The top-level module a file of `src/` belongs to (`None` for the crate roots).
 fn module_of(src: &Path, file: &Path) -> Option<String> {
     let relative = file.strip_prefix(src).unwrap();
-    let first = relative.components().next()?.as_os_str().to_str()?.to_string();
+    let first = relative
+        .components()
+        .next()?
+        .as_os_str()
+        .to_str()?
+        .to_string();
     let name = first.trim_end_matches(".rs").to_string();
     (name != "lib" && name != "main").then_some(name)
 }
@@ -126,7 +134,10 @@ fn modules_import_only_the_layers_below_them() {
         }
         seen.insert(module.clone());
         let Some(may) = allowed.get(module.as_str()) else {
-            violations.push(format!("{}: module '{module}' is not in the table", file.display()));
+            violations.push(format!(
+                "{}: module '{module}' is not in the table",
+                file.display()
+            ));
             continue;
         };
         for used in crate_modules(&code(file)) {
@@ -136,7 +147,10 @@ fn modules_import_only_the_layers_below_them() {
         }
     }
     let listed: BTreeSet<String> = allowed.keys().map(|k| k.to_string()).collect();
-    assert_eq!(seen, listed, "the table lists exactly the library's modules");
+    assert_eq!(
+        seen, listed,
+        "the table lists exactly the library's modules"
+    );
     assert!(violations.is_empty(), "{}", violations.join("\n"));
 }
 
@@ -156,7 +170,10 @@ fn only_the_command_line_names_the_argument_parser() {
         );
     }
     let lib = std::fs::read_to_string(src.join("lib.rs")).unwrap();
-    assert!(!lib.contains("mod cli"), "the command line is the binary's, not the library's");
+    assert!(
+        !lib.contains("mod cli"),
+        "the command line is the binary's, not the library's"
+    );
 }
 
 #[test]

@@ -18,6 +18,7 @@ pub struct Frame {
 impl Frame {
     /// A frame around the unit vector `n` (Duff et al., "Building an orthonormal basis,
     /// revisited", 2017).
+    #[inline]
     pub fn from_normal(n: Vec3) -> Self {
         let (s, t) = tangents(V3::from(n));
         Frame {
@@ -28,6 +29,7 @@ impl Frame {
     }
 
     /// Local coordinates to world direction.
+    #[inline]
     pub fn to_world(&self, v: Vec3) -> Vec3 {
         self.s * v.x + self.t * v.y + self.n * v.z
     }

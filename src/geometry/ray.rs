@@ -17,11 +17,13 @@ pub struct Ray {
 
 impl Ray {
     /// A ray from `origin` along `dir`.
+    #[inline]
     pub fn new(origin: Vec3, dir: Vec3) -> Self {
         Ray { origin, dir }
     }
 
     /// The point at parameter `t`.
+    #[inline]
     pub fn at(&self, t: f32) -> Vec3 {
         self.origin + self.dir * t
     }
@@ -35,6 +37,7 @@ pub const OFFSET_ABSOLUTE: f32 = 1e-7;
 /// Distance a new ray origin is moved off a surface point `p` so that floating-point error in
 /// `p` cannot make the ray hit the surface it starts on. It scales with the magnitude of the
 /// coordinates (the error of a computed hit point does too).
+#[inline]
 pub fn surface_offset(p: Vec3) -> f32 {
     surface_offset_lanes(V3::from(p))
 }
@@ -48,6 +51,7 @@ pub fn surface_offset_lanes<R: Real>(p: V3<R>) -> R {
 
 /// The origin for a ray leaving surface point `p` (geometric normal `n`, any orientation) in
 /// direction `dir`: `p` moved along `±n` to the side `dir` points into.
+#[inline]
 pub fn offset_origin(p: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
     offset_origin_lanes(V3::from(p), V3::from(n), V3::from(dir)).into()
 }
@@ -60,12 +64,14 @@ pub fn offset_origin_lanes<R: Real>(p: V3<R>, n: V3<R>, dir: V3<R>) -> V3<R> {
 }
 
 /// A ray leaving surface point `p` (geometric normal `n`) in direction `dir`.
+#[inline]
 pub fn spawn_ray(p: Vec3, n: Vec3, dir: Vec3) -> Ray {
     Ray::new(offset_origin(p, n, dir), dir)
 }
 
 /// A ray from surface point `p` (geometric normal `n`) towards `target`, with the parameter
 /// range `(0, t_max)` that stops just short of the target. `dir` is unit length.
+#[inline]
 pub fn spawn_ray_to(p: Vec3, n: Vec3, target: Vec3) -> (Ray, f32) {
     let (origin, dir, t_max) = spawn_ray_to_lanes(V3::from(p), V3::from(n), V3::from(target));
     (Ray::new(origin.into(), dir.into()), t_max)

@@ -76,6 +76,7 @@ pub struct Sampler {
 }
 
 /// Mixes integers into a well-distributed 64-bit value (SplitMix64 finaliser).
+#[inline]
 pub fn hash64(mut x: u64) -> u64 {
     x = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
     x = (x ^ (x >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -86,6 +87,7 @@ pub fn hash64(mut x: u64) -> u64 {
 impl Sampler {
     /// The sampler of sample `sample_index` of the pixel (or other stream) `stream`, for the
     /// image seed `seed`.
+    #[inline]
     pub fn new(kind: SequenceKind, seed: u64, stream: u64, sample_index: u32) -> Self {
         let pixel_key = hash64(seed ^ hash64(stream));
         let state = hash64(pixel_key ^ (sample_index as u64).wrapping_mul(0x2545_f491_4f6c_dd1d));

@@ -8,12 +8,14 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 
 /// Barycentrics `(b1, b2)` of a point uniformly distributed over a triangle.
+#[inline]
 pub fn uniform_triangle(u: Vec2) -> (f32, f32) {
     let s = u.x.sqrt();
     (s * (1.0 - u.y), s * u.y)
 }
 
 /// A cosine-weighted direction about local `+z`; its density is `cos θ / π`.
+#[inline]
 pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
     cosine_hemisphere_lanes(u.x, u.y).into()
 }
@@ -36,6 +38,7 @@ pub fn cosine_about<R: Real>(n: V3<R>, ux: R, uy: R) -> V3<R> {
 }
 
 /// Density (1/sr) of [`cosine_hemisphere`] for a direction with `cos θ`.
+#[inline]
 pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
     cosine_hemisphere_pdf_lanes(cos_theta)
 }
@@ -47,6 +50,7 @@ pub fn cosine_hemisphere_pdf_lanes<R: Real>(cos_theta: R) -> R {
 }
 
 /// A uniform direction on the unit sphere; its density is `1 / (4π)`.
+#[inline]
 pub fn uniform_sphere(u: Vec2) -> Vec3 {
     let z = 1.0 - 2.0 * u.x;
     let r = (1.0 - z * z).max(0.0).sqrt();
@@ -55,6 +59,7 @@ pub fn uniform_sphere(u: Vec2) -> Vec3 {
 }
 
 /// A uniform point on the unit disc (Shirley–Chiu concentric map).
+#[inline]
 pub fn concentric_disk(u: Vec2) -> Vec2 {
     let (x, y) = concentric_disk_lanes(u.x, u.y);
     Vec2::new(x, y)
@@ -96,6 +101,7 @@ fn sin_cos_within_quarter<R: Real>(x: R) -> (R, R) {
 }
 
 /// Cell `index` of an `n × n` stratification of `[0, 1)²`, jittered by `u`.
+#[inline]
 pub fn stratified(index: u32, n: u32, u: Vec2) -> Vec2 {
     let cell = Vec2::new((index % n) as f32, (index / n) as f32);
     (cell + u) / n as f32

@@ -30,6 +30,7 @@ pub struct AreaLight {
 impl AreaLight {
     /// Radiance toward the front and the back, when it is the same at every point of the
     /// light.
+    #[inline]
     pub fn uniform_radiance(&self) -> Option<[Rgb; 2]> {
         self.uniform_radiance
     }
@@ -133,6 +134,7 @@ impl LightSet {
 
     /// The index into [`LightSet::area`] of the area light that primitive `prim` belongs to,
     /// if it is an emissive triangle.
+    #[inline]
     pub fn area_light_of(&self, prim: u32) -> Option<usize> {
         match self.light_of_prim.get(prim as usize) {
             Some(&i) if i != u32::MAX => Some(i as usize),
@@ -147,6 +149,7 @@ impl LightSet {
 
     /// A point on area light `light`, uniformly distributed over its area, from the uniform
     /// numbers `u_pick` (chooses the triangle) and `u` (the point on it).
+    #[inline]
     pub fn sample_area(
         &self,
         geometry: &SceneGeometry,
@@ -173,6 +176,7 @@ impl LightSet {
 
     /// Radiance that the sample `s` of area light `light` emits toward its front (or back)
     /// side.
+    #[inline]
     pub fn area_radiance(
         &self,
         scene: &Scene,

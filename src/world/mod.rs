@@ -56,6 +56,7 @@ impl World {
     }
 
     /// The closest surface hit along `ray` (unbounded), described.
+    #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         self.closest_hit(ray, f32::INFINITY)
             .map(|h| self.geometry.describe(&h, ray))
@@ -63,16 +64,19 @@ impl World {
 
     /// The closest primitive hit along `ray` with `t ∈ (0, t_max]`, not yet described (the
     /// first stage of intersection: distance and primitive only).
+    #[inline]
     pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<PrimHit> {
         self.accel.closest_hit(&self.geometry, ray, t_max)
     }
 
     /// Whether anything blocks `ray` for `t ∈ (0, t_max]`.
+    #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.accel.any_hit(&self.geometry, ray, t_max)
     }
 
     /// The material of `hit`.
+    #[inline]
     pub fn material(&self, hit: &SurfaceHit) -> &Material {
         &self.scene.materials[hit.material as usize]
     }

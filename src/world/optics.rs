@@ -7,12 +7,14 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, PI};
 
 /// Mirror direction of `w` (pointing away from the surface) about the unit normal `n`.
+#[inline]
 pub fn reflect(w: Vec3, n: Vec3) -> Vec3 {
     2.0 * w.dot(n) * n - w
 }
 
 /// Refracted direction of `w` (pointing away from the surface, on the side of `n`) for the
 /// relative index `eta = n_incident / n_transmitted`; `None` under total internal reflection.
+#[inline]
 pub fn refract(w: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
     let cos_i = w.dot(n);
     let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
@@ -25,6 +27,7 @@ pub fn refract(w: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
 
 /// Unpolarised Fresnel reflectance of a dielectric interface for incidence cosine `cos_i`
 /// and relative index `eta = n_incident / n_transmitted` (1 under total internal reflection).
+#[inline]
 pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     let cos_i = cos_i.clamp(0.0, 1.0);
     let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
@@ -39,6 +42,7 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
 
 /// Normalised Phong lobe `(s+2)/(2π)·cosˢα`, α the angle between `wi` and the mirror
 /// direction of `wo`. Reflects at most the lobe weight for any incidence.
+#[inline]
 pub fn phong_lobe(n: Vec3, wo: Vec3, wi: Vec3, shininess: f32) -> f32 {
     let cos_alpha = reflect(wo, n).dot(wi);
     if cos_alpha <= 0.0 {
@@ -51,6 +55,7 @@ pub fn phong_lobe(n: Vec3, wo: Vec3, wi: Vec3, shininess: f32) -> f32 {
 /// A direction about the mirror direction of `wo` (unit, pointing away from the surface with
 /// unit normal `n`) from the uniform point `u`, distributed as `(s+1)/(2π)·cosˢα`
 /// ([`phong_pdf`]); it may point below the surface.
+#[inline]
 pub fn sample_phong(n: Vec3, wo: Vec3, shininess: f32, u: Vec2) -> Vec3 {
     let cos_alpha = u.x.powf(1.0 / (shininess + 1.0));
     let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
@@ -60,6 +65,7 @@ pub fn sample_phong(n: Vec3, wo: Vec3, shininess: f32, u: Vec2) -> Vec3 {
 }
 
 /// Density (1/sr) of [`sample_phong`] for `cos α` to the mirror direction.
+#[inline]
 pub fn phong_pdf(cos_alpha: f32, shininess: f32) -> f32 {
     if cos_alpha <= 0.0 {
         0.0

@@ -245,11 +245,13 @@ impl SceneGeometry {
     }
 
     /// The triangle of primitive `prim`, if it is one.
+    #[inline]
     pub fn triangle(&self, prim: u32) -> Option<&Triangle> {
         self.triangles.get(prim as usize)
     }
 
     /// Object and material of primitive `prim`.
+    #[inline]
     pub fn owner(&self, prim: u32) -> (u32, MaterialId) {
         match self.attributes.get(prim as usize) {
             Some(a) => (a.object, a.material),
@@ -280,6 +282,7 @@ impl SceneGeometry {
     }
 
     /// Texture coordinates at barycentrics `(b1, b2)` of triangle `prim`.
+    #[inline]
     pub fn triangle_uv(&self, prim: usize, b1: f32, b2: f32) -> Vec2 {
         let uv = &self.attributes[prim].uvs;
         uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2

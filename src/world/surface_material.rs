@@ -29,6 +29,7 @@ pub struct SurfaceMaterial {
 
 impl SurfaceMaterial {
     /// The material of `hit`, textures applied.
+    #[inline]
     pub fn at(scene: &Scene, hit: &SurfaceHit) -> Self {
         let m = &scene.materials[hit.material as usize];
         let diffuse = match m.diffuse_texture {
@@ -47,12 +48,14 @@ impl SurfaceMaterial {
     }
 
     /// True when the hit side reflects nothing (back of a one-sided material).
+    #[inline]
     pub fn is_black_from(&self, front_face: bool) -> bool {
         self.one_sided && !front_face
     }
 
     /// The non-delta reflection function `f(wo, wi)` (1/sr) for unit directions `wo` (toward
     /// the viewer) and `wi` (toward the light) on the side of the unit normal `n`.
+    #[inline]
     pub fn eval(&self, n: Vec3, wo: Vec3, wi: Vec3) -> Rgb {
         if n.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
             return Rgb::BLACK;
@@ -67,6 +70,7 @@ impl SurfaceMaterial {
 
 /// Radiance emitted by `hit` back along the ray that found it (front face only unless the
 /// material is two-sided), emission texture applied.
+#[inline]
 pub fn emitted(scene: &Scene, hit: &SurfaceHit) -> Rgb {
     emitted_toward(
         scene,
@@ -78,6 +82,7 @@ pub fn emitted(scene: &Scene, hit: &SurfaceHit) -> Rgb {
 
 /// Radiance emitted by material `m` at texture coordinate `uv` toward the front
 /// (`front = true`) or back side.
+#[inline]
 pub fn emitted_toward(scene: &Scene, m: &Material, uv: glam::Vec2, front: bool) -> Rgb {
     if m.emission.is_black() || !(front || m.two_sided) {
         return Rgb::BLACK;

@@ -78,6 +78,7 @@ fn get(lanes: &[[f32; LANES]; 3], lane: usize) -> [f32; 3] {
 
 impl LambertLanes {
     /// Puts a vertex into lane `lane`.
+    #[inline(always)]
     fn set(
         &mut self,
         lane: usize,
@@ -227,6 +228,7 @@ impl PathTracer {
 
 /// Completes the lanes' scattering of lane `lane` for `path`: Russian roulette and the next
 /// ray, and the light sample's shadow ray.
+#[inline(always)]
 fn finish_lambert(
     world: &World,
     path: &mut Path,
@@ -271,6 +273,7 @@ fn finish_lambert(
 /// (unused lanes compute garbage that nobody reads), by the functions the one-path code uses:
 /// [`toward_light`] and [`light_sample_weight`] as in next-event estimation, [`cosine_about`]
 /// as in [`crate::trace::shading::bsdf::sample_bsdf`] for a Lambert lobe.
+#[inline(always)]
 fn scatter_lambert(lambert: &LambertLanes) -> LambertScatter {
     let x = Vec3x8::load(&lambert.p);
     let n = Vec3x8::load(&lambert.n);
