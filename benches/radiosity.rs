@@ -11,8 +11,8 @@ use strahl::radiosity::solve::{
     RadiositySystem, ShootingSettings, SystemOptions, solve_progressive,
 };
 use strahl::radiosity::{
-    Facing, FormFactorOptions, MeshOptions, MeshSize, PatchId, PatchMesh, VisRays, Visibility,
-    VisibilityOptions, facing, form_factor,
+    Facing, FormFactorOptions, MeshOptions, MeshSize, PatchId, PatchMesh, Side, VisRays,
+    Visibility, VisibilityOptions, facing, form_factor,
 };
 use strahl::scene::builtin;
 use strahl::world::World;
@@ -29,7 +29,9 @@ fn facing_pairs(mesh: &PatchMesh) -> Vec<(PatchId, PatchId)> {
             let flat = k * stride % (n * n);
             (leaves[flat / n], leaves[flat % n])
         })
-        .filter(|&(i, j)| i != j && facing(mesh.patch(i), mesh.patch(j)) != Facing::Away)
+        .filter(|&(i, j)| {
+            i != j && facing(mesh.patch(i), Side::Front, mesh.patch(j), Side::Front) != Facing::Away
+        })
         .take(PAIRS)
         .collect()
 }
@@ -43,6 +45,7 @@ fn bench(c: &mut Criterion) {
         &MeshOptions {
             segments: 16,
             size: MeshSize::Levels(4),
+            ..MeshOptions::default()
         },
     )
     .expect("mesh");
@@ -73,7 +76,13 @@ fn bench(c: &mut Criterion) {
                 pairs
                     .iter()
                     .map(|&(i, j)| {
-                        let f = form_factor(mesh.patch(i), mesh.patch(j), &ff);
+                        let f = form_factor(
+                            mesh.patch(i),
+                            Side::Front,
+                            mesh.patch(j),
+                            Side::Front,
+                            &ff,
+                        );
                         f * vis.between(&mesh, i, j)
                     })
                     .sum::<f64>()
@@ -84,7 +93,15 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             pairs
                 .iter()
-                .map(|&(i, j)| form_factor(black_box(mesh.patch(i)), mesh.patch(j), &ff))
+                .map(|&(i, j)| {
+                    form_factor(
+                        black_box(mesh.patch(i)),
+                        Side::Front,
+                        mesh.patch(j),
+                        Side::Front,
+                        &ff,
+                    )
+                })
                 .sum::<f64>()
         })
     });
@@ -110,6 +127,7 @@ fn solve_cornell(c: &mut Criterion) {
         mesh: MeshOptions {
             segments: 16,
             size: MeshSize::Levels(levels),
+            ..MeshOptions::default()
         },
         ..SystemOptions::default()
     };

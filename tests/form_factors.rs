@@ -11,8 +11,8 @@ use glam::{DVec2, DVec3, Vec3};
 use proptest::prelude::*;
 use std::f64::consts::PI;
 use strahl::radiosity::{
-    FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, Patch, PatchMesh, form_factor,
-    point_to_polygon,
+    FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, Patch, PatchMesh, Side,
+    form_factor, point_to_polygon,
 };
 use strahl::scene::{Material, Scene, Shape};
 
@@ -104,6 +104,7 @@ fn meshed_factor(scene: &Scene, levels: u32) -> f64 {
         &MeshOptions {
             segments: 16,
             size: MeshSize::Levels(0),
+            ..MeshOptions::default()
         },
     )
     .unwrap();
@@ -131,7 +132,7 @@ fn meshed_factor(scene: &Scene, levels: u32) -> f64 {
             let p = mesh.patch(leaf);
             let f: f64 = emitters
                 .iter()
-                .map(|&e| form_factor(p, mesh.patch(e), &options))
+                .map(|&e| form_factor(p, Side::Front, mesh.patch(e), Side::Front, &options))
                 .sum();
             weighted += p.area * f;
             area += p.area;
@@ -341,6 +342,7 @@ fn factors_from_every_patch_of_a_closed_box_sum_to_one() {
         &MeshOptions {
             segments: 16,
             size: MeshSize::Levels(2),
+            ..MeshOptions::default()
         },
     )
     .unwrap();
@@ -362,7 +364,15 @@ fn factors_from_every_patch_of_a_closed_box_sum_to_one() {
         for &i in &leaves {
             let sum: f64 = leaves
                 .iter()
-                .map(|&j| form_factor(mesh.patch(i), mesh.patch(j), &options))
+                .map(|&j| {
+                    form_factor(
+                        mesh.patch(i),
+                        Side::Front,
+                        mesh.patch(j),
+                        Side::Front,
+                        &options,
+                    )
+                })
                 .sum();
             assert!((sum - 1.0).abs() < 1e-6, "patch {i}: Σ F = {sum}");
         }
@@ -409,9 +419,21 @@ fn point_approximation_is_close_only_far_away() {
     };
     let receiver = square(0.0, false);
     // Distance-to-size ratio 3 (the hybrid default): within 7.3 % of the closed form.
-    let far = form_factor(&receiver, &square(3.0, true), &point);
+    let far = form_factor(
+        &receiver,
+        Side::Front,
+        &square(3.0, true),
+        Side::Front,
+        &point,
+    );
     assert!(((far - c11(1.0, 1.0, 3.0)) / c11(1.0, 1.0, 3.0)).abs() < 0.073);
     // Very close: the clamp keeps it at 1, far above the exact 0.9 and never more.
-    let close = form_factor(&receiver, &square(0.05, true), &point);
+    let close = form_factor(
+        &receiver,
+        Side::Front,
+        &square(0.05, true),
+        Side::Front,
+        &point,
+    );
     assert_eq!(close, 1.0);
 }

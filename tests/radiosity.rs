@@ -3,15 +3,16 @@
 
 use glam::Vec3;
 use strahl::accel::AccelKind;
-use strahl::color::Rgb;
+use strahl::color::{Rgb, Rgb64};
 use strahl::image::{ToneMap, ToneMapping};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
+use strahl::radiosity::light_links::solid_angle;
 use strahl::radiosity::solve::{
     DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
     Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
 };
-use strahl::radiosity::{MeshOptions, MeshSize};
+use strahl::radiosity::{MeshOptions, MeshSize, Side};
 use strahl::report::{Report, export_lit_mesh};
 use strahl::scene::{Light, LightKind, Material, Scene, Shape, builtin};
 use strahl::world::World;
@@ -47,6 +48,7 @@ fn options(levels: u32) -> SystemOptions {
         mesh: MeshOptions {
             segments: 16,
             size: MeshSize::Levels(levels),
+            ..MeshOptions::default()
         },
         ..SystemOptions::default()
     }
@@ -70,16 +72,21 @@ fn progressive(system: &RadiositySystem, overshoot: bool, tolerance: f64) -> Sol
     solve_progressive(system, &settings, &NoProgress, &Cancel::new()).unwrap()
 }
 
-fn assert_furnace(solution: &Solution) {
+/// Inside the furnace (the faces' front sides) every element has `B = E/(1 − ρ)`; outside
+/// (their back sides, which see nothing and do not emit) `B = 0`.
+fn assert_furnace(system: &RadiositySystem, solution: &Solution) {
     let expected = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
     assert!(solution.converged, "{}", solution.solver);
-    for b in &solution.radiosity {
+    for (element, b) in system.elements.iter().zip(&solution.radiosity) {
         for c in b.to_array() {
-            assert!(
-                ((c - expected) / expected).abs() < 1e-4,
-                "{}: {c} vs {expected}",
-                solution.solver
-            );
+            match element.side {
+                Side::Front => assert!(
+                    ((c - expected) / expected).abs() < 1e-4,
+                    "{}: {c} vs {expected}",
+                    solution.solver
+                ),
+                Side::Back => assert_eq!(c, 0.0, "{}: outside", solution.solver),
+            }
         }
     }
 }
@@ -88,11 +95,11 @@ fn assert_furnace(solution: &Solution) {
 fn furnace_gives_e_over_one_minus_rho_for_every_solver() {
     let world = furnace();
     let system = RadiositySystem::new(&world, options(2)).unwrap();
-    assert_eq!(system.len(), 96);
-    assert_furnace(&matrix(&system, Iteration::Jacobi, 1e-7));
-    assert_furnace(&matrix(&system, Iteration::GaussSeidel, 1e-7));
-    assert_furnace(&progressive(&system, false, 1e-7));
-    assert_furnace(&progressive(&system, true, 1e-7));
+    assert_eq!((system.leaves.len(), system.len()), (96, 192));
+    assert_furnace(&system, &matrix(&system, Iteration::Jacobi, 1e-7));
+    assert_furnace(&system, &matrix(&system, Iteration::GaussSeidel, 1e-7));
+    assert_furnace(&system, &progressive(&system, false, 1e-7));
+    assert_furnace(&system, &progressive(&system, true, 1e-7));
 }
 
 #[test]
@@ -189,7 +196,7 @@ fn gauss_seidel_needs_fewer_sweeps_than_jacobi() {
 }
 
 #[test]
-fn point_light_link_gives_rho_i_cos_over_d_squared() {
+fn point_light_link_gives_the_exact_mean_irradiance_and_the_lights_full_power() {
     let mut scene = Scene::empty("lamp");
     let m = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
     scene.add_object(
@@ -201,11 +208,11 @@ fn point_light_link_gives_rho_i_cos_over_d_squared() {
         },
         m,
     );
-    // Light 2 above and 2 to the side of the centroid (0.5, 0, 0.5): cosθ = 1/√2, d² = 8.
+    let at = Vec3::new(2.5, 2.0, 0.5);
     scene.lights.push(Light {
         name: None,
         kind: LightKind::Point {
-            position: Vec3::new(2.5, 2.0, 0.5),
+            position: at,
             intensity: Rgb::splat(8.0),
         },
     });
@@ -213,12 +220,17 @@ fn point_light_link_gives_rho_i_cos_over_d_squared() {
     let mut opts = options(0);
     opts.link_samples = 1;
     let system = RadiositySystem::new(&world, opts).unwrap();
-    let h = 8.0 * std::f64::consts::FRAC_1_SQRT_2 / 8.0;
+    // The mean irradiance over the unit floor: I·Ω/A, Ω the solid angle it subtends at the
+    // light (exact however few receiver points are used).
+    let floor = system.mesh.patch(system.leaves[0]);
+    let h = 8.0 * solid_angle(at.as_dvec3(), floor.corners()) / floor.area;
     for solution in [
         matrix(&system, Iteration::Jacobi, 1e-9),
         progressive(&system, false, 1e-9),
     ] {
-        assert!((solution.radiosity[0][0] - 0.5 * h).abs() < 1e-6);
+        assert!((solution.radiosity[0][0] - 0.5 * h).abs() < 1e-12);
+        // The back of the floor sees nothing.
+        assert_eq!(solution.radiosity[1], Rgb64::BLACK);
         let report = Report::new(
             "lamp",
             solution.solver.name(),
@@ -226,10 +238,14 @@ fn point_light_link_gives_rho_i_cos_over_d_squared() {
             solution.stats(&system),
         );
         let floor = &report.objects[0];
-        assert!((floor.irradiance.unwrap()[2] - h).abs() < 1e-6);
-        assert!((floor.absorbed_power[1] - 0.5 * h).abs() < 1e-6);
-        // The light only sends: its power into the mesh is the floor's incident power.
-        assert!((report.totals.emitted_power[0] - h).abs() < 1e-6);
+        assert!((floor.irradiance.unwrap()[2] - h).abs() < 1e-12);
+        assert!((floor.absorbed_power[1] - 0.5 * h).abs() < 1e-12);
+        // The light's power is 4π·I, as the light model reports it; what misses the floor
+        // escapes.
+        let t = &report.totals;
+        let power = 4.0 * std::f64::consts::PI * 8.0;
+        assert!((t.emitted_power[0] - power).abs() < 1e-4);
+        assert!((t.escaped_power[0] - (power - 0.5 * h)).abs() < 1e-4);
     }
 }
 
@@ -296,25 +312,33 @@ fn exports_parse_as_gltf_and_ply() {
     for path in [&glb, &gltf_path] {
         let (doc, buffers, _) = gltf::import(path).unwrap();
         let primitive = doc.meshes().next().unwrap().primitives().next().unwrap();
+        // Both sides of 24 quads.
         let colors = primitive.get(&gltf::Semantic::Colors(0)).expect("COLOR_0");
-        assert_eq!(colors.count(), 24 * 4);
+        assert_eq!(colors.count(), 2 * 24 * 4);
         let reader = primitive.reader(|b| Some(&buffers[b.index()]));
-        assert_eq!(reader.read_indices().unwrap().into_u32().count(), 24 * 6);
-        // Uniform radiosity: one tone-mapped colour everywhere (to rounding), inside [0, 1].
-        let rgb: Vec<[f32; 3]> = reader.read_colors(0).unwrap().into_rgb_f32().collect();
-        assert!(
-            rgb.iter()
-                .all(|c| (c[0] - rgb[0][0]).abs() < 1e-5 && c[0] > 0.0 && c[0] <= 1.0)
+        assert_eq!(
+            reader.read_indices().unwrap().into_u32().count(),
+            2 * 24 * 6
         );
+        // Uniform radiosity inside: one tone-mapped colour (to rounding) in (0, 1]; the
+        // outside is black.
+        let rgb: Vec<[f32; 3]> = reader.read_colors(0).unwrap().into_rgb_f32().collect();
+        let (inside, outside) = rgb.split_at(24 * 4);
+        assert!(
+            inside
+                .iter()
+                .all(|c| (c[0] - inside[0][0]).abs() < 1e-5 && c[0] > 0.0 && c[0] <= 1.0)
+        );
+        assert!(outside.iter().all(|c| c[0] == 0.0));
     }
     let ply = dir.join("furnace.ply");
     export_lit_mesh(&solution.lit_mesh(&system), &tone, &ply).unwrap();
     let text = std::fs::read_to_string(&ply).unwrap();
     let (header, body) = text.split_once("end_header\n").unwrap();
     assert!(header.starts_with("ply\nformat ascii 1.0\n"));
-    assert!(header.contains("element vertex 96\n") && header.contains("element face 24\n"));
+    assert!(header.contains("element vertex 192\n") && header.contains("element face 48\n"));
     let lines: Vec<&str> = body.lines().collect();
-    assert_eq!(lines.len(), 96 + 24);
+    assert_eq!(lines.len(), 192 + 48);
     let b: f64 = lines[0].split(' ').nth(9).unwrap().parse().unwrap();
     let expected = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
     assert!((b - expected).abs() / expected < 1e-4);
@@ -345,6 +369,8 @@ fn command_line_solves_reports_exports_and_renders() {
         "progressive",
         "--mesh-size",
         "levels:1",
+        "--linking",
+        "normal",
         "--overshoot",
         "-q",
         "--report",
@@ -355,7 +381,9 @@ fn command_line_solves_reports_exports_and_renders() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(json["solver"], "progressive");
+    // 20 faces of 2 × 2 patches, each with two sides.
     assert_eq!(json["stats"]["patches"], 80);
+    assert_eq!(json["stats"]["elements"], 160);
     assert_eq!(json["stats"]["converged"], true);
     assert_eq!(json["objects"].as_array().unwrap().len(), 8);
     assert!(gltf::Gltf::open(&export).is_ok());

@@ -76,7 +76,7 @@ fn radiosity_converges_to_the_light_model_as_the_mesh_is_refined() {
                 .fold(0.0, f64::max)
         })
         .collect();
-    // Measured: 4.8 %, 2.6 %, 1.3 % — first-order convergence in the patch size.
+    // Measured (two-sided elements, contact splits): 2.8 %, 0.93 %, 0.48 %.
     for pair in worst.windows(2) {
         assert!(pair[1] < 0.7 * pair[0], "no convergence: {worst:?}");
     }

@@ -30,6 +30,15 @@ pub enum Solver {
     Progressive,
 }
 
+/// How faces are prepared for linking (seed §6.3.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Linking {
+    /// Every face as it is.
+    Normal,
+    /// Faces that others stand on are split at the standing faces' planes first.
+    Asymmetric,
+}
+
 /// Options of the radiosity solvers.
 #[derive(Debug, Args)]
 #[command(next_help_heading = "Radiosity (--solver matrix|progressive)")]
@@ -41,6 +50,11 @@ pub struct RadiosityArgs {
     /// Segments around the axis when curved shapes are meshed.
     #[arg(long, default_value_t = 16)]
     pub segments: u32,
+    /// Initial linking: `asymmetric` first splits faces at the planes of faces that stand on
+    /// them (a box on the floor), so no patch lies partly under a touching solid and no light
+    /// leaks; `normal` meshes every face as it is.
+    #[arg(long, value_enum, default_value_t = Linking::Asymmetric)]
+    pub linking: Linking,
     /// Form-factor approximation.
     #[arg(long, value_parser = choice::<FormFactorMethod>(), default_value_t = FormFactorMethod::Analytic)]
     pub form_factor: FormFactorMethod,
@@ -108,6 +122,7 @@ impl RadiosityArgs {
             mesh: MeshOptions {
                 segments: self.segments,
                 size: self.mesh_size,
+                contact_splits: self.linking == Linking::Asymmetric,
             },
             form_factor: FormFactorOptions {
                 method: self.form_factor,
@@ -183,13 +198,14 @@ pub fn solve<'w>(
     Ok((system, solution))
 }
 
-/// Prints one line on the solve (and a warning for sky lights the mesh does not see).
+/// Prints one line on the solve.
 fn print_summary(system: &RadiositySystem, solution: &Solution) {
     let last = solution.convergence.last().copied().unwrap_or(0.0);
     eprintln!(
-        "{}: {} patches, {} form factors, {} iterations, {} {last:.3e}{}; \
+        "{}: {} patches ({} sides), {} form factors, {} iterations, {} {last:.3e}{}; \
          {:.2} s setup, {:.2} s form factors, {:.2} s iterations",
         solution.solver.name(),
+        system.leaves.len(),
         system.len(),
         system.form_factor_count(),
         solution.iterations(),
@@ -205,12 +221,6 @@ fn print_summary(system: &RadiositySystem, solution: &Solution) {
         solution.seconds.form_factors,
         solution.seconds.iterations,
     );
-    if system.unlinked_sky_lights > 0 {
-        eprintln!(
-            "warning: {} sky light(s) are not linked into the radiosity mesh",
-            system.unlinked_sky_lights
-        );
-    }
 }
 
 /// Prints the convergence history, one line per iteration, to standard error.
@@ -262,7 +272,7 @@ pub fn render(
         film,
         summary: format!(
             "{} patches by {} ({} iterations)",
-            system.len(),
+            system.leaves.len(),
             solution.solver.name(),
             solution.iterations()
         ),

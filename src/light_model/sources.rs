@@ -92,9 +92,7 @@ pub struct PhotonSources {
 impl PhotonSources {
     /// The sources of `world`'s lights.
     pub fn new(world: &World) -> Self {
-        let (center, radius) = world.geometry.bounding_sphere();
-        // A little larger, so no photon starts on the geometry it is aimed at.
-        let radius = radius * 1.001 + 1e-6;
+        let (center, radius) = world.entry_sphere();
         let mut sources = Vec::new();
         for (index, light) in world.lights.area.iter().enumerate() {
             let mut cdf = Vec::with_capacity(light.prims.len());
@@ -121,10 +119,7 @@ impl PhotonSources {
             });
         }
         for light in &world.lights.delta {
-            // The sky is a source of its own below.
-            let Some(power) = light.power(radius) else {
-                continue;
-            };
+            let power = world.light_power(light);
             let source = match *light {
                 LightKind::Point { position, .. } => PhotonSource {
                     kind: SourceKind::Point { position },
@@ -174,7 +169,7 @@ impl PhotonSources {
         if let Some(radiance) = world.lights.sky {
             sources.push(PhotonSource {
                 kind: SourceKind::Sky,
-                power: radiance * (4.0 * PI * PI * radius * radius),
+                power: world.light_power(&LightKind::Sky { radiance }),
             });
         }
         sources.retain(|s| s.power.is_finite() && s.power.max_channel() > 0.0);

@@ -3,6 +3,7 @@
 //! seed's "variable" points) never cause a split, and Sutherland–Hodgman splitting and
 //! clipping of polygons (with their texture coordinates) at a plane.
 
+use super::element::Side;
 use super::mesh::Patch;
 use glam::{DVec2, DVec3};
 
@@ -34,6 +35,11 @@ impl Plane {
         Plane::new(patch.centroid, patch.normal)
     }
 
+    /// The support plane of one side of a patch (front side = that side).
+    pub fn of_side(patch: &Patch, side: Side) -> Plane {
+        Plane::new(patch.centroid, side.normal(patch))
+    }
+
     /// Signed distance of `p` (scene units; positive in front).
     pub fn distance(&self, p: DVec3) -> f64 {
         self.normal.dot(p) - self.offset
@@ -42,7 +48,7 @@ impl Plane {
 
 /// Where a point lies relative to a plane, with the epsilon band.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Side {
+pub enum PlaneSide {
     /// Clearly in front.
     Front,
     /// Clearly behind.
@@ -71,9 +77,9 @@ impl SideCounts {
         let mut counts = SideCounts::default();
         for &p in polygon {
             match side(plane.distance(p), eps) {
-                Side::Front => counts.front += 1,
-                Side::Back => counts.back += 1,
-                Side::On => counts.on += 1,
+                PlaneSide::Front => counts.front += 1,
+                PlaneSide::Back => counts.back += 1,
+                PlaneSide::On => counts.on += 1,
             }
         }
         counts
@@ -89,13 +95,13 @@ impl SideCounts {
     }
 }
 
-fn side(distance: f64, eps: f64) -> Side {
+fn side(distance: f64, eps: f64) -> PlaneSide {
     if distance > eps {
-        Side::Front
+        PlaneSide::Front
     } else if distance < -eps {
-        Side::Back
+        PlaneSide::Back
     } else {
-        Side::On
+        PlaneSide::On
     }
 }
 
@@ -118,21 +124,27 @@ pub enum Facing {
     Facing,
     /// Each has a part in front of the other, but at least one straddles the other's plane:
     /// split (support-plane split) or clip before computing visibility and form factors.
-    /// The flat solvers treat such a pair as facing (the analytic form factor clips the
-    /// emitter to the receiver's front half-space); splitting at initial linking comes with
-    /// hierarchical radiosity.
+    /// The solvers treat such a pair as facing: the analytic form factor clips the emitter to
+    /// the receiver's front half-space, and the contact splits ([`super::contact`]) have
+    /// already cut the faces that touch.
     Partly,
     /// They cannot see each other (one lies entirely behind or in the plane of the other).
     Away,
 }
 
-/// The seed's facing test (§4.1) refined by the support-plane classification (§4.2): two
-/// patches can exchange light only when each has some part clearly in front of the other's
-/// plane. Coplanar patches and patches back to back are [`Facing::Away`]; touching faces (a
-/// common edge or corner, otherwise on the front sides) are [`Facing::Facing`].
-pub fn facing(receiver: &Patch, emitter: &Patch) -> Facing {
-    let r = SideCounts::of(&Plane::of_patch(emitter), receiver.corners());
-    let e = SideCounts::of(&Plane::of_patch(receiver), emitter.corners());
+/// The seed's facing test (§4.1) refined by the support-plane classification (§4.2), for one
+/// side of each patch: the receiver's side and the emitter's side can exchange light only
+/// when each patch has some part clearly in front of the other's side. Coplanar patches and
+/// sides turned away are [`Facing::Away`]; touching faces (a common edge or corner,
+/// otherwise in front) are [`Facing::Facing`].
+pub fn facing(
+    receiver: &Patch,
+    receiver_side: Side,
+    emitter: &Patch,
+    emitter_side: Side,
+) -> Facing {
+    let r = SideCounts::of(&Plane::of_side(emitter, emitter_side), receiver.corners());
+    let e = SideCounts::of(&Plane::of_side(receiver, receiver_side), emitter.corners());
     if r.front == 0 || e.front == 0 {
         Facing::Away
     } else if r.straddles() || e.straddles() {
@@ -142,18 +154,8 @@ pub fn facing(receiver: &Patch, emitter: &Patch) -> Facing {
     }
 }
 
-/// The seed's centroid-only facing test (§4.1, `canOneSeeAnother`): the line between the
-/// centroids leaves the receiver on its front side and reaches the emitter on its front
-/// side. Misses partly facing pairs; [`facing`] handles those.
-pub fn centroids_face(receiver: &Patch, emitter: &Patch) -> bool {
-    let connection = emitter.centroid - receiver.centroid;
-    receiver.normal.dot(connection) > 0.0 && emitter.normal.dot(connection) < 0.0
-}
-
 /// True when the divisor's support plane must split `dividend` (seed §4.2 "target split"):
-/// its corners lie clearly on both sides of the plane. Not used by a solver yet: the
-/// asymmetric split of receivers at initial linking (seed §6.3.1) comes with hierarchical
-/// radiosity.
+/// its corners lie clearly on both sides of the plane.
 pub fn needs_split(divisor: &Patch, dividend: &Patch) -> bool {
     SideCounts::of(&Plane::of_patch(divisor), dividend.corners()).straddles()
 }
@@ -180,7 +182,7 @@ pub struct SplitPolygon {
 /// (Sutherland–Hodgman on both sides; seed §4.2.2). Corners within the epsilon band count as
 /// on the plane and go to both pieces; new corners are placed where edges cross the plane,
 /// with linearly interpolated texture coordinates. A piece with fewer than three corners is
-/// returned empty. Not used by a solver yet (see [`needs_split`]).
+/// returned empty. The contact splits of [`super::contact`] cut faces with it.
 pub fn split(plane: &Plane, corners: &[DVec3], uvs: &[DVec2]) -> SplitPolygon {
     let eps = band(plane, corners);
     let n = corners.len().min(uvs.len());
@@ -280,7 +282,10 @@ mod tests {
             [0.0, 0.0, 1.0],
         ]);
         assert!(wall.normal.x > 0.99);
-        assert_eq!(facing(&floor(), &wall), Facing::Facing);
+        assert_eq!(
+            facing(&floor(), Side::Front, &wall, Side::Front),
+            Facing::Facing
+        );
         assert!(!needs_split(&wall, &floor()));
         assert!(!needs_split(&floor(), &wall));
         // Scaled by 1e6 and moved far away: still exactly the same answers.
@@ -292,7 +297,10 @@ mod tests {
                 .collect();
             Patch::new(&c, &[DVec2::ZERO; 4]).unwrap()
         };
-        assert_eq!(facing(&far(&floor()), &far(&wall)), Facing::Facing);
+        assert_eq!(
+            facing(&far(&floor()), Side::Front, &far(&wall), Side::Front),
+            Facing::Facing
+        );
         assert!(!needs_split(&far(&wall), &far(&floor())));
     }
 
@@ -313,7 +321,10 @@ mod tests {
         assert!((area(&pieces.front.corners) - 0.5).abs() < 1e-15);
         assert!((area(&pieces.back.corners) - 0.5).abs() < 1e-15);
         assert!(pieces.front.corners.iter().all(|p| p.y >= 0.0));
-        assert_eq!(facing(&wall, &floor()), Facing::Partly);
+        assert_eq!(
+            facing(&wall, Side::Front, &floor(), Side::Front),
+            Facing::Partly
+        );
     }
 
     #[test]
@@ -346,15 +357,45 @@ mod tests {
             [0.0, -1.0, 1.0],
         ]);
         assert!(under.normal.y < -0.99);
-        assert_eq!(facing(&floor(), &under), Facing::Away);
+        assert_eq!(
+            facing(&floor(), Side::Front, &under, Side::Front),
+            Facing::Away
+        );
+        // Back to back: their back sides face each other, and no other pair of sides does.
+        assert_eq!(
+            facing(&floor(), Side::Back, &under, Side::Back),
+            Facing::Facing
+        );
+        assert_eq!(
+            facing(&floor(), Side::Back, &under, Side::Front),
+            Facing::Away
+        );
         let neighbour = quad([
             [1.0, 0.0, 0.0],
             [1.0, 0.0, 1.0],
             [2.0, 0.0, 1.0],
             [2.0, 0.0, 0.0],
         ]);
-        assert_eq!(facing(&floor(), &neighbour), Facing::Away);
-        assert!(!centroids_face(&floor(), &under));
+        assert_eq!(
+            facing(&floor(), Side::Front, &neighbour, Side::Front),
+            Facing::Away
+        );
+        // The back of the floor faces the front of the patch below it.
+        let below = quad([
+            [0.0, -1.0, 0.0],
+            [0.0, -1.0, 1.0],
+            [1.0, -1.0, 1.0],
+            [1.0, -1.0, 0.0],
+        ]);
+        assert!(below.normal.y > 0.99);
+        assert_eq!(
+            facing(&floor(), Side::Back, &below, Side::Front),
+            Facing::Facing
+        );
+        assert_eq!(
+            facing(&floor(), Side::Front, &below, Side::Front),
+            Facing::Away
+        );
     }
 
     #[test]

@@ -10,6 +10,7 @@
 //! emitter faces the receiver; [`super::clip::facing`] decides whether a pair exchanges light.
 
 use super::clip::{Plane, clip_to_front};
+use super::element::Side;
 use super::mesh::Patch;
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
@@ -89,8 +90,8 @@ pub fn point_to_polygon(point: DVec3, normal: DVec3, polygon: &[DVec3]) -> f64 {
 
 /// The point-to-point form factor (seed §3.2, "second simplification") from a differential
 /// area at `from` (unit normal `from_normal`) to a small patch of area `to_area` at `to`
-/// (unit normal `to_normal`): `|cosθ_to| · cosθ_from · A_to / (π d²)`, zero when `to` lies
-/// behind or in the plane of `from`, and clamped to at most 1.
+/// whose side with unit normal `to_normal` faces `from`: `cosθ_to · cosθ_from · A_to / (π
+/// d²)`, zero when either lies behind or in the plane of the other, and clamped to at most 1.
 pub fn point_to_point(
     from: DVec3,
     from_normal: DVec3,
@@ -107,7 +108,10 @@ pub fn point_to_point(
     if cos_from <= 0.0 {
         return 0.0;
     }
-    let cos_to = to_normal.dot(d).abs();
+    let cos_to = -to_normal.dot(d);
+    if cos_to <= 0.0 {
+        return 0.0;
+    }
     (cos_from * cos_to * to_area / (PI * d2 * d2)).min(1.0)
 }
 
@@ -152,10 +156,20 @@ fn jacobian(patch: &Patch, s: f64, t: f64) -> f64 {
     ds.cross(dt).length()
 }
 
-/// `F_ij` from `receiver` (i) to `emitter` (j) by `options.method`, without visibility. The
-/// reverse factor is [`reciprocal`]`(F_ij, A_i, A_j)`. The factor of a patch to itself (or to
-/// any patch in its plane) is 0.
-pub fn form_factor(receiver: &Patch, emitter: &Patch, options: &FormFactorOptions) -> f64 {
+/// `F_ij` from side `receiver_side` of `receiver` (i) to side `emitter_side` of `emitter` (j)
+/// by `options.method`, without visibility. The reverse factor is
+/// [`reciprocal`]`(F_ij, A_i, A_j)`. The factor of a patch to itself (or to any patch in its
+/// plane) is 0; parts of the emitter behind the receiver's side do not count, and neither do
+/// receiver points behind the emitter's side (they see its other side).
+pub fn form_factor(
+    receiver: &Patch,
+    receiver_side: Side,
+    emitter: &Patch,
+    emitter_side: Side,
+    options: &FormFactorOptions,
+) -> f64 {
+    let normal = receiver_side.normal(receiver);
+    let emitter_normal = emitter_side.normal(emitter);
     if std::ptr::eq(receiver, emitter) {
         return 0.0;
     }
@@ -170,15 +184,17 @@ pub fn form_factor(receiver: &Patch, emitter: &Patch, options: &FormFactorOption
     if use_point {
         return point_to_point(
             receiver.centroid,
-            receiver.normal,
+            normal,
             emitter.centroid,
-            emitter.normal,
+            emitter_normal,
             emitter.area,
         );
     }
+    let emitter_plane = Plane::new(emitter.centroid, emitter_normal);
     receiver_points(receiver, options.receiver_samples)
         .into_iter()
-        .map(|(p, w)| w * point_to_polygon(p, receiver.normal, emitter.corners()))
+        .filter(|&(p, _)| emitter_plane.distance(p) > 0.0)
+        .map(|(p, w)| w * point_to_polygon(p, normal, emitter.corners()))
         .sum::<f64>()
         .min(1.0)
 }
@@ -271,9 +287,27 @@ mod tests {
     #[test]
     fn patch_to_itself_is_zero_and_reciprocity_scales_by_area() {
         let a = rect([[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
-        assert_eq!(form_factor(&a, &a, &FormFactorOptions::default()), 0.0);
+        assert_eq!(
+            form_factor(
+                &a,
+                Side::Front,
+                &a,
+                Side::Front,
+                &FormFactorOptions::default()
+            ),
+            0.0
+        );
         let copy = a.clone();
-        assert_eq!(form_factor(&a, &copy, &FormFactorOptions::default()), 0.0);
+        assert_eq!(
+            form_factor(
+                &a,
+                Side::Front,
+                &copy,
+                Side::Front,
+                &FormFactorOptions::default()
+            ),
+            0.0
+        );
         assert!((reciprocal(0.2, 2.0, 4.0) - 0.1).abs() < 1e-15);
         assert_eq!(reciprocal(0.2, 2.0, 0.0), 0.0);
     }
@@ -311,13 +345,28 @@ mod tests {
         };
         let hybrid = opts(FormFactorMethod::Hybrid);
         assert_eq!(
-            form_factor(&r, &near, &hybrid),
-            form_factor(&r, &near, &opts(FormFactorMethod::Analytic))
+            form_factor(&r, Side::Front, &near, Side::Front, &hybrid),
+            form_factor(
+                &r,
+                Side::Front,
+                &near,
+                Side::Front,
+                &opts(FormFactorMethod::Analytic)
+            )
         );
         assert_eq!(
-            form_factor(&r, &far, &hybrid),
-            form_factor(&r, &far, &opts(FormFactorMethod::Point))
+            form_factor(&r, Side::Front, &far, Side::Front, &hybrid),
+            form_factor(
+                &r,
+                Side::Front,
+                &far,
+                Side::Front,
+                &opts(FormFactorMethod::Point)
+            )
         );
-        assert!((form_factor(&r, &far, &hybrid) - 1.0 / (25.0 * PI)).abs() < 1e-15);
+        assert!(
+            (form_factor(&r, Side::Front, &far, Side::Front, &hybrid) - 1.0 / (25.0 * PI)).abs()
+                < 1e-15
+        );
     }
 }

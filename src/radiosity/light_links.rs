@@ -1,67 +1,178 @@
 //! Emitter-only links (seed 000 §9.3.1): the irradiance that point, spot and directional
-//! lights send to a patch. These lights only send; nothing is sent back to them.
+//! lights and the sky send to one side of a patch. These lights only send; nothing is sent
+//! back to them.
 //!
-//! The irradiance (W·m⁻²) on the patch's front side is averaged over the area-weighted
-//! receiver points of [`super::form_factor::receiver_points`], each with a shadow ray.
+//! The irradiance (W·m⁻²) is the mean over the patch side:
+//! - point and spot lights: `I·Ω/A` times the visible, falloff-weighted share of the patch,
+//!   where `Ω` is the exact solid angle the patch subtends at the light (so a patch much
+//!   larger than its distance to the light gets its full power, however few receiver points
+//!   are used) and the share is estimated at the receiver points, each weighted by the solid
+//!   angle its area subtends (`cos θ / d²`);
+//! - directional light: `E·cos θ` times the share of receiver points that see it;
+//! - sky of uniform radiance `L`: `π·L` times the cosine-weighted share of directions that
+//!   reach the sky, from stratified directions at every receiver point.
 
+use super::element::Side;
 use super::form_factor::receiver_points;
 use super::mesh::Patch;
 use super::visibility::occluded_except;
-use crate::color::Rgb;
-use crate::geometry::{Ray, offset_origin};
+use crate::color::Rgb64;
+use crate::geometry::{Frame, Ray, offset_origin};
+use crate::sampling::hash64;
+use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::scene::LightKind;
 use crate::world::World;
-use glam::DVec3;
+use glam::{DVec3, Vec2};
+use std::f64::consts::PI;
 
-/// Irradiance in W·m⁻² that `light` sends to the front side of `patch`, averaged over
-/// `samples × samples` receiver points (the centroid for `samples ≤ 1`), with shadows from
-/// every surface of `world`. Point lights give `I·cosθ/d²`, spot lights the same times their
-/// falloff, directional lights `E·cosθ` when the way to infinity is free. `None` for a sky
-/// light, which is not a link to a single emitter.
+/// Sky directions per axis at each receiver point (`n × n` cosine-weighted strata).
+const SKY_DIRECTIONS_PER_AXIS: u32 = 4;
+
+/// Irradiance in W·m⁻² that `light` sends to side `side` of `patch`, averaged over the patch,
+/// with shadows from every surface of `world`; the visible share is estimated at
+/// `samples × samples` receiver points (the centroid for `samples ≤ 1`). The sky gives `π·L`
+/// times the share of the hemisphere that reaches it.
 pub fn light_irradiance(
     world: &World,
     light: &LightKind,
     patch: &Patch,
+    side: Side,
     samples: u32,
-) -> Option<Rgb> {
-    if matches!(light, LightKind::Sky { .. }) {
-        return None;
+) -> Rgb64 {
+    let normal = side.normal(patch);
+    let points = receiver_points(patch, samples);
+    match *light {
+        LightKind::Sky { radiance } => radiance.to_f64() * (PI * sky_share(world, &points, normal)),
+        LightKind::Directional { direction, .. } => {
+            let Some(inc) = light.incidence(patch.centroid.as_vec3()) else {
+                return Rgb64::BLACK;
+            };
+            let cos = normal.dot(-direction.as_dvec3().normalize_or_zero());
+            if cos <= 0.0 {
+                return Rgb64::BLACK;
+            }
+            let seen: f64 = points
+                .iter()
+                .filter(|(x, _)| sees_light(world, *x, normal, light))
+                .map(|(_, w)| w)
+                .sum();
+            inc.irradiance.to_f64() * (cos * seen)
+        }
+        LightKind::Point {
+            position,
+            intensity,
+        }
+        | LightKind::Spot {
+            position,
+            intensity,
+            ..
+        } => {
+            let at = position.as_dvec3();
+            if normal.dot(at - patch.centroid) <= 0.0 {
+                return Rgb64::BLACK;
+            }
+            let mut weighted = 0.0;
+            let mut total = 0.0;
+            for &(x, w) in &points {
+                let d = at - x;
+                let d2 = d.length_squared();
+                if d2 <= 0.0 {
+                    continue;
+                }
+                let solid_angle = w * normal.dot(d).max(0.0) / (d2 * d2.sqrt());
+                total += solid_angle;
+                let falloff = falloff(light, x);
+                if falloff > 0.0 && sees_light(world, x, normal, light) {
+                    weighted += solid_angle * falloff;
+                }
+            }
+            if total <= 0.0 {
+                return Rgb64::BLACK;
+            }
+            let omega = solid_angle(at, patch.corners());
+            intensity.to_f64() * (omega / patch.area * weighted / total)
+        }
     }
-    let mut total = Rgb::BLACK;
-    for (x, weight) in receiver_points(patch, samples) {
-        let e = point_irradiance(world, light, x, patch.normal);
-        total += e * weight as f32;
-    }
-    Some(total)
 }
 
-/// Irradiance at surface point `x` with unit front normal `n` from a point, spot or
-/// directional light (black for a sky light, behind the surface, or when blocked).
-fn point_irradiance(world: &World, light: &LightKind, x: DVec3, n: DVec3) -> Rgb {
-    let Some(inc) = light.incidence(x.as_vec3()) else {
-        return Rgb::BLACK;
-    };
-    let cos = n.as_vec3().dot(inc.wi);
-    if cos <= 0.0 {
-        return Rgb::BLACK;
+/// The share of the intensity that `light` sends toward `x`: the spot falloff, 1 for a point
+/// light.
+fn falloff(light: &LightKind, x: DVec3) -> f64 {
+    match *light {
+        LightKind::Spot {
+            position,
+            direction,
+            inner_degrees,
+            outer_degrees,
+            ..
+        } => {
+            let toward = (x - position.as_dvec3()).normalize_or_zero();
+            let cos = toward.dot(direction.as_dvec3().normalize_or_zero());
+            LightKind::spot_falloff(cos as f32, inner_degrees, outer_degrees) as f64
+        }
+        _ => 1.0,
     }
-    let origin = offset_origin(x.as_vec3(), n.as_vec3(), inc.wi);
+}
+
+/// True when the way from surface point `x` (unit normal `normal` of the receiving side)
+/// to the point, spot or directional `light` is free.
+fn sees_light(world: &World, x: DVec3, normal: DVec3, light: &LightKind) -> bool {
+    let Some(inc) = light.incidence(x.as_vec3()) else {
+        return false;
+    };
+    let origin = offset_origin(x.as_vec3(), normal.as_vec3(), inc.wi);
     let t_max = if inc.distance.is_finite() {
         (x.as_vec3() + inc.wi * inc.distance - origin).length()
     } else {
         f32::INFINITY
     };
-    if occluded_except(world, Ray::new(origin, inc.wi), t_max, &[]) {
-        Rgb::BLACK
-    } else {
-        inc.irradiance * cos
+    !occluded_except(world, Ray::new(origin, inc.wi), t_max, &[])
+}
+
+/// The cosine-weighted share of the hemisphere over `normal` that reaches the sky, averaged
+/// over the weighted receiver `points` (stratified directions, jittered by a hash of the
+/// point and stratum: deterministic).
+fn sky_share(world: &World, points: &[(DVec3, f64)], normal: DVec3) -> f64 {
+    let n = SKY_DIRECTIONS_PER_AXIS;
+    let frame = Frame::from_normal(normal.as_vec3());
+    let unit = |h: u64| (h >> 40) as f32 * (1.0 / 16_777_216.0);
+    let mut share = 0.0;
+    for (k, &(x, w)) in points.iter().enumerate() {
+        let open = (0..n * n)
+            .filter(|&s| {
+                let h = hash64((k as u64) << 32 | s as u64);
+                let jitter = Vec2::new(unit(h), unit(hash64(h)));
+                let dir = frame.to_world(cosine_hemisphere(stratified(s, n, jitter)));
+                let origin = offset_origin(x.as_vec3(), normal.as_vec3(), dir);
+                !world.occluded(&Ray::new(origin, dir), f32::INFINITY)
+            })
+            .count();
+        share += w * open as f64 / (n * n) as f64;
     }
+    share
+}
+
+/// The solid angle (sr) that the convex planar polygon `corners` subtends at `point`: the
+/// sum over a fan of triangles of Van Oosterom and Strackee's formula
+/// `tan(Ω/2) = |a·(b×c)| / (abc + (a·b)c + (a·c)b + (b·c)a)`.
+pub fn solid_angle(point: DVec3, corners: &[DVec3]) -> f64 {
+    let mut total = 0.0;
+    let a = corners[0] - point;
+    for k in 1..corners.len() - 1 {
+        let (b, c) = (corners[k] - point, corners[k + 1] - point);
+        let (la, lb, lc) = (a.length(), b.length(), c.length());
+        let numerator = a.dot(b.cross(c)).abs();
+        let denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+        total += 2.0 * numerator.atan2(denominator);
+    }
+    total
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::accel::AccelKind;
+    use crate::color::Rgb;
     use crate::radiosity::mesh::{MeshOptions, PatchMesh};
     use crate::scene::{Material, Scene, Shape};
     use glam::Vec3;
@@ -94,25 +205,73 @@ mod tests {
     }
 
     #[test]
-    fn point_light_gives_intensity_cos_over_distance_squared() {
+    fn point_light_far_away_gives_intensity_cos_over_distance_squared() {
         let (world, mesh) = floor_world(false);
         let floor = mesh.patch(0);
         assert!(floor.normal.y > 0.99);
-        // Light 2 above and 2 to the side of the centroid (0.5, 0, 0.5): cosθ = 1/√2, d² = 8.
+        // Far light: the irradiance barely varies over the unit patch, I·cosθ/d² at the
+        // centroid (0.5, 0, 0.5) with the light 200 above and 200 to the side.
         let light = LightKind::Point {
-            position: Vec3::new(2.5, 2.0, 0.5),
+            position: Vec3::new(200.5, 200.0, 0.5),
             intensity: Rgb::splat(8.0),
         };
-        let e = light_irradiance(&world, &light, floor, 1).unwrap();
-        assert!(
-            (e.r - 8.0 * std::f32::consts::FRAC_1_SQRT_2 / 8.0).abs() < 1e-5,
-            "{e:?}"
-        );
+        let e = light_irradiance(&world, &light, floor, Side::Front, 1);
+        let expected = 8.0 * std::f64::consts::FRAC_1_SQRT_2 / 80_000.0;
+        assert!((e.r / expected - 1.0).abs() < 1e-4, "{e:?} vs {expected}");
         let below = LightKind::Point {
             position: Vec3::new(0.5, -1.0, 0.5),
             intensity: Rgb::splat(8.0),
         };
-        assert_eq!(light_irradiance(&world, &below, floor, 2), Some(Rgb::BLACK));
+        assert_eq!(
+            light_irradiance(&world, &below, floor, Side::Front, 2),
+            Rgb64::BLACK
+        );
+        // The back of the floor sees the light below it: the full I·Ω/A, Ω the exact solid
+        // angle of the unit square.
+        let back = light_irradiance(&world, &below, floor, Side::Back, 2);
+        let omega = solid_angle(DVec3::new(0.5, -1.0, 0.5), floor.corners());
+        assert!((back.g - 8.0 * omega).abs() < 1e-12, "{back:?}");
+    }
+
+    #[test]
+    fn a_huge_floor_gets_the_whole_half_of_a_point_light() {
+        // A point light 1 above a 2000 × 2000 floor sends almost 2π·I into it, however
+        // coarse the receiver sampling.
+        let mut scene = Scene::empty("plain");
+        let m = scene.add_material(Material::default());
+        let s = 1000.0;
+        scene.add_object(
+            "floor",
+            Shape::Parallelogram {
+                origin: Vec3::new(-s, 0.0, s),
+                edge_u: Vec3::X * (2.0 * s),
+                edge_v: Vec3::NEG_Z * (2.0 * s),
+            },
+            m,
+        );
+        let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
+        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let light = LightKind::Point {
+            position: Vec3::new(0.0, 1.0, 0.0),
+            intensity: Rgb::splat(1.0),
+        };
+        let floor = mesh.patch(0);
+        let power = light_irradiance(&world, &light, floor, Side::Front, 2).r * floor.area;
+        let half = 2.0 * PI;
+        assert!(power < half && power > 0.999 * half, "{power} vs {half}");
+    }
+
+    #[test]
+    fn solid_angle_of_a_hemisphere_cap_and_a_cube_face() {
+        // A cube face seen from the cube's centre: 4π/6.
+        let face = [
+            DVec3::new(-1.0, -1.0, 1.0),
+            DVec3::new(1.0, -1.0, 1.0),
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(-1.0, 1.0, 1.0),
+        ];
+        let omega = solid_angle(DVec3::ZERO, &face);
+        assert!((omega - 4.0 * PI / 6.0).abs() < 1e-12, "{omega}");
     }
 
     #[test]
@@ -122,12 +281,12 @@ mod tests {
             irradiance: Rgb::splat(2.0),
         };
         let (open, mesh) = floor_world(false);
-        let e = light_irradiance(&open, &sun, mesh.patch(0), 2).unwrap();
-        assert!((e.g - 2.0 * std::f32::consts::FRAC_1_SQRT_2).abs() < 1e-5);
+        let e = light_irradiance(&open, &sun, mesh.patch(0), Side::Front, 2);
+        assert!((e.g - 2.0 * std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-6);
         let (roofed, mesh) = floor_world(true);
         assert_eq!(
-            light_irradiance(&roofed, &sun, mesh.patch(0), 2),
-            Some(Rgb::BLACK)
+            light_irradiance(&roofed, &sun, mesh.patch(0), Side::Front, 2),
+            Rgb64::BLACK
         );
     }
 
@@ -141,9 +300,25 @@ mod tests {
             inner_degrees: 10.0,
             outer_degrees: 20.0,
         };
-        let down = light_irradiance(&world, &spot(-Vec3::Y), mesh.patch(0), 1).unwrap();
-        assert!((down.b - 1.0).abs() < 1e-6);
-        let sideways = light_irradiance(&world, &spot(Vec3::X), mesh.patch(0), 1).unwrap();
-        assert_eq!(sideways, Rgb::BLACK);
+        // Straight down the falloff is 1 near the centre: I·Ω/A times the share inside the
+        // cone (only the centroid is sampled).
+        let down = light_irradiance(&world, &spot(-Vec3::Y), mesh.patch(0), Side::Front, 1);
+        let omega = solid_angle(DVec3::new(0.5, 1.0, 0.5), mesh.patch(0).corners());
+        assert!((down.b - omega).abs() < 1e-9, "{down:?} vs {omega}");
+        let sideways = light_irradiance(&world, &spot(Vec3::X), mesh.patch(0), Side::Front, 1);
+        assert_eq!(sideways, Rgb64::BLACK);
+    }
+
+    #[test]
+    fn an_open_sky_gives_pi_radiance_and_a_roof_takes_it() {
+        let sky = LightKind::Sky {
+            radiance: Rgb::splat(1.0),
+        };
+        let (open, mesh) = floor_world(false);
+        let e = light_irradiance(&open, &sky, mesh.patch(0), Side::Front, 2);
+        assert!((e.r - PI).abs() < 1e-12, "{e:?}");
+        let (roofed, mesh) = floor_world(true);
+        let shaded = light_irradiance(&roofed, &sky, mesh.patch(0), Side::Front, 2);
+        assert!(shaded.r < 0.5, "{shaded:?}");
     }
 }

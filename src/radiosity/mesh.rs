@@ -6,6 +6,7 @@
 //! All geometry is in world space, in `f64`, in scene units. A patch's front side is the side
 //! its corners wind counter-clockwise around (its `normal` points there).
 
+use super::contact::{Face, split_at_contacts};
 use crate::scene::{MaterialId, PolygonMesh, Scene, Shape};
 use glam::{DVec2, DVec3, Vec2, Vec3};
 use std::fmt;
@@ -241,14 +242,18 @@ pub struct MeshOptions {
     pub segments: u32,
     /// Initial uniform subdivision.
     pub size: MeshSize,
+    /// Split faces that other faces touch at the toucher's plane first
+    /// ([`super::contact`]), so no patch lies partly inside a touching solid.
+    pub contact_splits: bool,
 }
 
 impl Default for MeshOptions {
-    /// 16 segments, no initial subdivision.
+    /// 16 segments, no initial subdivision, contact splits.
     fn default() -> Self {
         MeshOptions {
             segments: 16,
             size: MeshSize::default(),
+            contact_splits: true,
         }
     }
 }
@@ -285,6 +290,7 @@ impl PatchMesh {
     /// root is subdivided as `options.size` asks. Degenerate faces (zero area) are dropped.
     pub fn from_scene(scene: &Scene, options: &MeshOptions) -> Result<PatchMesh, MeshError> {
         let mut mesh = PatchMesh::default();
+        let mut faces = Vec::new();
         for (index, object) in scene.objects.iter().enumerate() {
             if matches!(object.shape, Shape::Plane { .. }) {
                 mesh.skipped_objects.push(index as u32);
@@ -297,61 +303,38 @@ impl PatchMesh {
             let polygons = object.shape.to_mesh(options.segments).map_err(error)?;
             polygons.validate().map_err(error)?;
             let to_world = |p: Vec3| object.transform.point(p).as_dvec3();
-            mesh.add_polygon_mesh(
+            faces.extend(world_faces(
                 &polygons,
                 index as u32,
                 object.material,
                 to_world,
                 object.transform.flips_orientation(),
-            );
+            ));
         }
-        let roots = mesh.roots.clone();
-        for root in roots {
-            mesh.subdivide_uniformly(root, options.size);
+        if options.contact_splits {
+            faces = split_at_contacts(faces);
         }
-        Ok(mesh)
-    }
-
-    fn add_polygon_mesh(
-        &mut self,
-        polygons: &PolygonMesh,
-        object: u32,
-        material: MaterialId,
-        to_world: impl Fn(Vec3) -> DVec3,
-        flip: bool,
-    ) {
-        let world: Vec<DVec3> = polygons.positions.iter().map(|&p| to_world(p)).collect();
-        for (face, indices) in polygons.faces().enumerate() {
-            let face_material = polygons
-                .face_materials
-                .as_ref()
-                .map_or(material, |m| m[face]);
-            let mut order: Vec<usize> = indices.iter().map(|&i| i as usize).collect();
-            if flip {
-                order.reverse();
-            }
-            let corners: Vec<DVec3> = order.iter().map(|&i| world[i]).collect();
-            let uvs: Vec<DVec2> = order
-                .iter()
-                .enumerate()
-                .map(|(k, &i)| {
-                    polygons
-                        .uvs
-                        .as_ref()
-                        .map_or_else(|| default_uv(k, order.len()), |u| u[i])
-                        .as_dvec2()
-                })
-                .collect();
-            for (c, u) in planar_pieces(&corners, &uvs) {
+        for face in faces {
+            // A piece cut from a face is subdivided to the patch size the whole face would
+            // have had, not by as many levels again.
+            let size = match options.size {
+                MeshSize::Levels(n) if face.cut => MeshSize::MaxEdge(
+                    face.source_edge / f64::from(1u32 << n.min(MAX_UNIFORM_DEPTH)),
+                ),
+                size => size,
+            };
+            for (c, u) in planar_pieces(&face.corners, &face.uvs) {
                 if let Some(mut patch) = Patch::new(&c, &u) {
-                    patch.object = object;
-                    patch.face = face as u32;
-                    patch.material = face_material;
-                    let id = self.push(patch);
-                    self.roots.push(id);
+                    patch.object = face.object;
+                    patch.face = face.face;
+                    patch.material = face.material;
+                    let id = mesh.push(patch);
+                    mesh.roots.push(id);
+                    mesh.subdivide_uniformly(id, size);
                 }
             }
         }
+        Ok(mesh)
     }
 
     fn push(&mut self, patch: Patch) -> PatchId {
@@ -438,6 +421,51 @@ impl PatchMesh {
             .flat_map(|&r| self.leaves_under(r))
             .collect()
     }
+}
+
+/// The faces of `polygons` in world space (corners counter-clockwise around the front even
+/// when `flip` mirrors the object), with texture coordinates.
+fn world_faces(
+    polygons: &PolygonMesh,
+    object: u32,
+    material: MaterialId,
+    to_world: impl Fn(Vec3) -> DVec3,
+    flip: bool,
+) -> Vec<Face> {
+    let world: Vec<DVec3> = polygons.positions.iter().map(|&p| to_world(p)).collect();
+    polygons
+        .faces()
+        .enumerate()
+        .map(|(face, indices)| {
+            let mut order: Vec<usize> = indices.iter().map(|&i| i as usize).collect();
+            if flip {
+                order.reverse();
+            }
+            let corners: Vec<DVec3> = order.iter().map(|&i| world[i]).collect();
+            Face {
+                source_edge: Face::longest_edge(&corners),
+                cut: false,
+                corners,
+                uvs: order
+                    .iter()
+                    .enumerate()
+                    .map(|(k, &i)| {
+                        polygons
+                            .uvs
+                            .as_ref()
+                            .map_or_else(|| default_uv(k, order.len()), |u| u[i])
+                            .as_dvec2()
+                    })
+                    .collect(),
+                object,
+                face: face as u32,
+                material: polygons
+                    .face_materials
+                    .as_ref()
+                    .map_or(material, |m| m[face]),
+            }
+        })
+        .collect()
 }
 
 /// Default texture coordinates of corner `k` of an `n`-gon without any: the unit square for
@@ -595,6 +623,7 @@ mod tests {
         let options = MeshOptions {
             segments: 8,
             size: MeshSize::Levels(2),
+            ..MeshOptions::default()
         };
         let mesh = PatchMesh::from_scene(&scene, &options).unwrap();
         assert_eq!(mesh.roots.len(), 6);

@@ -5,6 +5,8 @@
 //! All radiosity geometry is `f64` (`glam::DVec3`) in world space and scene units.
 
 pub mod clip;
+pub mod contact;
+pub mod element;
 pub mod form_factor;
 pub mod light_links;
 pub mod mesh;
@@ -13,6 +15,7 @@ pub mod solve;
 pub mod visibility;
 
 pub use clip::{Facing, Plane, Polygon, SplitPolygon, facing, needs_split, split};
+pub use element::{Element, Side};
 pub use form_factor::{
     FormFactorMethod, FormFactorOptions, form_factor, point_to_point, point_to_polygon, reciprocal,
 };

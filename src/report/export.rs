@@ -3,7 +3,9 @@
 //! (`.ply`).
 //!
 //! Every polygon keeps its own vertices (triangles in glTF, the triangle or quad in PLY),
-//! carrying its per-corner radiosity:
+//! carrying its per-corner radiosity. Polygons are one-sided (a two-sided surface comes as
+//! two polygons back to back, each with the radiosity of its side; the glTF material is not
+//! `doubleSided`, so viewers show each from its front):
 //! - glTF: `COLOR_0` holds the tone-mapped colour (display-linear, in `[0, 1]`: what any
 //!   viewer shows; the material is unlit), `COLOR_1` the linear radiosity in W·m⁻² (a
 //!   standard attribute that viewers carry along but do not show), plus `POSITION` (scene
@@ -259,7 +261,7 @@ fn gltf_parts(mesh: &ExportMesh, uri: Option<&str>) -> (String, Vec<u8>) {
         "meshes": [{"name": "radiosity", "primitives": [{
             "attributes": {"POSITION": 0, "NORMAL": 1, "COLOR_0": 2, "COLOR_1": 3},
             "indices": 4, "material": 0, "mode": 4}]}],
-        "materials": [{"name": "radiosity", "doubleSided": true,
+        "materials": [{"name": "radiosity", "doubleSided": false,
             "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 1.0],
                 "metallicFactor": 0.0, "roughnessFactor": 1.0},
             "extensions": {"KHR_materials_unlit": {}}}],

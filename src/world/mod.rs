@@ -20,8 +20,11 @@ pub use scene_geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, Surface
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
 
 use crate::accel::{AccelKind, AccelStats, Accelerator, PrimHit};
+use crate::color::Rgb;
 use crate::geometry::Ray;
-use crate::scene::{Material, Scene};
+use crate::scene::{LightKind, Material, Scene};
+use glam::Vec3;
+use std::f32::consts::PI;
 use std::time::Instant;
 
 /// A scene with everything needed to answer ray queries.
@@ -73,6 +76,26 @@ impl World {
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.accel.any_hit(&self.geometry, ray, t_max)
+    }
+
+    /// The sphere through which directional and sky light enter the scene (centre, radius in
+    /// scene units): the bounding sphere of the bounded geometry, a little larger so that no
+    /// light starts on the geometry it is aimed at.
+    pub fn entry_sphere(&self) -> (Vec3, f32) {
+        let (center, radius) = self.geometry.bounding_sphere();
+        (center, radius * 1.001 + 1e-6)
+    }
+
+    /// The power (W per channel) a light that is not a surface sends into the scene, the one
+    /// definition every solver reports: point 4π·I, spot I times its solid angle
+    /// ([`LightKind::power`]), directional E·πR², sky of radiance L 4π²R²·L (the power
+    /// entering the entry sphere of radius R from outside).
+    pub fn light_power(&self, light: &LightKind) -> Rgb {
+        let (_, radius) = self.entry_sphere();
+        match *light {
+            LightKind::Sky { radiance } => radiance * (4.0 * PI * PI * radius * radius),
+            ref kind => kind.power(radius).unwrap_or(Rgb::BLACK),
+        }
     }
 
     /// The material of `hit`.

@@ -1,8 +1,8 @@
 //! Display of a radiosity solution (seed 000 §9.4, seed 001): camera rays hit the leaf
 //! patches (as triangles, under a BVH) and show the radiance `B/π` of a Lambertian surface,
 //! flat per leaf or smooth from the interpolated corner values ([`vertex_radiosity`]), with
-//! the patch edges optionally drawn as black lines one pixel wide. Both sides of a patch show
-//! its (front) radiosity. Surfaces that are not in the mesh (infinite planes) are not shown.
+//! the patch edges optionally drawn as black lines one pixel wide. Each side of a patch shows
+//! its own radiosity. Surfaces that are not in the mesh (infinite planes) are not shown.
 
 use super::interpolate::{CornerValues, vertex_radiosity};
 use super::solution::Solution;
@@ -13,6 +13,7 @@ use crate::color::Rgb64;
 use crate::geometry::{Aabb, Ray, Triangle};
 use crate::measure::Film;
 use crate::progress::{Cancel, ProgressListener};
+use crate::radiosity::element::Side;
 use crate::scene::Camera;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -62,8 +63,8 @@ impl LeafTriangles {
     fn new(system: &RadiositySystem) -> Self {
         let mut triangles = Vec::new();
         let mut owners = Vec::new();
-        for k in 0..system.len() {
-            let c = system.patch(k).corners();
+        for (k, &leaf) in system.leaves.iter().enumerate() {
+            let c = system.mesh.patch(leaf).corners();
             let splits: &[[u8; 3]] = if c.len() == 3 {
                 &[[0, 1, 2]]
             } else {
@@ -114,10 +115,15 @@ pub fn render_solution(
         .with_resolution(settings.width, settings.height)
         .rays()?;
     let flat = solution.display_radiosity(system);
-    let corners = match settings.shading {
-        Shading::Smooth => vertex_radiosity(&system.mesh, &system.leaves, &flat),
+    let corners = Side::BOTH.map(|side| match settings.shading {
+        Shading::Smooth => {
+            let values: Vec<Rgb64> = (0..system.leaves.len())
+                .map(|k| flat[RadiositySystem::element(k, side)])
+                .collect();
+            vertex_radiosity(&system.mesh, &system.leaves, &values)
+        }
         Shading::Flat => Vec::new(),
-    };
+    });
     let triangles = LeafTriangles::new(system);
     let accel = AccelKind::Bvh.build(&triangles);
     let view = Viewer {
@@ -165,8 +171,10 @@ struct Viewer<'a> {
     system: &'a RadiositySystem<'a>,
     triangles: &'a LeafTriangles,
     accel: &'a dyn Accelerator<LeafTriangles>,
+    /// Display radiosity per element.
     flat: &'a [Rgb64],
-    corners: &'a [CornerValues],
+    /// Smooth corner values per side, per leaf.
+    corners: &'a [Vec<CornerValues>; 2],
     settings: &'a DisplaySettings,
     /// Angle one pixel subtends (radians, small-angle).
     pixel_angle: f64,
@@ -179,20 +187,22 @@ impl Viewer<'_> {
         };
         let (leaf, corner_ids) = self.triangles.owners[hit.prim as usize];
         let leaf = leaf as usize;
+        let patch = self.system.mesh.patch(self.system.leaves[leaf]);
+        let side = Side::hit_by(patch, ray.dir.as_dvec3());
         let [b1, b2] = hit.local.map(f64::from);
         if self.settings.wireframe {
             let p = self.triangles.triangles[hit.prim as usize]
                 .point(hit.local[0], hit.local[1])
                 .as_dvec3();
             let width = LINE_HALF_WIDTH_PIXELS * self.pixel_angle * hit.t as f64;
-            if edge_distance(self.system.patch(leaf).corners(), p) < width {
+            if edge_distance(patch.corners(), p) < width {
                 return Rgb::BLACK;
             }
         }
         let b: Rgb64 = match self.settings.shading {
-            Shading::Flat => self.flat[leaf],
+            Shading::Flat => self.flat[RadiositySystem::element(leaf, side)],
             Shading::Smooth => {
-                let c = &self.corners[leaf];
+                let c = &self.corners[side.index()][leaf];
                 let w = [1.0 - b1 - b2, b1, b2];
                 Rgb64::from(std::array::from_fn(|ch| {
                     (0..3).map(|v| w[v] * c[corner_ids[v] as usize][ch]).sum()

@@ -138,7 +138,7 @@ fn update(
     source[i] + system.reflectance[i] * gather(&rows[i], b)
 }
 
-/// One Jacobi sweep (rows in parallel); returns the change per leaf.
+/// One Jacobi sweep (rows in parallel); returns the change per element.
 fn jacobi_sweep(
     system: &RadiositySystem,
     rows: &[Couplings],
@@ -154,7 +154,7 @@ fn jacobi_sweep(
     change
 }
 
-/// One Gauss-Seidel sweep in leaf order, in place; returns the change per leaf.
+/// One Gauss-Seidel sweep in element order, in place; returns the change per element.
 fn gauss_seidel_sweep(
     system: &RadiositySystem,
     rows: &[Couplings],

@@ -1,4 +1,5 @@
-//! A radiosity solution: radiosity and irradiance per leaf patch, the convergence history
+//! A radiosity solution: radiosity and irradiance per element (side of a leaf patch), the
+//! convergence history
 //! and the time spent per phase; and what it hands on — the power per reported surface, the
 //! run's statistics and the lit mesh.
 //!
@@ -14,6 +15,7 @@ use super::matrix::Iteration;
 use super::system::RadiositySystem;
 use crate::color::Rgb64;
 use crate::measure::{LitMesh, Stats, SurfacePower, SurfaceTable};
+use crate::radiosity::element::Side;
 use glam::Vec3;
 
 /// Which solver produced a solution.
@@ -62,14 +64,14 @@ impl std::fmt::Display for SolverKind {
     }
 }
 
-/// The result of a radiosity solver, per leaf of its [`RadiositySystem`].
+/// The result of a radiosity solver, per element of its [`RadiositySystem`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
     /// The solver that produced it.
     pub solver: SolverKind,
-    /// Radiosity `B` per leaf, W·m⁻² (front side).
+    /// Radiosity `B` per element (one side of a leaf), W·m⁻².
     pub radiosity: Vec<Rgb64>,
-    /// Irradiance `H` gathered per leaf (light links included), W·m⁻².
+    /// Irradiance `H` gathered per element (light links included), W·m⁻².
     pub irradiance: Vec<Rgb64>,
     /// Ambient radiosity estimate of the light not yet distributed (progressive refinement,
     /// seed 004), W·m⁻²; zero for the matrix solvers. Display adds `ρ_i × ambient`.
@@ -91,7 +93,7 @@ impl Solution {
         self.convergence.len()
     }
 
-    /// The radiosity to display per leaf: `B_i + ρ_i × ambient`, W·m⁻².
+    /// The radiosity to display per element: `B_i + ρ_i × ambient`, W·m⁻².
     pub fn display_radiosity(&self, system: &RadiositySystem) -> Vec<Rgb64> {
         self.radiosity
             .iter()
@@ -104,7 +106,6 @@ impl Solution {
     pub fn surface_power(&self, system: &RadiositySystem) -> SurfacePower {
         let world = system.world();
         let mut power = SurfacePower::new(SurfaceTable::new(&world.scene, &world.geometry));
-        let mut light_power = Rgb64::BLACK;
         for k in 0..system.len() {
             let patch = system.patch(k);
             let entry = power.table().entry(patch.object, patch.face);
@@ -119,16 +120,23 @@ impl Solution {
             balance.absorbed += (Rgb64::WHITE - r) * a * h;
             balance.emitted += e * a;
             balance.reflected += r * a * h;
-            light_power += system.light_irradiance[k] * a;
         }
+        let light_power = world
+            .scene
+            .lights
+            .iter()
+            .map(|l| world.light_power(&l.kind).to_f64())
+            .sum();
         power.add_light_emission(light_power);
         let totals = power.totals();
         power.add_escaped(totals.emitted_power - totals.absorbed_power);
         power
     }
 
-    /// The statistics of the solve: time per phase, rays, patches, form factors, iterations
-    /// and the convergence history.
+    /// The statistics of the solve: time per phase, rays, leaf patches and elements (their
+    /// sides), form factors, iterations
+    /// and the convergence history (at most [`CONVERGENCE_ROWS`] rows of `[iteration,
+    /// value]`, spread evenly in the logarithm of the iteration number).
     pub fn stats(&self, system: &RadiositySystem) -> Stats {
         let s = &self.seconds;
         let mut stats = Stats {
@@ -136,35 +144,47 @@ impl Solution {
             rays: system.visibility_ray_count(),
             ..Stats::default()
         };
-        stats.insert("patches", system.len());
+        stats.insert("patches", system.leaves.len());
+        stats.insert("elements", system.len());
         stats.insert("patch_nodes", system.mesh.len());
         stats.insert("form_factors", system.form_factor_count());
         stats.insert("visibility_rays", system.visibility_ray_count());
         stats.insert("iterations", self.iterations());
         stats.insert("converged", self.converged);
         stats.insert("interrupted", self.interrupted);
-        stats.insert("convergence", self.convergence.clone());
+        stats.insert(
+            "convergence",
+            serde_json::json!(convergence_rows(&self.convergence)),
+        );
         stats.insert("source_power", source_power(system));
-        stats.insert("unlinked_sky_lights", system.unlinked_sky_lights);
         stats.insert("seconds_setup", s.setup);
         stats.insert("seconds_form_factors", s.form_factors);
         stats.insert("seconds_iterations", s.iterations);
         stats
     }
 
-    /// The solution as a lit mesh: every leaf a polygon with the smooth corner values of
-    /// [`vertex_radiosity`] (display radiosity, ambient term included).
+    /// The solution as a lit mesh: both sides of every leaf as polygons (the back with its
+    /// corners reversed and its normal turned), with the smooth corner values of
+    /// [`vertex_radiosity`] (display radiosity, ambient term included) of that side.
     pub fn lit_mesh(&self, system: &RadiositySystem) -> LitMesh {
-        let corners = vertex_radiosity(
-            &system.mesh,
-            &system.leaves,
-            &self.display_radiosity(system),
-        );
+        let display = self.display_radiosity(system);
         let mut lit = LitMesh::default();
-        for (k, values) in corners.iter().enumerate() {
-            let patch = system.patch(k);
-            let points: Vec<Vec3> = patch.corners().iter().map(|c| c.as_vec3()).collect();
-            lit.push_polygon(&points, patch.normal.as_vec3(), &values[..points.len()]);
+        for side in Side::BOTH {
+            let values: Vec<Rgb64> = (0..system.leaves.len())
+                .map(|k| display[RadiositySystem::element(k, side)])
+                .collect();
+            let corners = vertex_radiosity(&system.mesh, &system.leaves, &values);
+            for (k, values) in corners.iter().enumerate() {
+                let patch = system.mesh.patch(system.leaves[k]);
+                let n = patch.corners().len();
+                let mut points: Vec<Vec3> = patch.corners().iter().map(|c| c.as_vec3()).collect();
+                let mut values = values[..n].to_vec();
+                if side == Side::Back {
+                    points.reverse();
+                    values.reverse();
+                }
+                lit.push_polygon(&points, side.normal(patch).as_vec3(), &values);
+            }
         }
         lit
     }
@@ -185,6 +205,26 @@ impl Solution {
             },
         }
     }
+}
+
+/// Largest number of rows of the convergence history in the statistics.
+pub const CONVERGENCE_ROWS: usize = 64;
+
+/// At most [`CONVERGENCE_ROWS`] rows `[iteration, value]` of `history` (iterations counted
+/// from 1), spread evenly in the logarithm of the iteration number; the last iteration is
+/// always kept.
+fn convergence_rows(history: &[f64]) -> Vec<(usize, f64)> {
+    let n = history.len();
+    let mut rows: Vec<usize> = if n <= CONVERGENCE_ROWS {
+        (1..=n).collect()
+    } else {
+        let step = (n as f64).ln() / (CONVERGENCE_ROWS - 1) as f64;
+        (0..CONVERGENCE_ROWS)
+            .map(|k| ((k as f64 * step).exp().round() as usize).clamp(1, n))
+            .collect()
+    };
+    rows.dedup();
+    rows.into_iter().map(|i| (i, history[i - 1])).collect()
 }
 
 /// `Σ_i A_i Y(|d_i|) / Σ_i A_i Y(S_i)`: a per-leaf radiosity change or unshot radiosity `d`

@@ -1,27 +1,31 @@
-//! The linear radiosity system of a meshed scene, per RGB channel in `f64`:
+//! The linear radiosity system of a meshed scene, per RGB channel in `f64`, with one unknown
+//! per side of every leaf patch (an [`Element`]):
 //! `B_i = E_i + ρ_i (H_light,i + Σ_j F_ij V_ij B_j)`.
 //!
-//! - `B_i`: radiosity of leaf patch `i`, W·m⁻² (front side).
-//! - `E_i = π·L`: emitted radiosity, the emission texture averaged over the patch; only the
-//!   front side emits (a `two_sided` emitter's back side is not part of the system).
+//! - `B_i`: radiosity leaving element `i` (one side of a leaf), W·m⁻².
+//! - `E_i = π·L`: emitted radiosity, the emission texture averaged over the patch; the front
+//!   side emits, the back only for a `two_sided` material.
 //! - `ρ_i`: diffuse reflectance (the material's diffuse part times its texture averaged over
-//!   the patch); specular, mirror and transmission parts are ignored.
-//! - `H_light,i`: irradiance from point, spot and directional lights through emitter-only
-//!   links (seed §9.3.1): these lights send and never receive. Sky lights are not linked.
-//! - `F_ij`: the form factor from receiver `i` to emitter `j` ([`form_factor`]) and `V_ij`
-//!   the visible fraction ([`Visibility::between`]); pairs that do not face each other
-//!   ([`facing`] = `Away`) and `i = j` couple with 0.
+//!   the patch); 0 on the back of a `one_sided` material, which absorbs what reaches it.
+//!   Specular, mirror and transmission parts are ignored.
+//! - `H_light,i`: irradiance from point, spot and directional lights and the sky through
+//!   emitter-only links (seed §9.3.1, [`light_irradiance`]): these lights send and never
+//!   receive.
+//! - `F_ij`: the form factor from receiver side `i` to emitter `j` ([`form_factor`]) and
+//!   `V_ij` the visible fraction ([`Visibility::between`]); sides that do not face each other
+//!   ([`facing`] = `Away`) and two sides of one patch couple with 0.
 //!
-//! Limitation: every patch exchanges light through its front side only (the side its normal
-//! points to); a surface lit from behind stays dark on its front in the solution.
+//! Elements are ordered leaf by leaf, front then back: element `2k + s` is side `s` of leaf
+//! `k`.
 
 use super::SolveError;
-use crate::color::{Rgb, Rgb64};
+use crate::color::Rgb64;
+use crate::radiosity::element::{Element, Side};
 use crate::radiosity::{
     Facing, FormFactorOptions, MeshOptions, Patch, PatchId, PatchMesh, Visibility,
     VisibilityOptions, facing, form_factor, light_irradiance,
 };
-use crate::scene::{LightKind, Texture};
+use crate::scene::{Material, Texture};
 use crate::world::World;
 use glam::Vec2;
 use rayon::prelude::*;
@@ -41,7 +45,8 @@ pub struct SystemOptions {
     pub form_factor: FormFactorOptions,
     /// Visibility rays and shaft culling.
     pub visibility: VisibilityOptions,
-    /// Receiver points per axis for the point/spot/directional light links.
+    /// Receiver points per axis for the links from point, spot and directional lights and
+    /// the sky.
     pub link_samples: u32,
 }
 
@@ -74,26 +79,28 @@ impl Couplings {
     }
 }
 
-/// The radiosity system of one scene: its leaf patches with their areas, emission,
-/// reflectance and light-link irradiance, and the couplings computed on demand.
+/// The radiosity system of one scene: the two sides of its leaf patches with their areas,
+/// emission, reflectance and light-link irradiance, and the couplings computed on demand.
 pub struct RadiositySystem<'w> {
     world: &'w World,
     /// The patch mesh (all quadtree nodes).
     pub mesh: PatchMesh,
-    /// The leaf patches the system is solved on; leaf index `k` is patch `leaves[k]`.
+    /// The leaf patches; leaf index `k` is patch `leaves[k]`.
     pub leaves: Vec<PatchId>,
-    /// Leaf areas, scene units².
+    /// The unknowns: element `2k + s` is side `s` of leaf `k`.
+    pub elements: Vec<Element>,
+    /// Element areas (their leaf's area), scene units².
     pub area: Vec<f64>,
-    /// Emitted radiosity `E = π·L` per leaf, W·m⁻².
+    /// Emitted radiosity `E = π·L` per element, W·m⁻².
     pub emission: Vec<Rgb64>,
-    /// Diffuse reflectance per leaf, in `[0, 1]`.
+    /// Diffuse reflectance per element, in `[0, 1]`.
     pub reflectance: Vec<Rgb64>,
-    /// Irradiance from point, spot and directional lights per leaf, W·m⁻².
+    /// Irradiance from point, spot and directional lights and the sky per element, W·m⁻².
     pub light_irradiance: Vec<Rgb64>,
-    /// Sky lights present in the scene but not linked into the mesh.
-    pub unlinked_sky_lights: usize,
     /// Wall-clock seconds spent meshing and linking lights.
     pub setup_seconds: f64,
+    /// Per element: the largest distance from its patch's centroid to a corner.
+    radius: Vec<f64>,
     visibility: Visibility<'w>,
     options: SystemOptions,
     form_factors: AtomicU64,
@@ -101,8 +108,8 @@ pub struct RadiositySystem<'w> {
 }
 
 impl<'w> RadiositySystem<'w> {
-    /// Meshes `world`'s scene, averages emission and reflectance over each leaf and gathers
-    /// the light-link irradiance (in parallel over leaves).
+    /// Meshes `world`'s scene, averages emission and reflectance over each side of each leaf
+    /// and gathers the light-link irradiance (in parallel over elements).
     pub fn new(world: &'w World, options: SystemOptions) -> Result<Self, SolveError> {
         let start = Instant::now();
         let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
@@ -111,49 +118,64 @@ impl<'w> RadiositySystem<'w> {
             return Err(SolveError::NoPatches);
         }
         let scene = &world.scene;
-        let patches: Vec<&Patch> = leaves.iter().map(|&id| mesh.patch(id)).collect();
-        let area = patches.iter().map(|p| p.area).collect();
-        let texture = |id: Option<u32>| id.and_then(|t| scene.textures.get(t as usize));
-        let emission = patches
+        let elements: Vec<Element> = leaves
             .iter()
-            .map(|p| {
-                let m = &scene.materials[p.material as usize];
-                PI * m.emission.to_f64() * texture_mean(texture(m.emission_texture), p)
+            .flat_map(|&patch| Side::BOTH.map(|side| Element { patch, side }))
+            .collect();
+        let texture = |id: Option<u32>| id.and_then(|t| scene.textures.get(t as usize));
+        let material = |e: &Element| &scene.materials[mesh.patch(e.patch).material as usize];
+        let area = elements.iter().map(|e| mesh.patch(e.patch).area).collect();
+        let radius = elements
+            .iter()
+            .map(|e| {
+                let p = mesh.patch(e.patch);
+                p.corners()
+                    .iter()
+                    .map(|c| c.distance(p.centroid))
+                    .fold(0.0, f64::max)
             })
             .collect();
-        let reflectance = patches
+        let emission = elements
             .iter()
-            .map(|p| {
-                let m = &scene.materials[p.material as usize];
-                let tex = texture_mean(texture(m.diffuse_texture), p);
+            .map(|e| {
+                let m = material(e);
+                if !emits(m, e.side) {
+                    return Rgb64::BLACK;
+                }
+                let tex = texture_mean(texture(m.emission_texture), mesh.patch(e.patch));
+                PI * m.emission.to_f64() * tex
+            })
+            .collect();
+        let reflectance = elements
+            .iter()
+            .map(|e| {
+                let m = material(e);
+                if m.one_sided && e.side == Side::Back {
+                    return Rgb64::BLACK;
+                }
+                let tex = texture_mean(texture(m.diffuse_texture), mesh.patch(e.patch));
                 (m.diffuse.to_f64() * tex).map(|v| v.clamp(0.0, 1.0))
             })
             .collect();
-        let linked: Vec<&LightKind> = scene
-            .lights
-            .iter()
-            .map(|l| &l.kind)
-            .filter(|k| !matches!(k, LightKind::Sky { .. }))
-            .collect();
-        let unlinked_sky_lights = scene.lights.len() - linked.len();
-        let light_irradiance = patches
+        let light_irradiance = elements
             .par_iter()
-            .map(|p| {
-                linked.iter().fold(Rgb64::BLACK, |sum, kind| {
-                    sum + light_irradiance(world, kind, p, options.link_samples)
-                        .map_or(Rgb64::BLACK, Rgb::to_f64)
+            .map(|e| {
+                scene.lights.iter().fold(Rgb64::BLACK, |sum, light| {
+                    let patch = mesh.patch(e.patch);
+                    sum + light_irradiance(world, &light.kind, patch, e.side, options.link_samples)
                 })
             })
             .collect();
         Ok(RadiositySystem {
             world,
             leaves,
+            elements,
             area,
             emission,
             reflectance,
             light_irradiance,
-            unlinked_sky_lights,
             setup_seconds: start.elapsed().as_secs_f64(),
+            radius,
             visibility: Visibility::new(world, options.visibility),
             mesh,
             options,
@@ -172,19 +194,24 @@ impl<'w> RadiositySystem<'w> {
         &self.options
     }
 
-    /// Number of leaf patches (unknowns per channel).
+    /// Number of elements (unknowns per channel): two per leaf.
     pub fn len(&self) -> usize {
-        self.leaves.len()
+        self.elements.len()
     }
 
-    /// True when there are no leaves (never for a built system).
+    /// True when there are no elements (never for a built system).
     pub fn is_empty(&self) -> bool {
-        self.leaves.is_empty()
+        self.elements.is_empty()
     }
 
-    /// The patch of leaf `k`.
+    /// The patch of element `k`.
     pub fn patch(&self, k: usize) -> &Patch {
-        self.mesh.patch(self.leaves[k])
+        self.mesh.patch(self.elements[k].patch)
+    }
+
+    /// The element of side `side` of leaf index `leaf` (an index into [`Self::leaves`]).
+    pub fn element(leaf: usize, side: Side) -> usize {
+        2 * leaf + side.index()
     }
 
     /// The source term `S_i = E_i + ρ_i H_light,i` of leaf `k`, W·m⁻².
@@ -192,34 +219,47 @@ impl<'w> RadiositySystem<'w> {
         self.emission[k] + self.reflectance[k] * self.light_irradiance[k]
     }
 
-    /// Total area of all leaves, scene units².
+    /// Total area of all elements (both sides of every leaf), scene units².
     pub fn total_area(&self) -> f64 {
         self.area.iter().sum()
     }
 
-    /// `F_ij V_ij` between receiver leaf `i` and emitter leaf `j` (0 for `i = j` and for
-    /// pairs that do not face each other).
+    /// `F_ij V_ij` between receiver element `i` and emitter element `j` (0 for two sides of
+    /// one patch and for sides that do not face each other).
     pub fn coupling(&self, i: usize, j: usize) -> f64 {
-        if i == j {
+        let (ri, ej) = (self.elements[i], self.elements[j]);
+        if ri.patch == ej.patch {
             return 0.0;
         }
         let (receiver, emitter) = (self.patch(i), self.patch(j));
-        if facing(receiver, emitter) == Facing::Away {
+        // Quick rejection: one patch lies wholly behind the other's side (a bounding sphere
+        // behind a plane); the full facing test decides the rest.
+        let between = emitter.centroid - receiver.centroid;
+        if between.dot(ri.side.normal(receiver)) < -self.radius[j]
+            || between.dot(ej.side.normal(emitter)) > self.radius[i]
+        {
+            return 0.0;
+        }
+        if facing(receiver, ri.side, emitter, ej.side) == Facing::Away {
             return 0.0;
         }
         self.form_factors.fetch_add(1, Ordering::Relaxed);
-        let f = form_factor(receiver, emitter, &self.options.form_factor);
+        let f = form_factor(
+            receiver,
+            ri.side,
+            emitter,
+            ej.side,
+            &self.options.form_factor,
+        );
         if f <= 0.0 {
             return 0.0;
         }
         let m = self.visibility.rays_per_axis(receiver, emitter) as u64;
         self.visibility_rays.fetch_add(m * m, Ordering::Relaxed);
-        f * self
-            .visibility
-            .between(&self.mesh, self.leaves[i], self.leaves[j])
+        f * self.visibility.between(&self.mesh, ri.patch, ej.patch)
     }
 
-    /// Row `i` of the coupling matrix: what receiver `i` gathers from every leaf.
+    /// Row `i` of the coupling matrix: what receiver `i` gathers from every element.
     pub fn row(&self, i: usize) -> Couplings {
         collect((0..self.len()).map(|j| (j, self.coupling(i, j))))
     }
@@ -256,6 +296,11 @@ fn collect(entries: impl Iterator<Item = (usize, f64)>) -> Couplings {
         }
     }
     out
+}
+
+/// True when material `m` emits from side `side` (the front, and the back when two-sided).
+fn emits(m: &Material, side: Side) -> bool {
+    !m.emission.is_black() && (side == Side::Front || m.two_sided)
 }
 
 /// Mean colour of `texture` over `patch` (its UV polygon sampled on a `4 × 4` grid of the
