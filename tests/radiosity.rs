@@ -8,6 +8,7 @@ use strahl::image::{ToneMap, ToneMapping};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::light_links::solid_angle;
+use strahl::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, solve_hierarchical};
 use strahl::radiosity::solve::{
     DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
     Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
@@ -72,16 +73,16 @@ fn progressive(system: &RadiositySystem, overshoot: bool, tolerance: f64) -> Sol
     solve_progressive(system, &settings, &NoProgress, &Cancel::new()).unwrap()
 }
 
-/// Inside the furnace (the faces' front sides) every element has `B = E/(1 − ρ)`; outside
-/// (their back sides, which see nothing and do not emit) `B = 0`.
-fn assert_furnace(system: &RadiositySystem, solution: &Solution) {
+/// Inside the furnace (the faces' front sides) every element has `B = E/(1 − ρ)` to within
+/// `tolerance`; outside (their back sides, which see nothing and do not emit) `B = 0`.
+fn assert_furnace(system: &RadiositySystem, solution: &Solution, tolerance: f64) {
     let expected = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
     assert!(solution.converged, "{}", solution.solver);
     for (element, b) in system.elements.iter().zip(&solution.radiosity) {
         for c in b.to_array() {
             match element.side {
                 Side::Front => assert!(
-                    ((c - expected) / expected).abs() < 1e-4,
+                    ((c - expected) / expected).abs() < tolerance,
                     "{}: {c} vs {expected}",
                     solution.solver
                 ),
@@ -96,10 +97,14 @@ fn furnace_gives_e_over_one_minus_rho_for_every_solver() {
     let world = furnace();
     let system = RadiositySystem::new(&world, options(2)).unwrap();
     assert_eq!((system.leaves.len(), system.len()), (96, 192));
-    assert_furnace(&system, &matrix(&system, Iteration::Jacobi, 1e-7));
-    assert_furnace(&system, &matrix(&system, Iteration::GaussSeidel, 1e-7));
-    assert_furnace(&system, &progressive(&system, false, 1e-7));
-    assert_furnace(&system, &progressive(&system, true, 1e-7));
+    assert_furnace(&system, &matrix(&system, Iteration::Jacobi, 1e-7), 1e-4);
+    assert_furnace(
+        &system,
+        &matrix(&system, Iteration::GaussSeidel, 1e-7),
+        1e-4,
+    );
+    assert_furnace(&system, &progressive(&system, false, 1e-7), 1e-4);
+    assert_furnace(&system, &progressive(&system, true, 1e-7), 1e-4);
 }
 
 #[test]
@@ -408,4 +413,173 @@ fn command_line_solves_reports_exports_and_renders() {
     ]);
     assert!(image.exists());
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+fn hierarchical<'w>(
+    world: &'w World,
+    settings: &HierarchicalSettings,
+) -> (RadiositySystem<'w>, Solution) {
+    let options = options(0);
+    solve_hierarchical(world, options, settings, &NoProgress, &Cancel::new()).unwrap()
+}
+
+#[test]
+fn hierarchical_furnace_gives_e_over_one_minus_rho() {
+    let world = furnace();
+    for oracle in [Oracle::Lischinski, Oracle::Bfa] {
+        let settings = HierarchicalSettings {
+            oracle,
+            tolerance: 1e-9,
+            ..HierarchicalSettings::default()
+        };
+        let (system, solution) = hierarchical(&world, &settings);
+        match oracle {
+            // Exact up to the form factors' variation the oracle lets links keep.
+            Oracle::Lischinski => assert_furnace(&system, &solution, 0.01),
+            // BFA does not bound that variation: element by element it is far off (links kept
+            // at coarse receivers mix levels), but no light is created or lost.
+            Oracle::Bfa => {
+                let report = Report::new(
+                    "furnace",
+                    solution.solver.name(),
+                    &solution.surface_power(&system),
+                    solution.stats(&system),
+                );
+                let t = &report.totals;
+                let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
+                assert!((a / e - 1.0).abs() < 0.01, "absorbed {a} of {e}");
+            }
+        }
+    }
+}
+
+#[test]
+fn hierarchical_mesh_does_not_change_when_the_scene_or_the_light_is_scaled() {
+    let base = builtin::load("cornell").unwrap().unwrap();
+    let mut scaled = base.clone();
+    let by = strahl::geometry::Transform::scale(Vec3::splat(1024.0)).unwrap();
+    for object in &mut scaled.objects {
+        object.transform = object.transform.then(&by);
+    }
+    let mut brighter = base.clone();
+    for m in &mut brighter.materials {
+        m.emission *= 100.0;
+    }
+    let counts = |scene: Scene| {
+        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let settings = HierarchicalSettings {
+            error: 3e-4,
+            ..HierarchicalSettings::default()
+        };
+        let (system, solution) = hierarchical(&world, &settings);
+        (system.leaves.len(), solution.links)
+    };
+    let reference = counts(base);
+    assert!(reference.0 > 100 && reference.1 > 1000, "{reference:?}");
+    assert_eq!(counts(brighter), reference, "light × 100");
+    // Scaled by a power of two every computation scales exactly, so every decision is the
+    // same (scaled by 1000, rounding differs and flips a few borderline decisions: ±6 %).
+    assert_eq!(counts(scaled), reference, "scene × 1024");
+}
+
+#[test]
+fn hierarchical_results_do_not_depend_on_the_thread_count() {
+    let world = cornell();
+    let settings = HierarchicalSettings {
+        error: 3e-4,
+        ..HierarchicalSettings::default()
+    };
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| hierarchical(&world, &settings).1.radiosity)
+    };
+    assert_eq!(run(1), run(3));
+}
+
+/// The unit cube with one emitting face (a small lamp in its middle when `lamp`), inwards.
+fn closed_box(lamp: bool) -> World {
+    let mut scene = Scene::empty("box");
+    let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(RHO)));
+    let glow = scene.add_material(Material::emitter("glow", Rgb::splat(RHO), Rgb::splat(L)));
+    let faces = [
+        (Vec3::ZERO, Vec3::Z, Vec3::X),
+        (Vec3::Y, Vec3::X, Vec3::Z),
+        (Vec3::ZERO, Vec3::Y, Vec3::Z),
+        (Vec3::X, Vec3::Z, Vec3::Y),
+        (Vec3::ZERO, Vec3::X, Vec3::Y),
+        (Vec3::Z, Vec3::Y, Vec3::X),
+    ];
+    for (k, (origin, edge_u, edge_v)) in faces.into_iter().enumerate() {
+        let shape = Shape::Parallelogram {
+            origin,
+            edge_u,
+            edge_v,
+        };
+        let m = if k == 1 && !lamp { glow } else { grey };
+        scene.add_object(&format!("face{k}"), shape, m);
+    }
+    if lamp {
+        scene.add_object(
+            "lamp",
+            Shape::Parallelogram {
+                origin: Vec3::new(0.4, 0.999, 0.4),
+                edge_u: Vec3::X * 0.2,
+                edge_v: Vec3::Z * 0.2,
+            },
+            glow,
+        );
+    }
+    World::new(scene, AccelKind::Bvh).unwrap()
+}
+
+#[test]
+fn hierarchical_closed_box_absorbs_what_it_emits() {
+    // Energy is conserved within the oracle's error: a closed box absorbs all it emits, lit
+    // by one whole face or by a small lamp just under the ceiling (whose back sees the
+    // ceiling at a millimetre: the case a form-factor-only error bound misses).
+    for lamp in [false, true] {
+        let world = closed_box(lamp);
+        let (system, solution) = hierarchical(&world, &HierarchicalSettings::default());
+        let report = Report::new(
+            "box",
+            solution.solver.name(),
+            &solution.surface_power(&system),
+            solution.stats(&system),
+        );
+        let t = &report.totals;
+        let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
+        // Measured: 0.11 % and 1.2 % (light lost in the millimetre gap above the lamp, where
+        // the minimum area stops refinement).
+        let tolerance = if lamp { 0.015 } else { 0.002 };
+        assert!(
+            (a / e - 1.0).abs() < tolerance,
+            "lamp {lamp}: absorbed {a} of {e}"
+        );
+    }
+}
+
+#[test]
+fn contact_splits_keep_every_faces_area() {
+    let scene = builtin::load("cornell").unwrap().unwrap();
+    let area_of = |contact_splits: bool| {
+        let options = MeshOptions {
+            contact_splits,
+            ..MeshOptions::default()
+        };
+        let mesh = strahl::radiosity::PatchMesh::from_scene(&scene, &options).unwrap();
+        let mut per_object = vec![0.0f64; scene.objects.len()];
+        for &r in &mesh.roots {
+            per_object[mesh.patch(r).object as usize] += mesh.patch(r).area;
+        }
+        (per_object, mesh.roots.len())
+    };
+    let (whole, roots) = area_of(false);
+    let (cut, cut_roots) = area_of(true);
+    assert!(cut_roots > roots, "{cut_roots} vs {roots}");
+    for (a, b) in whole.iter().zip(&cut) {
+        assert!((a - b).abs() <= 1e-12 * a, "{a} vs {b}");
+    }
 }

@@ -9,6 +9,9 @@ use std::path::PathBuf;
 use strahl::image::ToneMapping;
 use strahl::measure::Film;
 use strahl::progress::Cancel;
+use strahl::radiosity::solve::hierarchical::{
+    HierarchicalSettings, Oracle, RefinePass, solve_hierarchical,
+};
 use strahl::radiosity::solve::{
     DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
     Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
@@ -28,6 +31,8 @@ pub enum Solver {
     Matrix,
     /// Radiosity: progressive refinement (shoot the patch with the most unshot power).
     Progressive,
+    /// Hierarchical radiosity: links between quadtree nodes, refined by an oracle.
+    Hierarchical,
 }
 
 /// How faces are prepared for linking (seed §6.3.1).
@@ -41,12 +46,12 @@ pub enum Linking {
 
 /// Options of the radiosity solvers.
 #[derive(Debug, Args)]
-#[command(next_help_heading = "Radiosity (--solver matrix|progressive)")]
+#[command(next_help_heading = "Radiosity (--solver matrix|progressive|hierarchical)")]
 pub struct RadiosityArgs {
     /// Initial patch size: `levels:N` (2ᴺ × 2ᴺ patches per face) or the longest patch edge
-    /// in scene units.
-    #[arg(long, default_value = "levels:3")]
-    pub mesh_size: MeshSize,
+    /// in scene units [default: levels:3; hierarchical: levels:0, it refines by itself].
+    #[arg(long)]
+    pub mesh_size: Option<MeshSize>,
     /// Segments around the axis when curved shapes are meshed.
     #[arg(long, default_value_t = 16)]
     pub segments: u32,
@@ -86,6 +91,21 @@ pub struct RadiosityArgs {
     /// progressive: shoot ahead the light a patch will still receive (negative radiosity).
     #[arg(long)]
     pub overshoot: bool,
+    /// hierarchical: the oracle that decides where links are refined.
+    #[arg(long, value_parser = choice::<Oracle>(), default_value_t = Oracle::Lischinski)]
+    pub oracle: Oracle,
+    /// hierarchical: largest error of a link, relative to the brightest emission.
+    #[arg(long, default_value_t = HierarchicalSettings::default().error)]
+    pub error: f64,
+    /// hierarchical: nodes are not split below this fraction of the scene's surface area.
+    #[arg(long, default_value_t = HierarchicalSettings::default().min_area)]
+    pub min_area: f64,
+    /// hierarchical: which links a refinement pass judges.
+    #[arg(long, value_parser = choice::<RefinePass>(), default_value_t = RefinePass::Original)]
+    pub refine_pass: RefinePass,
+    /// hierarchical: refinement rounds at most.
+    #[arg(long, default_value_t = HierarchicalSettings::default().max_rounds)]
+    pub max_rounds: u32,
     /// Write the solution as a mesh with radiosity vertex colours (.glb, .gltf or .ply).
     #[arg(long)]
     pub export: Option<PathBuf>,
@@ -95,7 +115,7 @@ pub struct RadiosityArgs {
 #[derive(Debug, Args)]
 #[command(next_help_heading = "Radiosity display (--method radiosity)")]
 pub struct RadiosityDisplayArgs {
-    /// The radiosity solver: matrix or progressive.
+    /// The radiosity solver: matrix, progressive or hierarchical.
     #[arg(long, value_enum, default_value_t = Solver::Progressive)]
     pub solver: Solver,
     /// Flat patches or radiosity interpolated to the vertices.
@@ -110,18 +130,30 @@ pub struct RadiosityDisplayArgs {
 }
 
 impl RadiosityArgs {
-    /// The system options, with visibility jitter seeded by `seed`.
-    pub fn system_options(&self, seed: u64) -> Result<SystemOptions> {
+    /// The system options for `solver`, with visibility jitter seeded by `seed`.
+    pub fn system_options(&self, solver: Solver, seed: u64) -> Result<SystemOptions> {
         if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
             bail!(
                 "--tolerance must be a non-negative number (got {})",
                 self.tolerance
             );
         }
+        if !(self.error.is_finite() && self.error > 0.0) {
+            bail!("--error must be a positive number (got {})", self.error);
+        }
+        if !(self.min_area.is_finite() && self.min_area > 0.0 && self.min_area < 1.0) {
+            bail!(
+                "--min-area must lie between 0 and 1 (got {})",
+                self.min_area
+            );
+        }
         Ok(SystemOptions {
             mesh: MeshOptions {
                 segments: self.segments,
-                size: self.mesh_size,
+                size: self.mesh_size.unwrap_or(match solver {
+                    Solver::Hierarchical => MeshSize::Levels(0),
+                    _ => MeshSize::Levels(3),
+                }),
                 contact_splits: self.linking == Linking::Asymmetric,
             },
             form_factor: FormFactorOptions {
@@ -159,9 +191,21 @@ pub fn solve<'w>(
     solver: Solver,
     run: &RunOptions,
 ) -> Result<(RadiositySystem<'w>, Solution)> {
-    let options = args.system_options(run.seed)?;
+    let options = args.system_options(solver, run.seed)?;
     let cancel = progress::cancel_flag();
     let (system, solution) = with_threads(run.threads, || -> Result<_> {
+        if solver == Solver::Hierarchical {
+            let settings = HierarchicalSettings {
+                oracle: args.oracle,
+                error: args.error,
+                min_area: args.min_area,
+                refine_pass: args.refine_pass,
+                tolerance: args.tolerance,
+                max_rounds: args.max_rounds,
+            };
+            let bar = progress::Bar::new("refining", run.quiet);
+            return Ok(solve_hierarchical(world, options, &settings, &bar, cancel)?);
+        }
         let system = RadiositySystem::new(world, options)?;
         let solution = match solver {
             Solver::Matrix => {
@@ -182,7 +226,9 @@ pub fn solve<'w>(
                 let bar = progress::Bar::new("shooting", run.quiet);
                 solve_progressive(&system, &settings, &bar, cancel)?
             }
-            Solver::LightTrace => bail!("light-trace is not a radiosity solver"),
+            Solver::Hierarchical | Solver::LightTrace => {
+                bail!("{solver:?} is not a flat radiosity solver")
+            }
         };
         Ok((system, solution))
     })??;
@@ -223,8 +269,42 @@ fn print_summary(system: &RadiositySystem, solution: &Solution) {
     );
 }
 
-/// Prints the convergence history, one line per iteration, to standard error.
+/// Prints the convergence history to standard error: one line per iteration, or for a
+/// hierarchical solver one line per round of refinement.
 pub fn print_convergence(solution: &Solution) {
+    if !solution.rounds.is_empty() {
+        eprintln!(
+            "{:>5} {:>9} {:>9} {:>9} {:>8} {:>10} {:>7} {:>10} {:>8} {:>8} {:>8}",
+            "round",
+            "created",
+            "refined",
+            "links",
+            "leaves",
+            "rays",
+            "gathers",
+            "change",
+            "link s",
+            "refine s",
+            "gather s"
+        );
+        for (k, r) in solution.rounds.iter().enumerate() {
+            eprintln!(
+                "{:>5} {:>9} {:>9} {:>9} {:>8} {:>10} {:>7} {:>10.3e} {:>8.3} {:>8.3} {:>8.3}",
+                k + 1,
+                r.links_created,
+                r.links_refined,
+                r.links,
+                r.leaves,
+                r.rays,
+                r.gathers,
+                r.residual,
+                r.seconds_linking,
+                r.seconds_refine,
+                r.seconds_gather + r.seconds_push_pull
+            );
+        }
+        return;
+    }
     let measure = solution.solver.convergence_measure();
     for (k, value) in solution.convergence.iter().enumerate() {
         eprintln!("iteration {:6}  {measure} {value:.6e}", k + 1);
@@ -253,7 +333,7 @@ pub fn render(
     cancel: &Cancel,
 ) -> Result<RadiosityImage> {
     if display.solver == Solver::LightTrace {
-        bail!("--method radiosity needs --solver matrix or progressive");
+        bail!("--method radiosity needs --solver matrix, progressive or hierarchical");
     }
     let (system, solution) = solve(world, &display.solve, display.solver, run)?;
     let settings = DisplaySettings {

@@ -103,7 +103,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
             }
             Report::new(&name, LightTraceOutput::SOLVER, &out.power, out.stats())
         }
-        Solver::Matrix | Solver::Progressive => {
+        Solver::Matrix | Solver::Progressive | Solver::Hierarchical => {
             let run = RunOptions {
                 seed: args.seed,
                 threads: args.threads,

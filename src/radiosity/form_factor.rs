@@ -145,6 +145,37 @@ pub fn receiver_points(patch: &Patch, n: u32) -> Vec<(DVec3, f64)> {
     points
 }
 
+/// Gauss points of `patch` with their area weights (summing to 1): the 2 × 2 Gauss–Legendre
+/// points of a quad (exact for bicubic functions over a parallelogram), the three-point rule
+/// of a triangle (exact for quadratics). The area average of a smooth function over the patch
+/// is `Σ w·f(p)`.
+pub fn gauss_points(patch: &Patch) -> Vec<(DVec3, f64)> {
+    let c = patch.corners();
+    if patch.is_triangle() {
+        let (a, b) = (2.0 / 3.0, 1.0 / 6.0);
+        return vec![
+            (c[0] * a + c[1] * b + c[2] * b, 1.0 / 3.0),
+            (c[0] * b + c[1] * a + c[2] * b, 1.0 / 3.0),
+            (c[0] * b + c[1] * b + c[2] * a, 1.0 / 3.0),
+        ];
+    }
+    let g = 0.5 / 3f64.sqrt();
+    let mut points: Vec<(DVec3, f64)> = [
+        (0.5 - g, 0.5 - g),
+        (0.5 + g, 0.5 - g),
+        (0.5 + g, 0.5 + g),
+        (0.5 - g, 0.5 + g),
+    ]
+    .into_iter()
+    .map(|(s, t)| (patch.point_at(s, t), jacobian(patch, s, t)))
+    .collect();
+    let total: f64 = points.iter().map(|p| p.1).sum();
+    for p in &mut points {
+        p.1 /= total;
+    }
+    points
+}
+
 /// Area density of [`Patch::point_at`] at `(s, t)` (up to a constant factor).
 fn jacobian(patch: &Patch, s: f64, t: f64) -> f64 {
     if patch.is_triangle() {
@@ -322,6 +353,24 @@ mod tests {
         let low: f64 = pts.iter().filter(|x| x.0.y < 0.5).map(|x| x.1).sum();
         // Exact lower-half share of the trapezoid: (4 + 3)/2·0.5 / 3 = 7/12.
         assert!((low - 7.0 / 12.0).abs() < 1e-12, "{low}");
+    }
+
+    #[test]
+    fn gauss_points_integrate_quadratics_exactly() {
+        // ∫ x² over the unit square is 1/3, over the triangle (0,0),(1,0),(0,1) (mean) 1/6.
+        let square = rect([[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+        let mean: f64 = gauss_points(&square)
+            .iter()
+            .map(|(p, w)| w * p.x * p.x)
+            .sum();
+        assert!((mean - 1.0 / 3.0).abs() < 1e-14, "{mean}");
+        let tri = Patch::new(
+            &[DVec3::ZERO, DVec3::X, DVec3::Y],
+            &[DVec2::ZERO, DVec2::X, DVec2::Y],
+        )
+        .unwrap();
+        let mean: f64 = gauss_points(&tri).iter().map(|(p, w)| w * p.x * p.y).sum();
+        assert!((mean - 1.0 / 12.0).abs() < 1e-14, "{mean}");
     }
 
     #[test]

@@ -95,6 +95,28 @@ pub fn light_irradiance(
     }
 }
 
+/// The irradiance (W·m⁻²) that `light` sends to the surface point `x` whose receiving side has
+/// the unit normal `normal`, with shadows: `I·f·cos θ/d²` for point and spot lights (`f` the
+/// falloff), `E·cos θ` for a directional light, `π·L` times the cosine-weighted open share of
+/// the hemisphere for the sky.
+pub fn point_irradiance(world: &World, light: &LightKind, x: DVec3, normal: DVec3) -> Rgb64 {
+    match *light {
+        LightKind::Sky { radiance } => {
+            radiance.to_f64() * (PI * sky_share(world, &[(x, 1.0)], normal))
+        }
+        _ => {
+            let Some(inc) = light.incidence(x.as_vec3()) else {
+                return Rgb64::BLACK;
+            };
+            let cos = normal.dot(inc.wi.as_dvec3());
+            if cos <= 0.0 || !sees_light(world, x, normal, light) {
+                return Rgb64::BLACK;
+            }
+            inc.irradiance.to_f64() * cos
+        }
+    }
+}
+
 /// The share of the intensity that `light` sends toward `x`: the spot falloff, 1 for a point
 /// light.
 fn falloff(light: &LightKind, x: DVec3) -> f64 {

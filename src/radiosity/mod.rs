@@ -12,6 +12,7 @@ pub mod light_links;
 pub mod mesh;
 pub mod shaft;
 pub mod solve;
+pub mod surface;
 pub mod visibility;
 
 pub use clip::{Facing, Plane, Polygon, SplitPolygon, facing, needs_split, split};
@@ -21,4 +22,4 @@ pub use form_factor::{
 };
 pub use light_links::light_irradiance;
 pub use mesh::{MeshError, MeshOptions, MeshSize, Patch, PatchId, PatchMesh};
-pub use visibility::{VisRays, Visibility, VisibilityOptions};
+pub use visibility::{VisRays, Visibility, VisibilityEstimate, VisibilityOptions};

@@ -31,6 +31,8 @@ use std::str::FromStr;
 const ADAPTIVE_RAYS_PER_RATIO: f64 = 4.0;
 /// Largest adaptive grid per axis (64 rays).
 const ADAPTIVE_MAX_PER_AXIS: u32 = 8;
+/// Rays per axis of the first probe of [`Visibility::from_points`].
+const PROBE_PER_AXIS: u32 = 2;
 /// Consecutive primitives of one object grouped under one bounding box for the shaft test.
 const CLUSTER_SIZE: usize = 16;
 /// Above this many surviving primitives the rays go through the scene's BVH.
@@ -46,8 +48,9 @@ const MAX_IGNORED_HITS: usize = 32;
 pub enum VisRays {
     /// At least `N` rays: an `m × m` grid with `m = ⌈√N⌉`.
     Fixed(u32),
-    /// `m = clamp(⌈4·√A_max / d⌉, 1, 8)` per axis, where `A_max` is the larger patch area
-    /// and `d` the centroid distance: unchanged when the scene is scaled uniformly.
+    /// `m = clamp(⌈4·√A_max / d⌉, 2, 8)` per axis, where `A_max` is the larger patch area
+    /// and `d` the centroid distance (unchanged when the scene is scaled uniformly), for
+    /// pairs that may be occluded; 8 × 8 where the first rays disagree.
     Adaptive,
 }
 
@@ -82,6 +85,18 @@ impl FromStr for VisRays {
             )),
         }
     }
+}
+
+/// A visible fraction and what it cost.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VisibilityEstimate {
+    /// The visible fraction in `[0, 1]`.
+    pub visible: f64,
+    /// Rays cast for it.
+    pub rays: u64,
+    /// True when nothing can block the pair (no candidate occluder): `visible` is exactly 1,
+    /// and so it is for any parts of the two patches.
+    pub unoccluded: bool,
 }
 
 /// Settings of the visibility test.
@@ -201,6 +216,15 @@ impl<'w> Visibility<'w> {
     /// blocks, 0 when everything does. Symmetric in `a` and `b` and deterministic for a
     /// fixed seed.
     pub fn between(&self, mesh: &PatchMesh, a: PatchId, b: PatchId) -> f64 {
+        self.estimate(mesh, a, b).visible
+    }
+
+    /// [`Self::between`] with the number of rays it cast. Pairs with no possible occluder cast
+    /// none. In adaptive mode a pair that may be occluded casts at least 2 × 2 rays, and when
+    /// not all of them arrive (a shadow edge crosses the pair, or it may be wholly occluded)
+    /// it is estimated again with the largest grid: rays go where the visibility changes, not
+    /// merely where patches are close.
+    pub fn estimate(&self, mesh: &PatchMesh, a: PatchId, b: PatchId) -> VisibilityEstimate {
         let (lo, hi) = (a.min(b), a.max(b));
         let (p, q) = (mesh.patch(lo), mesh.patch(hi));
         let ignored = [p.object, q.object].map(|o| self.curved.get(o as usize) == Some(&true));
@@ -209,28 +233,111 @@ impl<'w> Visibility<'w> {
             .zip(ignored)
             .filter_map(|(o, skip)| skip.then_some(o))
             .collect();
-        let m = self.rays_per_axis(p, q);
-        let occluders = if m * m < SHAFT_MIN_RAYS {
+        let adaptive = self.options.rays == VisRays::Adaptive;
+        let mut m = self.rays_per_axis(p, q);
+        let occluders = if m * m < SHAFT_MIN_RAYS && !adaptive {
             Occluders::Scene
         } else {
             self.occluders(p, q, &ignored)
         };
         if matches!(occluders, Occluders::None) {
-            return 1.0;
+            return VisibilityEstimate {
+                visible: 1.0,
+                rays: 0,
+                unoccluded: true,
+            };
+        }
+        if adaptive {
+            m = m.max(2);
         }
         let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, lo, hi));
-        let from = jittered_points(p, m, &mut rng);
-        let mut to = jittered_points(q, m, &mut rng);
-        for i in (1..to.len()).rev() {
-            let j = rng.random_range(0..=i);
-            to.swap(i, j);
+        let mut rays = 0;
+        loop {
+            let from = jittered_points(p, m, &mut rng);
+            let mut to = jittered_points(q, m, &mut rng);
+            for i in (1..to.len()).rev() {
+                let j = rng.random_range(0..=i);
+                to.swap(i, j);
+            }
+            let arrived = from
+                .iter()
+                .zip(&to)
+                .filter(|&(&x, &y)| !self.blocked(x, p.normal, y, q.normal, &occluders, &ignored))
+                .count();
+            rays += from.len() as u64;
+            // Mixed answers (a shadow edge crosses the pair) or none arriving (the pair would
+            // not be linked at all) are settled with the largest grid.
+            let settle = arrived < from.len();
+            if adaptive && settle && m < ADAPTIVE_MAX_PER_AXIS {
+                m = ADAPTIVE_MAX_PER_AXIS;
+                continue;
+            }
+            return VisibilityEstimate {
+                visible: arrived as f64 / from.len() as f64,
+                rays,
+                unoccluded: false,
+            };
         }
-        let arrived = from
+    }
+
+    /// The visible share of patch `b` seen from each of `points` (points of patch `a` whose
+    /// receiving side has the unit normal `normal`), weighted as the form factor weights it
+    /// (`cos θ·cos θ'/d²` of each ray): from each point 2 × 2 rays to jittered strata of `b`,
+    /// and where any of those is blocked, `per_point` rays to jittered strata of `b` from
+    /// every point. `None` when nothing can block the pair (every share is 1). Deterministic for a
+    /// fixed seed; the second value is the number of rays cast.
+    pub fn from_points(
+        &self,
+        mesh: &PatchMesh,
+        a: PatchId,
+        points: &[DVec3],
+        normal: DVec3,
+        b: PatchId,
+        per_point: u32,
+    ) -> Option<(Vec<f64>, u64)> {
+        let (p, q) = (mesh.patch(a), mesh.patch(b));
+        let ignored: Vec<u32> = [p.object, q.object]
+            .into_iter()
+            .filter(|&o| self.curved.get(o as usize) == Some(&true))
+            .collect();
+        let occluders = self.occluders(p, q, &ignored);
+        if matches!(occluders, Occluders::None) {
+            return None;
+        }
+        let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, a, b) ^ 0x9e37);
+        let blocked =
+            |x: DVec3, y: DVec3| self.blocked(x, p.normal, y, q.normal, &occluders, &ignored);
+        // A first probe: 2 × 2 jittered rays from every point. A shadow edge across the pair
+        // turns up unless it shades less than about a quarter of the emitter from all points.
+        let probe = points.iter().all(|&x| {
+            jittered_points(q, PROBE_PER_AXIS, &mut rng)
+                .iter()
+                .all(|&y| !blocked(x, y))
+        });
+        let mut rays = (points.len() * (PROBE_PER_AXIS * PROBE_PER_AXIS) as usize) as u64;
+        if probe {
+            return Some((vec![1.0; points.len()], rays));
+        }
+        let m = (per_point as f64).sqrt().ceil().max(1.0) as u32;
+        let shares = points
             .iter()
-            .zip(&to)
-            .filter(|&(&x, &y)| !self.blocked(x, p.normal, y, q.normal, &occluders, &ignored))
-            .count();
-        arrived as f64 / from.len() as f64
+            .map(|&x| {
+                let targets = jittered_points(q, m, &mut rng);
+                rays += targets.len() as u64;
+                let (mut seen, mut total) = (0.0, 0.0);
+                for &y in &targets {
+                    let d = y - x;
+                    let d2 = d.length_squared();
+                    let weight = normal.dot(d).max(0.0) * q.normal.dot(d).abs() / (d2 * d2);
+                    total += weight;
+                    if weight > 0.0 && !blocked(x, y) {
+                        seen += weight;
+                    }
+                }
+                if total > 0.0 { seen / total } else { 0.0 }
+            })
+            .collect();
+        Some((shares, rays))
     }
 
     /// The primitives that may block rays between `a` and `b` after shaft culling, or `None`

@@ -5,6 +5,7 @@
 //! its statistics and its lit mesh.
 
 mod display;
+pub mod hierarchical;
 mod interpolate;
 mod matrix;
 mod progressive;
@@ -15,7 +16,9 @@ pub use display::{DisplaySettings, Shading, render_solution};
 pub use interpolate::{CornerValues, vertex_radiosity};
 pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};
-pub use solution::{CONVERGENCE_ROWS, PhaseTimes, Solution, SolverKind, power_fraction, source_power};
+pub use solution::{
+    CONVERGENCE_ROWS, PhaseTimes, Solution, SolverKind, power_fraction, source_power,
+};
 pub use system::{Couplings, RadiositySystem, SystemOptions};
 
 use super::MeshError;

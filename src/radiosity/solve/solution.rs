@@ -10,6 +10,7 @@
 //! (`Σ A_i H_light,i`), and the escaped power is what is emitted but not absorbed by any
 //! patch (light leaving an open scene, plus the small imbalance of the discretisation).
 
+use super::hierarchical::{Oracle, RoundStats};
 use super::interpolate::vertex_radiosity;
 use super::matrix::Iteration;
 use super::system::RadiositySystem;
@@ -25,6 +26,8 @@ pub enum SolverKind {
     Matrix(Iteration),
     /// Progressive refinement (shooting).
     Progressive,
+    /// Hierarchical radiosity, refined by the given oracle.
+    Hierarchical(Oracle),
 }
 
 impl SolverKind {
@@ -34,6 +37,7 @@ impl SolverKind {
             SolverKind::Matrix(Iteration::Jacobi) => "matrix-jacobi",
             SolverKind::Matrix(Iteration::GaussSeidel) => "matrix-gauss-seidel",
             SolverKind::Progressive => "progressive",
+            SolverKind::Hierarchical(_) => "hierarchical",
         }
     }
 
@@ -43,6 +47,7 @@ impl SolverKind {
         match self {
             SolverKind::Matrix(_) => "residual",
             SolverKind::Progressive => "unshot",
+            SolverKind::Hierarchical(_) => "change",
         }
     }
 }
@@ -85,6 +90,10 @@ pub struct Solution {
     pub interrupted: bool,
     /// Time per phase.
     pub seconds: PhaseTimes,
+    /// Hierarchical solvers: what each round of refinement did (empty for flat solvers).
+    pub rounds: Vec<RoundStats>,
+    /// Hierarchical solvers: links at the end (0 for flat solvers).
+    pub links: usize,
 }
 
 impl Solution {
@@ -160,6 +169,10 @@ impl Solution {
         stats.insert("seconds_setup", s.setup);
         stats.insert("seconds_form_factors", s.form_factors);
         stats.insert("seconds_iterations", s.iterations);
+        if !self.rounds.is_empty() {
+            stats.insert("links", self.links);
+            stats.insert("rounds", serde_json::json!(self.rounds));
+        }
         stats
     }
 
@@ -203,6 +216,8 @@ impl Solution {
                 setup: system.setup_seconds,
                 ..PhaseTimes::default()
             },
+            rounds: Vec::new(),
+            links: 0,
         }
     }
 }

@@ -21,20 +21,15 @@
 use super::SolveError;
 use crate::color::Rgb64;
 use crate::radiosity::element::{Element, Side};
+use crate::radiosity::surface;
 use crate::radiosity::{
     Facing, FormFactorOptions, MeshOptions, Patch, PatchId, PatchMesh, Visibility,
     VisibilityOptions, facing, form_factor, light_irradiance,
 };
-use crate::scene::{Material, Texture};
 use crate::world::World;
-use glam::Vec2;
 use rayon::prelude::*;
-use std::f64::consts::PI;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
-
-/// Texture samples per axis when averaging a texture over a patch.
-const TEXTURE_SAMPLES: u32 = 4;
 
 /// How the system is set up.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,6 +108,21 @@ impl<'w> RadiositySystem<'w> {
     pub fn new(world: &'w World, options: SystemOptions) -> Result<Self, SolveError> {
         let start = Instant::now();
         let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
+        let mut system = Self::from_mesh(world, mesh, options, None)?;
+        system.setup_seconds = start.elapsed().as_secs_f64();
+        Ok(system)
+    }
+
+    /// The system on the leaves of `mesh` (a mesh of `world`'s scene). The light-link
+    /// irradiance per element is `linked` when given (a solver that linked the lights
+    /// itself), else gathered here.
+    pub fn from_mesh(
+        world: &'w World,
+        mesh: PatchMesh,
+        options: SystemOptions,
+        linked: Option<Vec<Rgb64>>,
+    ) -> Result<Self, SolveError> {
+        let start = Instant::now();
         let leaves = mesh.leaves();
         if leaves.is_empty() {
             return Err(SolveError::NoPatches);
@@ -122,8 +132,6 @@ impl<'w> RadiositySystem<'w> {
             .iter()
             .flat_map(|&patch| Side::BOTH.map(|side| Element { patch, side }))
             .collect();
-        let texture = |id: Option<u32>| id.and_then(|t| scene.textures.get(t as usize));
-        let material = |e: &Element| &scene.materials[mesh.patch(e.patch).material as usize];
         let area = elements.iter().map(|e| mesh.patch(e.patch).area).collect();
         let radius = elements
             .iter()
@@ -137,35 +145,29 @@ impl<'w> RadiositySystem<'w> {
             .collect();
         let emission = elements
             .iter()
-            .map(|e| {
-                let m = material(e);
-                if !emits(m, e.side) {
-                    return Rgb64::BLACK;
-                }
-                let tex = texture_mean(texture(m.emission_texture), mesh.patch(e.patch));
-                PI * m.emission.to_f64() * tex
-            })
+            .map(|e| surface::emission(scene, mesh.patch(e.patch), e.side))
             .collect();
         let reflectance = elements
             .iter()
-            .map(|e| {
-                let m = material(e);
-                if m.one_sided && e.side == Side::Back {
-                    return Rgb64::BLACK;
-                }
-                let tex = texture_mean(texture(m.diffuse_texture), mesh.patch(e.patch));
-                (m.diffuse.to_f64() * tex).map(|v| v.clamp(0.0, 1.0))
-            })
+            .map(|e| surface::reflectance(scene, mesh.patch(e.patch), e.side))
             .collect();
-        let light_irradiance = elements
-            .par_iter()
-            .map(|e| {
-                scene.lights.iter().fold(Rgb64::BLACK, |sum, light| {
-                    let patch = mesh.patch(e.patch);
-                    sum + light_irradiance(world, &light.kind, patch, e.side, options.link_samples)
+        let light_irradiance = linked.unwrap_or_else(|| {
+            elements
+                .par_iter()
+                .map(|e| {
+                    scene.lights.iter().fold(Rgb64::BLACK, |sum, light| {
+                        let patch = mesh.patch(e.patch);
+                        sum + light_irradiance(
+                            world,
+                            &light.kind,
+                            patch,
+                            e.side,
+                            options.link_samples,
+                        )
+                    })
                 })
-            })
-            .collect();
+                .collect()
+        });
         Ok(RadiositySystem {
             world,
             leaves,
@@ -254,9 +256,9 @@ impl<'w> RadiositySystem<'w> {
         if f <= 0.0 {
             return 0.0;
         }
-        let m = self.visibility.rays_per_axis(receiver, emitter) as u64;
-        self.visibility_rays.fetch_add(m * m, Ordering::Relaxed);
-        f * self.visibility.between(&self.mesh, ri.patch, ej.patch)
+        let v = self.visibility.estimate(&self.mesh, ri.patch, ej.patch);
+        self.visibility_rays.fetch_add(v.rays, Ordering::Relaxed);
+        f * v.visible
     }
 
     /// Row `i` of the coupling matrix: what receiver `i` gathers from every element.
@@ -274,13 +276,19 @@ impl<'w> RadiositySystem<'w> {
         collect(values.into_iter().enumerate())
     }
 
+    /// Adds work a solver did on its own (a hierarchical solver's links): `form_factors` form
+    /// factors and `rays` visibility rays.
+    pub fn count_work(&self, form_factors: u64, rays: u64) {
+        self.form_factors.fetch_add(form_factors, Ordering::Relaxed);
+        self.visibility_rays.fetch_add(rays, Ordering::Relaxed);
+    }
+
     /// Form factors evaluated so far (facing pairs).
     pub fn form_factor_count(&self) -> u64 {
         self.form_factors.load(Ordering::Relaxed)
     }
 
-    /// Visibility rays of the pairs tested so far: the full ray grid of every pair with a
-    /// non-zero form factor (pairs the shaft proves unoccluded cast fewer).
+    /// Visibility rays cast so far (pairs the shaft proves unoccluded cast none).
     pub fn visibility_ray_count(&self) -> u64 {
         self.visibility_rays.load(Ordering::Relaxed)
     }
@@ -296,28 +304,4 @@ fn collect(entries: impl Iterator<Item = (usize, f64)>) -> Couplings {
         }
     }
     out
-}
-
-/// True when material `m` emits from side `side` (the front, and the back when two-sided).
-fn emits(m: &Material, side: Side) -> bool {
-    !m.emission.is_black() && (side == Side::Front || m.two_sided)
-}
-
-/// Mean colour of `texture` over `patch` (its UV polygon sampled on a `4 × 4` grid of the
-/// patch's parameter domain, equal weights: area-weighted for triangles and parallelograms);
-/// `[1, 1, 1]` without a texture.
-fn texture_mean(texture: Option<&Texture>, patch: &Patch) -> Rgb64 {
-    let Some(texture) = texture else {
-        return Rgb64::WHITE;
-    };
-    let n = TEXTURE_SAMPLES;
-    let mut sum = Rgb64::BLACK;
-    for a in 0..n {
-        for b in 0..n {
-            let (s, t) = ((a as f64 + 0.5) / n as f64, (b as f64 + 0.5) / n as f64);
-            let uv = patch.uv_at(s, t);
-            sum += texture.color(Vec2::new(uv.x as f32, uv.y as f32)).to_f64();
-        }
-    }
-    sum.map(|v| v / (n * n) as f64)
 }

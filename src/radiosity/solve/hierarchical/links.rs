@@ -1,0 +1,216 @@
+//! Links (seed 000 §6.2, §9.3.1): a receiver node gathers over a link the radiosity of an
+//! emitter node, or the irradiance of a light that only sends.
+//!
+//! A patch link stores the transport coefficient: the area average over the smaller of the
+//! two patches (its Gauss points, [`gauss_points`]) of the point form factor to the other
+//! side times the share of it visible from the point ([`Visibility::from_points`]), carried
+//! to the receiver by reciprocity when the emitter is the smaller, together with the smallest and largest point form factor over the receiver's Gauss points,
+//! centroid and corners (`F_min = 0` when the pair is partly occluded), which the oracles
+//! judge. A pair that cannot see each other (every ray from every point blocked) is never
+//! linked; a partly visible pair is linked even when its estimate is 0, so the oracle can
+//! refine it.
+
+use super::nodes::split_node;
+use crate::color::Rgb64;
+use crate::radiosity::clip::{Facing, Plane, facing};
+use crate::radiosity::form_factor::{gauss_points, point_to_polygon};
+use crate::radiosity::light_links::{light_irradiance, point_irradiance};
+use crate::radiosity::mesh::{Patch, PatchMesh};
+use crate::radiosity::visibility::Visibility;
+use crate::scene::LightKind;
+use crate::world::World;
+use glam::DVec3;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Visibility rays from each receiver sample point to the emitter, where a first probe finds
+/// the pair partly occluded.
+const RAYS_PER_POINT: u32 = 16;
+
+/// How far the corner samples of a receiver are pulled towards its centroid (a share of the
+/// way), so that a corner on an emitter's edge does not sit in the emitter's plane.
+const CORNER_INSET: f64 = 1e-3;
+
+/// A receiver node gathering an emitter node's radiosity.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Link {
+    /// Receiving node.
+    pub receiver: u32,
+    /// Emitting node.
+    pub emitter: u32,
+    /// `F·V`: area-averaged form factor times visible fraction.
+    pub coupling: f64,
+    /// Smallest point form factor over the receiver's sample points (0 when partly
+    /// occluded).
+    pub f_min: f64,
+    /// Largest point form factor over the receiver's sample points.
+    pub f_max: f64,
+    /// Visible fraction.
+    pub visible: f64,
+    /// True when nothing can block the pair: its children's links need no visibility rays.
+    pub unoccluded: bool,
+}
+
+/// A receiver node gathering the irradiance of a light that only sends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightLink {
+    /// Receiving node.
+    pub receiver: u32,
+    /// Index of the light in the scene's light list.
+    pub light: u32,
+    /// Mean irradiance over the receiver, W·m⁻².
+    pub irradiance: Rgb64,
+    /// Smallest and largest irradiance luminance at the receiver's sample points.
+    pub range: (f64, f64),
+}
+
+/// What creating links needs.
+pub struct Linker<'a> {
+    /// The scene's world.
+    pub world: &'a World,
+    /// The visibility estimator.
+    pub visibility: &'a Visibility<'a>,
+    /// Receiver points per axis of the light links' mean irradiance.
+    pub link_samples: u32,
+    /// Rays cast so far.
+    pub rays: AtomicU64,
+    /// Form factors evaluated so far (point form factors).
+    pub form_factors: AtomicU64,
+}
+
+impl Linker<'_> {
+    /// The link from `emitter` to `receiver` (node indices of `mesh`), `None` when they do
+    /// not face each other, are sides of one patch, or cannot see each other. `unoccluded`
+    /// says that nothing can block the pair (it is part of an unoccluded pair), so no rays
+    /// are needed.
+    pub fn link(
+        &self,
+        mesh: &PatchMesh,
+        receiver: usize,
+        emitter: usize,
+        unoccluded: bool,
+    ) -> Option<Link> {
+        let ((rp, rs), (ep, es)) = (split_node(receiver), split_node(emitter));
+        if rp == ep {
+            return None;
+        }
+        let (r, e) = (mesh.patch(rp), mesh.patch(ep));
+        if facing(r, rs, e, es) == Facing::Away {
+            return None;
+        }
+        let (normal, emitter_normal) = (rs.normal(r), es.normal(e));
+        // The point form factor from a point of one patch (unit normal `n`) to the other
+        // patch's polygon, 0 for points behind the other's side.
+        let factor = |p: DVec3, n: DVec3, other: &Patch, other_normal: DVec3| {
+            if Plane::new(other.centroid, other_normal).distance(p) > 0.0 {
+                point_to_polygon(p, n, other.corners())
+            } else {
+                0.0
+            }
+        };
+        // The range over the receiver: its Gauss points, centroid and corners (pulled in a
+        // little from the edge an emitter may touch).
+        let range_points: Vec<DVec3> = gauss_points(r)
+            .into_iter()
+            .map(|g| g.0)
+            .chain([r.centroid])
+            .chain(
+                r.corners()
+                    .iter()
+                    .map(|&c| c + (r.centroid - c) * CORNER_INSET),
+            )
+            .collect();
+        let factors: Vec<f64> = range_points
+            .iter()
+            .map(|&p| factor(p, normal, e, emitter_normal))
+            .collect();
+        let f_max = factors.iter().copied().fold(0.0, f64::max);
+        if f_max <= 0.0 {
+            return None;
+        }
+        // The transport is integrated over the smaller patch (its Gauss points, each with the
+        // share of the other patch it sees) and carried over by reciprocity,
+        // A_r·F_re = A_e·F_er: point samples of a small emitter from a large receiver would
+        // be far off wherever a sample lies next to it.
+        let (from, from_patch, from_normal, to, to_patch, to_normal, scale) = if r.area <= e.area {
+            (r, rp, normal, e, ep, emitter_normal, 1.0)
+        } else {
+            (e, ep, emitter_normal, r, rp, normal, e.area / r.area)
+        };
+        let gauss = gauss_points(from);
+        let points: Vec<DVec3> = gauss.iter().map(|g| g.0).collect();
+        let seen = if unoccluded {
+            None
+        } else {
+            self.visibility.from_points(
+                mesh,
+                from_patch,
+                &points,
+                from_normal,
+                to_patch,
+                RAYS_PER_POINT,
+            )
+        };
+        self.form_factors
+            .fetch_add((range_points.len() + gauss.len()) as u64, Ordering::Relaxed);
+        let (seen, rays) = match seen {
+            Some((shares, rays)) => (Some(shares), rays),
+            None => (None, 0),
+        };
+        self.rays.fetch_add(rays, Ordering::Relaxed);
+        let visible_at = |i: usize| seen.as_ref().map_or(1.0, |v| v[i]);
+        // Every ray from every point blocked: the pair cannot see each other.
+        if (0..gauss.len()).all(|i| visible_at(i) <= 0.0) {
+            return None;
+        }
+        let coupling: f64 = scale
+            * gauss
+                .iter()
+                .enumerate()
+                .map(|(i, &(p, w))| w * factor(p, from_normal, to, to_normal) * visible_at(i))
+                .sum::<f64>();
+        let visible: f64 = gauss
+            .iter()
+            .enumerate()
+            .map(|(i, &(_, w))| w * visible_at(i))
+            .sum();
+        let partial = (0..gauss.len()).any(|i| visible_at(i) < 1.0);
+        let f_min = if partial {
+            0.0
+        } else {
+            factors.iter().copied().fold(f64::INFINITY, f64::min)
+        };
+        Some(Link {
+            receiver: receiver as u32,
+            emitter: emitter as u32,
+            coupling: coupling.min(1.0),
+            f_min,
+            f_max,
+            visible,
+            unoccluded: seen.is_none(),
+        })
+    }
+
+    /// The link from light `light` (an index into the scene's lights) to `receiver`, `None`
+    /// when the light sends it nothing.
+    pub fn light_link(&self, mesh: &PatchMesh, receiver: usize, light: u32) -> Option<LightLink> {
+        let (rp, rs) = split_node(receiver);
+        let patch = mesh.patch(rp);
+        let kind: &LightKind = &self.world.scene.lights[light as usize].kind;
+        let irradiance = light_irradiance(self.world, kind, patch, rs, self.link_samples);
+        let normal = rs.normal(patch);
+        let mut range = (f64::INFINITY, 0.0f64);
+        let points = gauss_points(patch);
+        for p in points.iter().map(|p| p.0).chain([patch.centroid]) {
+            let y = point_irradiance(self.world, kind, p, normal).luminance();
+            range = (range.0.min(y), range.1.max(y));
+        }
+        self.rays
+            .fetch_add(points.len() as u64 + 1, Ordering::Relaxed);
+        (range.1 > 0.0 || irradiance.luminance() > 0.0).then_some(LightLink {
+            receiver: receiver as u32,
+            light,
+            irradiance,
+            range,
+        })
+    }
+}

@@ -1,0 +1,78 @@
+//! Hierarchical radiosity (seed 000 ch. 6): light is exchanged over links between nodes of
+//! the patch quadtrees, at the level an oracle allows for each pair.
+//!
+//! 1. **Initial linking** (§6.3): every pair of root-patch sides that face each other and can
+//!    see each other is linked, with form factor and visibility stored in the link; every
+//!    root side is linked to every point, spot and directional light and the sky that reaches
+//!    it. With the asymmetric linking of the mesh ([`crate::radiosity::contact`], the default) faces that
+//!    others stand on are split at their planes first.
+//! 2. **Gather and push-pull** (§6.7, §6.8) until the radiosity changes by less than the
+//!    tolerance: every node gathers `Σ F·V·B` over its links, irradiance is pushed down to
+//!    the leaves, where it becomes `B = E + ρ·H`, and radiosity is pulled up area-weighted.
+//! 3. **Refinement** (§6.4) by the [`Oracle`]: a link that transports its light with too
+//!    large an error is replaced by links to the four children of its receiver or its
+//!    emitter. `--refine-pass original` judges the links that existed when the pass began and
+//!    then gathers again (the seed's faster variant); `all` also judges the links a pass
+//!    creates, until none is refined, before gathering.
+//! 4. Steps 2 and 3 repeat until no link is refined.
+//!
+//! Link creation, the oracle and the gather run on all threads of the current rayon pool, in
+//! an order that does not depend on the thread count.
+
+mod links;
+mod nodes;
+mod oracle;
+mod solver;
+
+pub use oracle::Oracle;
+pub use solver::{RoundStats, solve_hierarchical};
+
+/// Which links a refinement pass judges.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RefinePass {
+    /// The links that existed when the pass began; then gather again.
+    #[default]
+    Original,
+    /// Every link, also those the pass creates, until none is refined.
+    All,
+}
+
+crate::choice::named_values!(RefinePass {
+    RefinePass::Original = "original",
+        "Judge the links that existed when the pass began, then gather again";
+    RefinePass::All = "all", "Judge every link, also new ones, until none is refined";
+});
+
+/// Settings of hierarchical radiosity.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HierarchicalSettings {
+    /// The oracle.
+    pub oracle: Oracle,
+    /// Largest tolerated uncertainty of the power a link brings, relative to all power
+    /// emitted in the scene.
+    pub error: f64,
+    /// Nodes are not split below this fraction of the scene's surface area.
+    pub min_area: f64,
+    /// Which links a refinement pass judges.
+    pub refine_pass: RefinePass,
+    /// Gathering stops when a gather changes the radiosity by at most this fraction of the
+    /// source power.
+    pub tolerance: f64,
+    /// Refinement rounds at most.
+    pub max_rounds: u32,
+}
+
+impl Default for HierarchicalSettings {
+    /// Lischinski's oracle at an error of 5·10⁻⁵ of the emitted power, minimum area 2·10⁻⁵
+    /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds.
+    fn default() -> Self {
+        HierarchicalSettings {
+            oracle: Oracle::Lischinski,
+            error: 5e-5,
+            min_area: 2e-5,
+            refine_pass: RefinePass::Original,
+            tolerance: 1e-4,
+            max_rounds: 100,
+        }
+    }
+}

@@ -1,0 +1,145 @@
+//! Oracles (seed 000 §6.6): does a link carry its light with a tolerable error, or must the
+//! receiver or the emitter be refined?
+//!
+//! - **Lischinski** (§6.6.2, the default): the irradiance a link brings lies between
+//!   `F_min·B_min` and `F_max·B_max` (the smallest and largest point form factor over the
+//!   receiver, and the emitter's smallest and largest radiosity; `F_min = 0` when the pair is
+//!   partly occluded, so shadow edges refine). The seed bounds the error by
+//!   `B_max·(F_max − F_min)`, which misses a receiver that sees mostly a dark part of a
+//!   bright emitter (a lamp's back under the ceiling); the width of the interval catches both.
+//!   A link is refined when that width, times the receiver's area — the uncertainty of the
+//!   power it brings — exceeds `--error` times all power emitted in the scene: scaling the
+//!   scene or the lights changes neither the mesh nor the links, and the per-object powers a
+//!   report gives are what the error controls. It is refined where the error comes from: the
+//!   receiver when `(F_max − F_min)·B_max ≥ F_max·(B_max − B_min)` (the form factor varies
+//!   more than the emitter's radiosity), else the emitter; a partly occluded link, or one
+//!   whose emitter was never split (so its radiosity is known only as one value), splits the
+//!   larger of the two, which localises the shadow or reveals the variation.
+//! - **BFA** (§6.6.1): `B·F·A` (emitter radiosity, form factor, receiver area) against two
+//!   thresholds, partial visibility always refines the receiver, touching pairs that need a
+//!   support-plane split refine the receiver, and otherwise the side with the larger form
+//!   factor (the larger patch as seen from the other) is refined. `B` and `F` are taken at
+//!   their largest over the emitter and the receiver: with the link's mean form factor a
+//!   coarse receiver kept next to an edge it shares with a small emitter mixes levels badly
+//!   (measured in the furnace: 25 % too much light).
+//!
+//! Light links are refined at the receiver when the power they bring varies over it by more
+//! than the threshold. Decisions use luminance (Y), not the RGB mean (§7.3). Nothing smaller
+//! than the minimum area is refined.
+
+use super::links::{LightLink, Link};
+use super::nodes::Nodes;
+use crate::radiosity::clip::needs_split;
+use crate::radiosity::mesh::PatchMesh;
+
+/// Which oracle decides refinement.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Oracle {
+    /// Lischinski's error bound on the transported irradiance.
+    #[default]
+    Lischinski,
+    /// The seed's B·F·A criterion.
+    Bfa,
+}
+
+crate::choice::named_values!(Oracle {
+    Oracle::Lischinski = "lischinski",
+        "Error bound on the transported irradiance, relative to the brightest emitter";
+    Oracle::Bfa = "bfa", "The seed's B·F·A criterion (depends on the scene's size)";
+});
+
+/// What to do with a link.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Decision {
+    /// It transports its light well enough.
+    Keep,
+    /// Split the receiver and link its children.
+    Receiver,
+    /// Split the emitter and link its children.
+    Emitter,
+}
+
+/// The thresholds a decision compares with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limits {
+    /// Largest tolerated uncertainty of the power a link brings its receiver, W (Lischinski,
+    /// and light links).
+    pub error: f64,
+    /// Largest `B·F·A` not worth refining, W (BFA).
+    pub bfa: f64,
+    /// Nodes of this area or less are not split, scene units².
+    pub min_area: f64,
+}
+
+/// Which nodes may still be split.
+fn splittable(mesh: &PatchMesh, node: u32, limits: &Limits) -> bool {
+    mesh.patch(node / 2).area > limits.min_area
+}
+
+/// The decision on `link` by `oracle`.
+pub fn decide(
+    oracle: Oracle,
+    link: &Link,
+    nodes: &Nodes,
+    mesh: &PatchMesh,
+    limits: &Limits,
+) -> Decision {
+    let can_receiver = splittable(mesh, link.receiver, limits);
+    let can_emitter = splittable(mesh, link.emitter, limits);
+    let prefer = |receiver_first: bool| match (receiver_first, can_receiver, can_emitter) {
+        (true, true, _) | (false, true, false) => Decision::Receiver,
+        (false, _, true) | (true, false, true) => Decision::Emitter,
+        _ => Decision::Keep,
+    };
+    let (b_min, b_max) = nodes.range[link.emitter as usize];
+    match oracle {
+        Oracle::Lischinski => {
+            let spread = link.f_max - link.f_min;
+            let receiver_area = mesh.patch(link.receiver / 2).area;
+            if receiver_area * (link.f_max * b_max - link.f_min * b_min) <= limits.error {
+                return Decision::Keep;
+            }
+            let (r, e) = (mesh.patch(link.receiver / 2), mesh.patch(link.emitter / 2));
+            if link.visible < 1.0 || e.children.is_none() {
+                // A shadow edge crosses the pair, or the emitter's radiosity is known only as
+                // one value (it was never split): splitting the larger side localises the
+                // shadow or reveals the variation (the form-factor spread alone would always
+                // pick the receiver).
+                return prefer(r.area >= e.area);
+            }
+            prefer(spread * b_max >= link.f_max * (b_max - b_min))
+        }
+        Oracle::Bfa => {
+            let receiver_area = mesh.patch(link.receiver / 2).area;
+            let criterion = b_max * link.f_max * receiver_area;
+            // Below a tenth of the threshold no refinement could be seen at all.
+            if criterion < 0.1 * limits.bfa || link.visible <= 0.0 {
+                return Decision::Keep;
+            }
+            if link.visible < 0.9 {
+                return prefer(true);
+            }
+            let (r, e) = (mesh.patch(link.receiver / 2), mesh.patch(link.emitter / 2));
+            if needs_split(e, r) {
+                return prefer(true);
+            }
+            if criterion < limits.bfa {
+                return Decision::Keep;
+            }
+            // F_er ≥ F_re exactly when the receiver is the larger patch (reciprocity).
+            prefer(r.area >= e.area)
+        }
+    }
+}
+
+/// The decision on a light link: the power it brings is uncertain (its irradiance varies over
+/// the receiver, or a shadow edge crosses it) by more than the error threshold.
+pub fn decide_light(link: &LightLink, mesh: &PatchMesh, limits: &Limits) -> Decision {
+    let (e_min, e_max) = link.range;
+    let area = mesh.patch(link.receiver / 2).area;
+    if area * (e_max - e_min) > limits.error && splittable(mesh, link.receiver, limits) {
+        Decision::Receiver
+    } else {
+        Decision::Keep
+    }
+}

@@ -1,0 +1,374 @@
+//! The hierarchical solve: initial linking, then rounds of gathering, push-pull and
+//! refinement until no link is refined (the steps of the module documentation).
+
+use super::links::{LightLink, Link, Linker};
+use super::nodes::{Nodes, node, split_node};
+use super::oracle::{Decision, Limits, decide, decide_light};
+use super::{HierarchicalSettings, RefinePass};
+use crate::color::Rgb64;
+use crate::progress::{Cancel, ProgressListener};
+use crate::radiosity::element::Side;
+use crate::radiosity::mesh::{PatchId, PatchMesh};
+use crate::radiosity::solve::{
+    PhaseTimes, RadiositySystem, Solution, SolveError, SolverKind, SystemOptions,
+};
+use crate::radiosity::visibility::Visibility;
+use crate::world::World;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+/// Gathers per round at most (each is one bounce of light).
+const MAX_GATHERS: u32 = 1000;
+
+/// What one round did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct RoundStats {
+    /// Links created by the round's refinement.
+    pub links_created: u64,
+    /// Links refined (replaced by links to children).
+    pub links_refined: u64,
+    /// Links after the round (patch links and light links).
+    pub links: u64,
+    /// Leaf patches after the round.
+    pub leaves: u64,
+    /// Visibility and shadow rays cast so far.
+    pub rays: u64,
+    /// Radiosity change of the round's last gather, as a fraction of the source power.
+    pub residual: f64,
+    /// Gathers (bounces) in the round.
+    pub gathers: u32,
+    /// Seconds spent creating links (initial linking in the first round).
+    pub seconds_linking: f64,
+    /// Seconds spent judging links.
+    pub seconds_refine: f64,
+    /// Seconds spent gathering.
+    pub seconds_gather: f64,
+    /// Seconds spent in push-pull.
+    pub seconds_push_pull: f64,
+}
+
+/// The state of a solve.
+struct Solver<'w, 'v> {
+    world: &'w World,
+    mesh: PatchMesh,
+    nodes: Nodes,
+    links: Vec<Link>,
+    light_links: Vec<LightLink>,
+    linker: Linker<'v>,
+    limits: Limits,
+    settings: HierarchicalSettings,
+}
+
+/// Solves `world`'s scene by hierarchical radiosity: the mesh (roots, contact splits and any
+/// initial subdivision) and the visibility and light-link settings come from `options`.
+/// `progress` counts rounds; `cancel` stops after the current gather or refinement pass and
+/// keeps the state reached. Returns the system on the final leaves and its solution.
+pub fn solve_hierarchical<'w>(
+    world: &'w World,
+    options: SystemOptions,
+    settings: &HierarchicalSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<(RadiositySystem<'w>, Solution), SolveError> {
+    let start = Instant::now();
+    let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
+    if mesh.roots.is_empty() {
+        return Err(SolveError::NoPatches);
+    }
+    let visibility = Visibility::new(world, options.visibility);
+    let nodes = Nodes::new(&world.scene, &mesh);
+    let mut solver = Solver {
+        world,
+        nodes,
+        links: Vec::new(),
+        light_links: Vec::new(),
+        linker: Linker {
+            world,
+            visibility: &visibility,
+            link_samples: options.link_samples,
+            rays: AtomicU64::new(0),
+            form_factors: AtomicU64::new(0),
+        },
+        limits: Limits {
+            error: 0.0,
+            bfa: 0.0,
+            min_area: 0.0,
+        },
+        settings: *settings,
+        mesh,
+    };
+    let setup = start.elapsed().as_secs_f64();
+    let mut rounds: Vec<RoundStats> = Vec::new();
+    let mut times = PhaseTimes {
+        setup,
+        ..PhaseTimes::default()
+    };
+    progress.start(u64::from(settings.max_rounds));
+    let t = Instant::now();
+    solver.link_roots();
+    solver.limits = solver.limits();
+    let mut round = RoundStats {
+        seconds_linking: t.elapsed().as_secs_f64(),
+        ..RoundStats::default()
+    };
+    let mut converged = false;
+    let mut interrupted = false;
+    for _ in 0..settings.max_rounds {
+        solver.gather_to_convergence(&mut round, cancel);
+        round.links = (solver.links.len() + solver.light_links.len()) as u64;
+        round.leaves = solver.mesh.leaves().len() as u64;
+        round.rays = solver.linker.rays.load(Ordering::Relaxed);
+        rounds.push(round);
+        progress.advance(1);
+        if cancel.is_requested() {
+            interrupted = true;
+            break;
+        }
+        round = RoundStats::default();
+        if !solver.refine(&mut round, cancel) {
+            converged = rounds
+                .last()
+                .is_some_and(|r| r.residual <= settings.tolerance);
+            break;
+        }
+    }
+    progress.finish();
+    for r in &rounds {
+        times.form_factors += r.seconds_linking + r.seconds_refine;
+        times.iterations += r.seconds_gather + r.seconds_push_pull;
+    }
+    let convergence = rounds.iter().map(|r| r.residual).collect();
+    solver.into_solution(options, times, convergence, converged, interrupted, rounds)
+}
+
+impl<'w> Solver<'w, '_> {
+    /// Links every pair of root sides and every root side with every light (seed §6.3).
+    fn link_roots(&mut self) {
+        let roots: Vec<usize> = self
+            .mesh
+            .roots
+            .iter()
+            .flat_map(|&r| Side::BOTH.map(|s| node(r, s)))
+            .collect();
+        let pairs: Vec<(usize, usize, bool)> = roots
+            .iter()
+            .flat_map(|&r| roots.iter().map(move |&e| (r, e, false)))
+            .collect();
+        self.links = self.create_links(&pairs);
+        let lights = self.world.scene.lights.len() as u32;
+        let lights: Vec<(usize, u32)> = (0..lights)
+            .flat_map(|l| roots.iter().map(move |&r| (r, l)))
+            .collect();
+        self.light_links = self.create_light_links(&lights);
+        self.sum_light_links();
+    }
+
+    /// The links of `pairs` (receiver, emitter, known to be unoccluded), in order, computed
+    /// in parallel.
+    fn create_links(&self, pairs: &[(usize, usize, bool)]) -> Vec<Link> {
+        let (mesh, linker) = (&self.mesh, &self.linker);
+        pairs
+            .par_iter()
+            .filter_map(|&(r, e, unoccluded)| linker.link(mesh, r, e, unoccluded))
+            .collect()
+    }
+
+    /// The light links of `pairs` (receiver, light), in order, computed in parallel.
+    fn create_light_links(&self, pairs: &[(usize, u32)]) -> Vec<LightLink> {
+        let (mesh, linker) = (&self.mesh, &self.linker);
+        pairs
+            .par_iter()
+            .filter_map(|&(r, l)| linker.light_link(mesh, r, l))
+            .collect()
+    }
+
+    /// The nodes' light irradiance from the light links.
+    fn sum_light_links(&mut self) {
+        self.nodes.lit.iter_mut().for_each(|h| *h = Rgb64::BLACK);
+        for l in &self.light_links {
+            self.nodes.lit[l.receiver as usize] += l.irradiance;
+        }
+    }
+
+    /// The thresholds: the error relative to all power emitted in the scene (surfaces and
+    /// lights), the minimum area relative to the scene's one-sided surface area. Both are
+    /// unchanged when the scene is scaled or its lights made brighter.
+    fn limits(&self) -> Limits {
+        let roots = &self.mesh.roots;
+        let area: f64 = roots.iter().map(|&r| self.mesh.patch(r).area).sum();
+        let surfaces: f64 = roots
+            .iter()
+            .flat_map(|&r| Side::BOTH.map(|s| (r, s)))
+            .map(|(r, s)| self.nodes.emission[node(r, s)].luminance() * self.mesh.patch(r).area)
+            .sum();
+        let lights: f64 = self
+            .world
+            .scene
+            .lights
+            .iter()
+            .map(|l| self.world.light_power(&l.kind).to_f64().luminance())
+            .sum();
+        let power = surfaces + lights;
+        Limits {
+            error: self.settings.error * power,
+            bfa: self.settings.error * power,
+            min_area: self.settings.min_area * area,
+        }
+    }
+
+    /// Gathers and push-pulls until a gather changes the radiosity by at most the tolerance.
+    fn gather_to_convergence(&mut self, round: &mut RoundStats, cancel: &Cancel) {
+        for _ in 0..MAX_GATHERS {
+            let t = Instant::now();
+            self.gather();
+            round.seconds_gather += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let (change, source) = self.nodes.push_pull(&self.mesh);
+            round.seconds_push_pull += t.elapsed().as_secs_f64();
+            round.gathers += 1;
+            round.residual = if source > 0.0 { change / source } else { 0.0 };
+            if round.residual <= self.settings.tolerance || cancel.is_requested() {
+                break;
+            }
+        }
+    }
+
+    /// Every node gathers `Σ F·V·B` over its links (seed §6.7).
+    fn gather(&mut self) {
+        let b = &self.nodes.radiosity;
+        let mut gathered = vec![Rgb64::BLACK; b.len()];
+        for link in &self.links {
+            gathered[link.receiver as usize] += b[link.emitter as usize] * link.coupling;
+        }
+        self.nodes.gathered = gathered;
+    }
+
+    /// One refinement pass (seed §6.4); true when a link was refined.
+    fn refine(&mut self, round: &mut RoundStats, cancel: &Cancel) -> bool {
+        let mut refined_any = false;
+        loop {
+            let t = Instant::now();
+            let (oracle, limits) = (self.settings.oracle, self.limits);
+            let (nodes, mesh) = (&self.nodes, &self.mesh);
+            let decisions: Vec<Decision> = self
+                .links
+                .par_iter()
+                .map(|l| decide(oracle, l, nodes, mesh, &limits))
+                .collect();
+            let light_decisions: Vec<Decision> = self
+                .light_links
+                .iter()
+                .map(|l| decide_light(l, mesh, &limits))
+                .collect();
+            round.seconds_refine += t.elapsed().as_secs_f64();
+            let t = Instant::now();
+            let (created, refined) = self.apply(&decisions, &light_decisions);
+            round.seconds_linking += t.elapsed().as_secs_f64();
+            round.links_created += created;
+            round.links_refined += refined;
+            refined_any |= refined > 0;
+            if refined == 0
+                || self.settings.refine_pass == RefinePass::Original
+                || cancel.is_requested()
+            {
+                return refined_any;
+            }
+        }
+    }
+
+    /// Replaces every link with a refining decision by links to the children of its receiver
+    /// or emitter (splitting those nodes); returns the links created and refined.
+    fn apply(&mut self, decisions: &[Decision], light_decisions: &[Decision]) -> (u64, u64) {
+        let mut keep = Vec::with_capacity(self.links.len());
+        let mut pairs: Vec<(usize, usize, bool)> = Vec::new();
+        let mut refined = 0;
+        for (link, decision) in self.links.iter().zip(decisions) {
+            let (r, e) = (link.receiver as usize, link.emitter as usize);
+            match decision {
+                Decision::Keep => keep.push(*link),
+                Decision::Receiver => {
+                    refined += 1;
+                    for child in children(&mut self.mesh, r) {
+                        pairs.push((child, e, link.unoccluded));
+                    }
+                }
+                Decision::Emitter => {
+                    refined += 1;
+                    for child in children(&mut self.mesh, e) {
+                        pairs.push((r, child, link.unoccluded));
+                    }
+                }
+            }
+        }
+        let mut keep_lights = Vec::with_capacity(self.light_links.len());
+        let mut light_pairs: Vec<(usize, u32)> = Vec::new();
+        for (link, decision) in self.light_links.iter().zip(light_decisions) {
+            if *decision == Decision::Keep {
+                keep_lights.push(*link);
+            } else {
+                refined += 1;
+                for child in children(&mut self.mesh, link.receiver as usize) {
+                    light_pairs.push((child, link.light));
+                }
+            }
+        }
+        self.nodes.grow(&self.world.scene, &self.mesh);
+        let created = self.create_links(&pairs);
+        let created_lights = self.create_light_links(&light_pairs);
+        let count = (created.len() + created_lights.len()) as u64;
+        keep.extend(created);
+        keep_lights.extend(created_lights);
+        self.links = keep;
+        self.light_links = keep_lights;
+        self.sum_light_links();
+        (count, refined)
+    }
+
+    /// The system on the final leaves and the solution on it.
+    fn into_solution(
+        self,
+        options: SystemOptions,
+        seconds: PhaseTimes,
+        convergence: Vec<f64>,
+        converged: bool,
+        interrupted: bool,
+        rounds: Vec<RoundStats>,
+    ) -> Result<(RadiositySystem<'w>, Solution), SolveError> {
+        let leaves = self.mesh.leaves();
+        let per_element = |values: &Vec<Rgb64>| -> Vec<Rgb64> {
+            leaves
+                .iter()
+                .flat_map(|&l| Side::BOTH.map(|s| values[node(l, s)]))
+                .collect()
+        };
+        let radiosity = per_element(&self.nodes.radiosity);
+        let irradiance = per_element(&self.nodes.irradiance);
+        let lit = per_element(&self.nodes.lit_total);
+        let links = self.links.len() + self.light_links.len();
+        let form_factors = self.linker.form_factors.load(Ordering::Relaxed);
+        let rays = self.linker.rays.load(Ordering::Relaxed);
+        let system = RadiositySystem::from_mesh(self.world, self.mesh, options, Some(lit))?;
+        system.count_work(form_factors, rays);
+        let solution = Solution {
+            solver: SolverKind::Hierarchical(self.settings.oracle),
+            radiosity,
+            irradiance,
+            ambient: Rgb64::BLACK,
+            convergence,
+            converged,
+            interrupted,
+            seconds,
+            rounds,
+            links,
+        };
+        Ok((system, solution))
+    }
+}
+
+/// The nodes of the children of node `n`'s patch (same side), splitting it if needed.
+fn children(mesh: &mut PatchMesh, n: usize) -> [usize; 4] {
+    let (patch, side) = split_node(n);
+    let ids: [PatchId; 4] = mesh.subdivide(patch);
+    ids.map(|c| node(c, side))
+}
