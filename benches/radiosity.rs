@@ -68,7 +68,9 @@ fn bench(c: &mut Criterion) {
                 shaft_culling: culling,
                 seed: 1,
             },
-        );
+            16,
+        )
+        .expect("the Cornell box has no curved shapes to facet");
         let cull = if culling { "shaft" } else { "bvh_only" };
         let name = format!("analytic_ff_with_visibility_{rays}_rays_{cull}");
         group.bench_function(&name, |b| {

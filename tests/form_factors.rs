@@ -165,7 +165,9 @@ fn assert_converges(name: &str, scene: &Scene, exact: f64, max_level: u32, toler
         .collect();
     let shown: Vec<String> = errors.iter().map(|e| format!("{e:.2e}")).collect();
     println!("{name}: exact {exact:.9}, errors by level {shown:?}");
-    for pair in errors.windows(2) {
+    // From level 1 on: the single pair of level 0 is one centroid evaluation, right or wrong
+    // by the luck of where the centroid falls.
+    for pair in errors[1..].windows(2) {
         assert!(pair[1] < pair[0], "{name}: error grew {errors:?}");
     }
     assert!(errors[max_level as usize] < tolerance, "{name}: {errors:?}");
@@ -361,21 +363,42 @@ fn factors_from_every_patch_of_a_closed_box_sum_to_one() {
             receiver_samples: samples,
             ..Default::default()
         };
+        let f = |i, j| {
+            form_factor(
+                mesh.patch(i),
+                Side::Front,
+                mesh.patch(j),
+                Side::Front,
+                &options,
+            )
+        };
+        let (mut worst, mut exchanged, mut total_area) = (0.0f64, 0.0, 0.0);
         for &i in &leaves {
-            let sum: f64 = leaves
-                .iter()
-                .map(|&j| {
-                    form_factor(
-                        mesh.patch(i),
-                        Side::Front,
-                        mesh.patch(j),
-                        Side::Front,
-                        &options,
-                    )
-                })
-                .sum();
-            assert!((sum - 1.0).abs() < 1e-6, "patch {i}: Σ F = {sum}");
+            let a_i = mesh.patch(i).area;
+            let sum: f64 = leaves.iter().map(|&j| f(i, j)).sum();
+            worst = worst.max((sum - 1.0).abs());
+            exchanged += a_i * sum;
+            total_area += a_i;
+            // Each factor is integrated over the smaller patch of its pair: reciprocity is
+            // exact.
+            for &j in &leaves {
+                let (a_j, f_ij, f_ji) = (mesh.patch(j).area, f(i, j), f(j, i));
+                assert!((a_i * f_ij - a_j * f_ji).abs() <= 1e-12 * a_i.max(a_j));
+            }
         }
+        // A row is exact where its receiver is the smaller patch of every pair (the contour
+        // integral over a closed surround is 1); the factors carried over from smaller
+        // patches' centroids deviate by up to a few per cent (measured: 2.9 % at one sample,
+        // 0.4 % at 3 × 3), and the box as a whole loses or gains almost nothing.
+        let (row, whole) = if samples == 1 {
+            (0.04, 2e-3)
+        } else {
+            (6e-3, 5e-4)
+        };
+        assert!(worst < row, "{samples} samples: worst Σ F − 1 = {worst}");
+        let balance = exchanged / total_area - 1.0;
+        assert!(balance.abs() < whole, "{samples} samples: {balance}");
+        println!("{samples} samples: worst row {worst:.2e}, whole box {balance:.2e}");
     }
 }
 

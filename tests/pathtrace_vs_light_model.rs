@@ -53,10 +53,12 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
             .intersect(&camera.ray(x as f32, y as f32))
             .map(|hit| hit.object)
     };
-    // Radiosity solution (16 × 16 patches per face) shown with the same camera: B/π per patch.
+    // Radiosity solution (16 × 16 patches per face, without contact splits: only its
+    // display's outline shift is used) shown with the same camera: B/π per patch.
     let options = SystemOptions {
         mesh: MeshOptions {
             size: MeshSize::Levels(4),
+            contact_splits: false,
             ..MeshOptions::default()
         },
         ..SystemOptions::default()

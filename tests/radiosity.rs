@@ -5,6 +5,7 @@ use glam::Vec3;
 use strahl::accel::AccelKind;
 use strahl::color::{Rgb, Rgb64};
 use strahl::image::{ToneMap, ToneMapping};
+use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::light_links::solid_angle;
@@ -175,6 +176,26 @@ fn cornell_matrix_and_progressive_agree_per_object() {
     for (a, b) in rm.objects.iter().zip(&ro.objects) {
         let (x, y) = (a.incident_power.luminance(), b.incident_power.luminance());
         assert!((x - y).abs() / x < 0.005, "{}: {x} vs {y}", a.name);
+    }
+}
+
+#[test]
+fn overshooting_converges_in_fewer_shots_on_every_mesh() {
+    // On the coarsest mesh overshooting once stalled: a patch that had been shot ahead of
+    // its light kept shooting its negative amount plus the ambient guess again, a zero shot,
+    // for ever. Measured: 216 vs 313 shots at levels 0, 697 vs 1047 at levels 1.
+    let world = cornell();
+    for levels in [0, 1] {
+        let system = RadiositySystem::new(&world, options(levels)).unwrap();
+        let plain = progressive(&system, false, 1e-4);
+        let ahead = progressive(&system, true, 1e-4);
+        assert!(plain.converged && ahead.converged, "levels {levels}");
+        assert!(
+            ahead.iterations() < plain.iterations(),
+            "levels {levels}: {} vs {}",
+            ahead.iterations(),
+            plain.iterations()
+        );
     }
 }
 
@@ -419,7 +440,14 @@ fn hierarchical<'w>(
     world: &'w World,
     settings: &HierarchicalSettings,
 ) -> (RadiositySystem<'w>, Solution) {
-    let options = options(0);
+    hierarchical_with(world, options(0), settings)
+}
+
+fn hierarchical_with<'w>(
+    world: &'w World,
+    options: SystemOptions,
+    settings: &HierarchicalSettings,
+) -> (RadiositySystem<'w>, Solution) {
     solve_hierarchical(world, options, settings, &NoProgress, &Cancel::new()).unwrap()
 }
 
@@ -581,5 +609,106 @@ fn contact_splits_keep_every_faces_area() {
     assert!(cut_roots > roots, "{cut_roots} vs {roots}");
     for (a, b) in whole.iter().zip(&cut) {
         assert!((a - b).abs() <= 1e-12 * a, "{a} vs {b}");
+    }
+}
+
+/// A white ball of radius ½ resting on a white 2 × 2 quad, lit by a small lamp above: the
+/// ball's pole touches the quad's centroid, and the ball's facets meet the quad edge-on.
+fn ball_on_quad() -> World {
+    let mut scene = Scene::empty("ball-on-quad");
+    let white = scene.add_material(Material::diffuse("white", Rgb::splat(0.7)));
+    let lamp = scene.add_material(Material::emitter("lamp", Rgb::splat(0.5), Rgb::splat(5.0)));
+    let quad = Shape::Parallelogram {
+        origin: Vec3::new(-1.0, 0.0, 1.0),
+        edge_u: Vec3::X * 2.0,
+        edge_v: Vec3::Z * -2.0,
+    };
+    scene.add_object("quad", quad, white);
+    let ball = Shape::Sphere {
+        center: Vec3::new(0.0, 0.5, 0.0),
+        radius: 0.5,
+    };
+    scene.add_object("ball", ball, white);
+    let light = Shape::Parallelogram {
+        origin: Vec3::new(-0.2, 2.0, -0.2),
+        edge_u: Vec3::X * 0.4,
+        edge_v: Vec3::Z * 0.4,
+    };
+    scene.add_object("lamp", light, lamp);
+    World::new(scene, AccelKind::Bvh).unwrap()
+}
+
+/// Luminance of the absorbed power per object name.
+fn absorbed(report: &Report) -> std::collections::HashMap<String, f64> {
+    report
+        .objects
+        .iter()
+        .map(|o| (o.name.clone(), o.absorbed_power.luminance()))
+        .collect()
+}
+
+fn report_of(system: &RadiositySystem, solution: &Solution) -> Report {
+    Report::new(
+        "ball-on-quad",
+        solution.solver.name(),
+        &solution.surface_power(system),
+        solution.stats(system),
+    )
+}
+
+#[test]
+fn a_ball_touching_a_quad_gives_finite_light_that_agrees_with_the_light_model() {
+    // Once inf/NaN: the pole's point form factor to the quad, evaluated in the quad's plane,
+    // summed rounding noise up to 1, and f32 noise contact-split the ball's facets into
+    // slivers. Every solver now gives finite figures that conserve energy, and the
+    // hierarchical solution agrees with the light model.
+    let world = ball_on_quad();
+    let system = RadiositySystem::new(&world, options(0)).unwrap();
+    let flat = [
+        matrix(&system, Iteration::GaussSeidel, 1e-6),
+        progressive(&system, false, 1e-6),
+        progressive(&system, true, 1e-6),
+    ];
+    for solution in &flat {
+        let report = report_of(&system, solution);
+        let t = &report.totals;
+        let (e, a, x) = (
+            t.emitted_power.luminance(),
+            t.absorbed_power.luminance(),
+            t.escaped_power.luminance(),
+        );
+        assert!(a.is_finite() && x.is_finite(), "{}: {a} {x}", report.solver);
+        assert!(
+            x >= 0.0 && (a + x - e).abs() < 1e-6 * e,
+            "{}",
+            report.solver
+        );
+        for o in &report.objects {
+            assert!(o.absorbed_power.luminance() > 0.0, "{}", o.name);
+        }
+    }
+    let reference = {
+        let settings = LightTraceSettings {
+            photons: 4_000_000,
+            seed: 5,
+            max_bounces: 1000,
+        };
+        let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
+        absorbed(&Report::new(
+            "ball-on-quad",
+            LightTraceOutput::SOLVER,
+            &out.power,
+            out.stats(),
+        ))
+    };
+    let mut options = options(0);
+    options.mesh.segments = 32;
+    let (system, solution) = hierarchical_with(&world, options, &HierarchicalSettings::default());
+    let r = absorbed(&report_of(&system, &solution));
+    // Measured: quad +2.5 %, ball +1.7 %, lamp −3.1 % (it receives only reflected light);
+    // the light model's noise at 4·10⁶ photons is under 1 %.
+    for (name, tolerance) in [("quad", 0.03), ("ball", 0.03), ("lamp", 0.05)] {
+        let error = r[name] / reference[name] - 1.0;
+        assert!(error.abs() < tolerance, "{name}: {error:+.4}");
     }
 }

@@ -63,7 +63,8 @@ pub struct RadiosityArgs {
     /// Form-factor approximation.
     #[arg(long, value_parser = choice::<FormFactorMethod>(), default_value_t = FormFactorMethod::Analytic)]
     pub form_factor: FormFactorMethod,
-    /// Receiver points per axis for the analytic form factor (1 = the centroid).
+    /// Points per axis on the smaller patch of a pair for the analytic form factor (1 = the
+    /// centroid).
     #[arg(long, default_value_t = 1)]
     pub receiver_samples: u32,
     /// Visibility rays per patch pair: a count or `adaptive`.

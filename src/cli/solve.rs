@@ -122,6 +122,13 @@ pub fn run(args: &SolveArgs) -> Result<()> {
             )
         }
     };
+    if let Some((entry, field)) = report.first_non_finite() {
+        anyhow::bail!(
+            "the {} solution has a non-finite {field} for {entry}: a numerical failure, so no \
+             report is written (please report the scene)",
+            report.solver
+        );
+    }
     if !args.quiet {
         let t = &report.totals;
         eprintln!(

@@ -14,6 +14,13 @@ use super::clip::{Plane, SideCounts, split};
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
 
+/// Relative rounding of scene geometry: coordinates are single precision (6·10⁻⁸ per
+/// coordinate, compounded by transforms and tessellation), so corners that should share a
+/// plane or a point — the pole of a tessellated sphere resting on a floor, a rotated box
+/// standing on one — can be off it by a few 10⁻⁸ of the coordinates' magnitude. Contact
+/// tests use this band, which holds such corners with margin.
+const ROUNDING_EPSILON: f64 = 1e-6;
+
 /// A face on its way to becoming root patches.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Face {
@@ -131,7 +138,7 @@ fn touches(toucher: &Face, face: &Face, toucher_plane: &Plane) -> bool {
     if !SideCounts::of(toucher_plane, &face.corners).straddles() {
         return false;
     }
-    let tolerance = 1e-9 * extent(&face.corners).max(extent(&toucher.corners));
+    let tolerance = ROUNDING_EPSILON * extent(&face.corners).max(extent(&toucher.corners));
     let contact: Vec<DVec3> = toucher
         .corners
         .iter()
@@ -165,7 +172,9 @@ fn segment_overlaps(contact: &[DVec3], face: &Face, plane: &Plane, tolerance: f6
             return false;
         }
         if da < -slack || db < -slack {
-            let t = (da + slack) / (da - db);
+            // Clipped at the edge itself: the slack decides only whether the segment is
+            // outside, so a segment that merely ends at the face's edge overlaps by nothing.
+            let t = da / (da - db);
             if da < -slack {
                 t0 = t0.max(t);
             } else {
@@ -231,7 +240,7 @@ impl BoundsGrid {
 
     /// The cells a box covers (slightly enlarged), `None` when they are too many.
     fn cells_of(&self, &(lo, hi): &(DVec3, DVec3)) -> Option<impl Iterator<Item = [i64; 3]>> {
-        let pad = 1e-9 * lo.abs().max(hi.abs()).max_element() + f64::MIN_POSITIVE;
+        let pad = ROUNDING_EPSILON * lo.abs().max(hi.abs()).max_element() + f64::MIN_POSITIVE;
         let to_cell = |v: f64| (v / self.cell).floor() as i64;
         let a = [lo.x - pad, lo.y - pad, lo.z - pad].map(to_cell);
         let b = [hi.x + pad, hi.y + pad, hi.z + pad].map(to_cell);

@@ -43,9 +43,10 @@ crate::choice::named_values!(FormFactorMethod {
 pub struct FormFactorOptions {
     /// The approximation.
     pub method: FormFactorMethod,
-    /// Receiver points per axis for the analytic factor: 1 evaluates at the receiver's area
-    /// centroid (the seed's first simplification); `n > 1` averages over the centres of an
-    /// `n × n` grid of equal-parameter strata, weighted by area.
+    /// Points per axis for the analytic factor, on the smaller patch of the pair (the
+    /// factor of the larger follows by reciprocity): 1 evaluates at the area centroid (the
+    /// seed's first simplification); `n > 1` averages over the centres of an `n × n` grid of
+    /// equal-parameter strata, weighted by area.
     pub receiver_samples: u32,
     /// Hybrid switch: the point approximation is used when the centroid distance divided by
     /// √(larger area) exceeds this (dimensionless, scale-free). At 3 the point factor of
@@ -86,6 +87,17 @@ pub fn point_to_polygon(point: DVec3, normal: DVec3, polygon: &[DVec3]) -> f64 {
         }
     }
     (sum.dot(normal).abs() / TAU).min(1.0)
+}
+
+/// The form factor from a differential area at `point` (unit normal `normal`) to side `side`
+/// of `patch`: [`point_to_polygon`] when the point lies in front of that side, 0 when it lies
+/// behind (it sees the other side) or in the patch's plane (edge-on).
+pub fn point_to_side(point: DVec3, normal: DVec3, patch: &Patch, side: Side) -> f64 {
+    if Plane::of_side(patch, side).distance(point) > 0.0 {
+        point_to_polygon(point, normal, patch.corners())
+    } else {
+        0.0
+    }
 }
 
 /// The point-to-point form factor (seed §3.2, "second simplification") from a differential
@@ -188,7 +200,8 @@ fn jacobian(patch: &Patch, s: f64, t: f64) -> f64 {
 }
 
 /// `F_ij` from side `receiver_side` of `receiver` (i) to side `emitter_side` of `emitter` (j)
-/// by `options.method`, without visibility. The reverse factor is
+/// by `options.method`, without visibility. The analytic factor is integrated over the
+/// smaller of the two patches, so the reverse factor is exactly
 /// [`reciprocal`]`(F_ij, A_i, A_j)`. The factor of a patch to itself (or to any patch in its
 /// plane) is 0; parts of the emitter behind the receiver's side do not count, and neither do
 /// receiver points behind the emitter's side (they see its other side).
@@ -221,11 +234,31 @@ pub fn form_factor(
             emitter.area,
         );
     }
-    let emitter_plane = Plane::new(emitter.centroid, emitter_normal);
-    receiver_points(receiver, options.receiver_samples)
+    // Integrated over the smaller patch and carried over by reciprocity, so that
+    // `A_i F_ij = A_j F_ji` holds exactly, and neither a huge receiver sampled at a point next
+    // to a small emitter nor a receiver point that touches the emitter at a corner (the pole
+    // of a tessellated sphere on a floor's centroid, where the contour integral turns the
+    // rounding of the geometry into anything up to 1) takes more than the emitter sends.
+    if receiver.area > emitter.area {
+        let f_ji = area_to_polygon(emitter, emitter_side, receiver, receiver_side, options);
+        return reciprocal(f_ji, emitter.area, receiver.area);
+    }
+    area_to_polygon(receiver, receiver_side, emitter, emitter_side, options)
+}
+
+/// The mean over `options.receiver_samples`² points of `from` of the point form factor to
+/// side `to_side` of `to`, at most 1.
+fn area_to_polygon(
+    from: &Patch,
+    from_side: Side,
+    to: &Patch,
+    to_side: Side,
+    options: &FormFactorOptions,
+) -> f64 {
+    let normal = from_side.normal(from);
+    receiver_points(from, options.receiver_samples)
         .into_iter()
-        .filter(|&(p, _)| emitter_plane.distance(p) > 0.0)
-        .map(|(p, w)| w * point_to_polygon(p, normal, emitter.corners()))
+        .map(|(p, w)| w * point_to_side(p, normal, to, to_side))
         .sum::<f64>()
         .min(1.0)
 }
@@ -245,6 +278,54 @@ mod tests {
         let (x, y) = (a / c, b / c);
         let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
         (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / TAU
+    }
+
+    #[test]
+    fn a_point_sees_only_the_side_it_lies_in_front_of() {
+        let square = rect([
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ]);
+        let exact = element_to_parallel_rectangle(1.0, 1.0, 1.0);
+        let (above, below) = (DVec3::Z, -DVec3::Z);
+        let f = point_to_side(above, -DVec3::Z, &square, Side::Front);
+        assert!((f / exact - 1.0).abs() < 1e-12, "{f} vs {exact}");
+        assert_eq!(point_to_side(above, -DVec3::Z, &square, Side::Back), 0.0);
+        let f = point_to_side(below, DVec3::Z, &square, Side::Back);
+        assert!((f / exact - 1.0).abs() < 1e-12, "{f} vs {exact}");
+        assert_eq!(point_to_side(below, DVec3::Z, &square, Side::Front), 0.0);
+        // In the plane: edge-on from either side.
+        let centre = DVec3::new(0.5, 0.5, 0.0);
+        assert_eq!(point_to_side(centre, DVec3::X, &square, Side::Front), 0.0);
+        assert_eq!(point_to_side(centre, DVec3::X, &square, Side::Back), 0.0);
+    }
+
+    #[test]
+    fn a_huge_receiver_next_to_a_small_emitter_takes_only_what_it_sends() {
+        // A 2 × 2 lamp 2 above the centre of a floor of side 2·10⁹ facing it: the floor's
+        // centroid sees the lamp under a large solid angle, but the lamp's whole output is
+        // all the floor can get, A_f F_fl = A_l F_lf ≤ A_l.
+        let floor = rect([
+            [-1e9, 0.0, 1e9],
+            [1e9, 0.0, 1e9],
+            [1e9, 0.0, -1e9],
+            [-1e9, 0.0, -1e9],
+        ]);
+        let lamp = rect([
+            [-1.0, 2.0, -1.0],
+            [1.0, 2.0, -1.0],
+            [1.0, 2.0, 1.0],
+            [-1.0, 2.0, 1.0],
+        ]);
+        let options = FormFactorOptions::default();
+        // Both front sides face each other (the floor's normal is +y, the lamp's −y).
+        let (fs, ls) = (Side::Front, Side::Front);
+        let f_fl = form_factor(&floor, fs, &lamp, ls, &options);
+        let f_lf = form_factor(&lamp, ls, &floor, fs, &options);
+        assert!((f_lf - 1.0).abs() < 1e-6, "{f_lf}");
+        assert!((floor.area * f_fl - lamp.area * f_lf).abs() < 1e-12 * lamp.area);
     }
 
     #[test]

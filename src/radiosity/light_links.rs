@@ -15,7 +15,6 @@
 use super::element::Side;
 use super::form_factor::receiver_points;
 use super::mesh::Patch;
-use super::visibility::occluded_except;
 use crate::color::Rgb64;
 use crate::geometry::{Frame, Ray, offset_origin};
 use crate::sampling::hash64;
@@ -29,7 +28,8 @@ use std::f64::consts::PI;
 const SKY_DIRECTIONS_PER_AXIS: u32 = 4;
 
 /// Irradiance in W·m⁻² that `light` sends to side `side` of `patch`, averaged over the patch,
-/// with shadows from every surface of `world`; the visible share is estimated at
+/// with shadows from every surface of `world` (for patches of curved shapes, the world
+/// of [`super::Visibility::world`], whose surfaces they lie on); the visible share is estimated at
 /// `samples × samples` receiver points (the centroid for `samples ≤ 1`). The sky gives `π·L`
 /// times the share of the hemisphere that reaches it.
 pub fn light_irradiance(
@@ -148,7 +148,7 @@ fn sees_light(world: &World, x: DVec3, normal: DVec3, light: &LightKind) -> bool
     } else {
         f32::INFINITY
     };
-    !occluded_except(world, Ray::new(origin, inc.wi), t_max, &[])
+    !world.occluded(&Ray::new(origin, inc.wi), t_max)
 }
 
 /// The cosine-weighted share of the hemisphere over `normal` that reaches the sky, averaged

@@ -10,17 +10,20 @@
 //! clusters of primitives that cannot block any ray; when few primitives survive, the rays
 //! test only those, otherwise the scene's BVH is used. Surfaces lying in either patch's plane
 //! cannot block a ray leaving that plane and are skipped; a ray between two faces of the
-//! same convex object is still blocked by its other faces. Curved analytic objects the
-//! patches were tessellated from are ignored for the rays of their own patches (the facets
-//! lie inside the true surface); self-shadowing within one curved object is not seen.
+//! same convex object is still blocked by its other faces.
+//!
+//! Rays are traced against the surfaces the patches lie on: curved analytic shapes are
+//! replaced by the same polygon meshes the patches were cut from ([`World::faceted`]), so a
+//! ray leaving a facet does not hit the true sphere it lies inside, and the inside of a
+//! sphere sees only the inside.
 
 use super::clip::{Plane, SideCounts};
 use super::mesh::{Patch, PatchId, PatchMesh};
 use super::shaft::{Bounds, Shaft};
 use crate::accel::PrimitiveSet;
-use crate::geometry::{Ray, offset_origin, surface_offset};
-use crate::scene::Shape;
-use crate::world::World;
+use crate::geometry::{Ray, offset_origin};
+
+use crate::world::{GeometryError, World};
 use glam::DVec3;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
@@ -40,8 +43,6 @@ const DIRECT_TEST_LIMIT: usize = 48;
 /// Pairs with fewer rays than this skip the shaft (one or two BVH rays cost less than
 /// building and testing the shaft).
 const SHAFT_MIN_RAYS: u32 = 4;
-/// How many hits on ignored objects one ray may step past before it counts as unblocked.
-const MAX_IGNORED_HITS: usize = 32;
 
 /// How many visibility rays per patch pair (`--vis-rays N|adaptive`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -129,12 +130,12 @@ struct Cluster {
     end: u32,
 }
 
-/// Visibility queries against a traced world.
+/// Visibility queries against the surfaces of a patch mesh.
 pub struct Visibility<'w> {
     world: &'w World,
+    /// `world` with its curved shapes as polygon meshes, when it has any.
+    faceted: Option<World>,
     clusters: Vec<Cluster>,
-    /// Per object: true for curved analytic shapes (their patches are facets of them).
-    curved: Vec<bool>,
     options: VisibilityOptions,
 }
 
@@ -149,9 +150,15 @@ enum Occluders {
 }
 
 impl<'w> Visibility<'w> {
-    /// Prepares visibility queries on `world` (whose scene the patch mesh was built from).
-    pub fn new(world: &'w World, options: VisibilityOptions) -> Visibility<'w> {
-        let geometry = &world.geometry;
+    /// Prepares visibility queries on the surfaces of `world`'s patch mesh, whose curved
+    /// shapes have `segments` segments around the axis.
+    pub fn new(
+        world: &'w World,
+        options: VisibilityOptions,
+        segments: u32,
+    ) -> Result<Visibility<'w>, GeometryError> {
+        let faceted = world.faceted(segments)?;
+        let geometry = &faceted.as_ref().unwrap_or(world).geometry;
         let mut clusters: Vec<Cluster> = Vec::new();
         for prim in 0..geometry.len() as u32 {
             let b = PrimitiveSet::bounds(geometry, prim);
@@ -175,20 +182,18 @@ impl<'w> Visibility<'w> {
                 }),
             }
         }
-        let curved = world
-            .scene
-            .objects
-            .iter()
-            .map(|o| {
-                o.shape.is_analytic() && !matches!(o.shape, Shape::Box { .. } | Shape::Plane { .. })
-            })
-            .collect();
-        Visibility {
+        Ok(Visibility {
             world,
+            faceted,
             clusters,
-            curved,
             options,
-        }
+        })
+    }
+
+    /// The world the rays are traced in: the scene with curved shapes as the polygon meshes
+    /// the patches lie on.
+    pub fn world(&self) -> &World {
+        self.faceted.as_ref().unwrap_or(self.world)
     }
 
     /// The options in use.
@@ -227,18 +232,12 @@ impl<'w> Visibility<'w> {
     pub fn estimate(&self, mesh: &PatchMesh, a: PatchId, b: PatchId) -> VisibilityEstimate {
         let (lo, hi) = (a.min(b), a.max(b));
         let (p, q) = (mesh.patch(lo), mesh.patch(hi));
-        let ignored = [p.object, q.object].map(|o| self.curved.get(o as usize) == Some(&true));
-        let ignored: Vec<u32> = [p.object, q.object]
-            .into_iter()
-            .zip(ignored)
-            .filter_map(|(o, skip)| skip.then_some(o))
-            .collect();
         let adaptive = self.options.rays == VisRays::Adaptive;
         let mut m = self.rays_per_axis(p, q);
         let occluders = if m * m < SHAFT_MIN_RAYS && !adaptive {
             Occluders::Scene
         } else {
-            self.occluders(p, q, &ignored)
+            self.occluders(p, q)
         };
         if matches!(occluders, Occluders::None) {
             return VisibilityEstimate {
@@ -262,7 +261,7 @@ impl<'w> Visibility<'w> {
             let arrived = from
                 .iter()
                 .zip(&to)
-                .filter(|&(&x, &y)| !self.blocked(x, p.normal, y, q.normal, &occluders, &ignored))
+                .filter(|&(&x, &y)| !self.blocked(x, p.normal, y, q.normal, &occluders))
                 .count();
             rays += from.len() as u64;
             // Mixed answers (a shadow edge crosses the pair) or none arriving (the pair would
@@ -296,17 +295,12 @@ impl<'w> Visibility<'w> {
         per_point: u32,
     ) -> Option<(Vec<f64>, u64)> {
         let (p, q) = (mesh.patch(a), mesh.patch(b));
-        let ignored: Vec<u32> = [p.object, q.object]
-            .into_iter()
-            .filter(|&o| self.curved.get(o as usize) == Some(&true))
-            .collect();
-        let occluders = self.occluders(p, q, &ignored);
+        let occluders = self.occluders(p, q);
         if matches!(occluders, Occluders::None) {
             return None;
         }
         let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, a, b) ^ 0x9e37);
-        let blocked =
-            |x: DVec3, y: DVec3| self.blocked(x, p.normal, y, q.normal, &occluders, &ignored);
+        let blocked = |x: DVec3, y: DVec3| self.blocked(x, p.normal, y, q.normal, &occluders);
         // A first probe: 2 × 2 jittered rays from every point. A shadow edge across the pair
         // turns up unless it shades less than about a quarter of the emitter from all points.
         let probe = points.iter().all(|&x| {
@@ -354,7 +348,7 @@ impl<'w> Visibility<'w> {
             Bounds::from_points(b.corners().iter().copied()),
         );
         let planes = [Plane::of_patch(a), Plane::of_patch(b)];
-        let geometry = &self.world.geometry;
+        let geometry = &self.world().geometry;
         self.clusters
             .iter()
             .filter(|c| shaft.may_intersect(&c.bounds))
@@ -377,16 +371,11 @@ impl<'w> Visibility<'w> {
             .collect()
     }
 
-    fn occluders(&self, a: &Patch, b: &Patch, ignored: &[u32]) -> Occluders {
+    fn occluders(&self, a: &Patch, b: &Patch) -> Occluders {
         if !self.options.shaft_culling {
             return Occluders::Scene;
         }
-        let geometry = &self.world.geometry;
-        let survivors: Vec<u32> = self
-            .shaft_survivors(a, b)
-            .into_iter()
-            .filter(|&prim| !ignored.contains(&geometry.owner(prim).0))
-            .collect();
+        let survivors = self.shaft_survivors(a, b);
         if survivors.is_empty() {
             Occluders::None
         } else if survivors.len() > DIRECT_TEST_LIMIT {
@@ -398,15 +387,7 @@ impl<'w> Visibility<'w> {
 
     /// Whether the segment between surface points `x` (normal `nx`) and `y` (normal `ny`) is
     /// blocked; both ends are moved off their surfaces first.
-    fn blocked(
-        &self,
-        x: DVec3,
-        nx: DVec3,
-        y: DVec3,
-        ny: DVec3,
-        occluders: &Occluders,
-        ignored: &[u32],
-    ) -> bool {
+    fn blocked(&self, x: DVec3, nx: DVec3, y: DVec3, ny: DVec3, occluders: &Occluders) -> bool {
         let (xf, yf) = (x.as_vec3(), y.as_vec3());
         let start = offset_origin(xf, nx.as_vec3(), yf - xf);
         let end = offset_origin(yf, ny.as_vec3(), xf - yf);
@@ -418,36 +399,15 @@ impl<'w> Visibility<'w> {
         let ray = Ray::new(start, d / length);
         match occluders {
             Occluders::None => false,
-            Occluders::Listed(prims) => prims
-                .iter()
-                .any(|&prim| self.world.geometry.intersect(prim, &ray, length).is_some()),
-            Occluders::Scene => occluded_except(self.world, ray, length, ignored),
+            Occluders::Listed(prims) => prims.iter().any(|&prim| {
+                self.world()
+                    .geometry
+                    .intersect(prim, &ray, length)
+                    .is_some()
+            }),
+            Occluders::Scene => self.world().occluded(&ray, length),
         }
     }
-}
-
-/// Whether anything but the `ignored` objects blocks `ray` for `t ∈ (0, t_max]`, stepping
-/// past hits on ignored objects.
-pub fn occluded_except(world: &World, mut ray: Ray, mut t_max: f32, ignored: &[u32]) -> bool {
-    if ignored.is_empty() {
-        return world.occluded(&ray, t_max);
-    }
-    for _ in 0..MAX_IGNORED_HITS {
-        let Some(hit) = world.closest_hit(&ray, t_max) else {
-            return false;
-        };
-        if !ignored.contains(&world.geometry.owner(hit.prim).0) {
-            return true;
-        }
-        let p = ray.at(hit.t);
-        let step = hit.t + surface_offset(p);
-        ray = Ray::new(ray.at(step), ray.dir);
-        t_max -= step;
-        if t_max <= 0.0 {
-            return false;
-        }
-    }
-    false
 }
 
 /// One jittered point per stratum of an `m × m` grid over `patch`.
@@ -478,7 +438,7 @@ mod tests {
     use super::*;
     use crate::accel::AccelKind;
     use crate::radiosity::mesh::MeshOptions;
-    use crate::scene::{Material, Scene};
+    use crate::scene::{Material, Scene, Shape};
     use glam::Vec3;
 
     /// Two unit squares facing each other at z = 0 and z = 1 (scaled by `scale`), and an
@@ -522,7 +482,7 @@ mod tests {
     fn visibility_of(scene: Scene, options: VisibilityOptions) -> f64 {
         let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
         let world = World::new(scene, AccelKind::Bvh).unwrap();
-        let vis = Visibility::new(&world, options);
+        let vis = Visibility::new(&world, options, 16).unwrap();
         let v = vis.between(&mesh, 0, 1);
         assert_eq!(v, vis.between(&mesh, 1, 0), "symmetric");
         v
@@ -574,7 +534,7 @@ mod tests {
             PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap()
         };
         let world = World::new(pair_scene(None, 1.0), AccelKind::Bvh).unwrap();
-        let vis = Visibility::new(&world, VisibilityOptions::default());
+        let vis = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         let (small, large) = (build(1.0), build(1000.0));
         let m_small = vis.rays_per_axis(small.patch(0), small.patch(1));
         let m_large = vis.rays_per_axis(large.patch(0), large.patch(1));
@@ -587,13 +547,13 @@ mod tests {
         let scene = pair_scene(Some((2.5, 3.0)), 1.0);
         let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
         let world = World::new(scene, AccelKind::Bvh).unwrap();
-        let vis = Visibility::new(&world, VisibilityOptions::default());
+        let vis = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         // The plate at x ∈ [2.5, 3] is outside the shaft between the squares.
         let survivors = vis.candidates(mesh.patch(0), mesh.patch(1)).unwrap();
         assert!(survivors.is_empty(), "{survivors:?}");
         let scene = pair_scene(Some((0.2, 0.3)), 1.0);
         let world = World::new(scene, AccelKind::Bvh).unwrap();
-        let vis = Visibility::new(&world, VisibilityOptions::default());
+        let vis = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         let survivors = vis.candidates(mesh.patch(0), mesh.patch(1)).unwrap();
         let owners: Vec<u32> = survivors
             .iter()

@@ -132,6 +132,41 @@ impl Report {
             totals: power.totals(),
         }
     }
+
+    /// The first non-finite figure, as `(entry, field)` (`entry` is an object's name or
+    /// `totals`), or `None` when every figure is finite. A non-finite figure is a numerical
+    /// failure, never a result: callers refuse to write such a report.
+    pub fn first_non_finite(&self) -> Option<(String, &'static str)> {
+        let finite = |c: &Rgb64| c.to_array().iter().all(|v| v.is_finite());
+        for o in &self.objects {
+            let fields = [
+                ("incident_power", Some(o.incident_power)),
+                ("absorbed_power", Some(o.absorbed_power)),
+                ("emitted_power", Some(o.emitted_power)),
+                ("reflected_power", Some(o.reflected_power)),
+                ("irradiance", o.irradiance),
+                ("radiosity", o.radiosity),
+            ];
+            for (field, value) in fields {
+                if value.is_some_and(|v| !finite(&v)) {
+                    return Some((o.name.clone(), field));
+                }
+            }
+            if !o.luminous_flux_lm.is_finite() || o.illuminance_lux.is_some_and(|v| !v.is_finite())
+            {
+                return Some((o.name.clone(), "illuminance_lux"));
+            }
+        }
+        let t = &self.totals;
+        [
+            ("emitted_power", t.emitted_power),
+            ("absorbed_power", t.absorbed_power),
+            ("escaped_power", t.escaped_power),
+        ]
+        .into_iter()
+        .find(|(_, v)| !finite(v))
+        .map(|(field, _)| ("totals".to_string(), field))
+    }
 }
 
 #[cfg(test)]
@@ -156,6 +191,36 @@ mod tests {
         assert_eq!(unbounded.area, None);
         assert_eq!(unbounded.irradiance, None);
         assert_eq!(unbounded.illuminance_lux, None);
+    }
+
+    #[test]
+    fn non_finite_figures_are_found_by_entry_and_field() {
+        let fine = PowerBalance::default();
+        let mut report = Report {
+            scene: "s".into(),
+            solver: "matrix".into(),
+            units: Units::default(),
+            stats: Stats::default(),
+            objects: vec![ObjectReport::new("a".into(), None, 1.0, &fine)],
+            totals: Totals::default(),
+        };
+        assert_eq!(report.first_non_finite(), None);
+        report.totals.escaped_power = Rgb64::new(0.0, f64::NEG_INFINITY, 0.0);
+        assert_eq!(
+            report.first_non_finite(),
+            Some(("totals".to_string(), "escaped_power"))
+        );
+        let broken = PowerBalance {
+            absorbed: Rgb64::new(f64::NAN, 0.0, 0.0),
+            ..PowerBalance::default()
+        };
+        report
+            .objects
+            .push(ObjectReport::new("b".into(), None, 1.0, &broken));
+        assert_eq!(
+            report.first_non_finite(),
+            Some(("b".to_string(), "absorbed_power"))
+        );
     }
 
     #[test]

@@ -182,6 +182,18 @@ impl Shape {
         )
     }
 
+    /// True for curved analytic shapes (sphere, cylinder, cone, frustum), whose polygon
+    /// meshes only approximate them.
+    pub fn is_curved(&self) -> bool {
+        matches!(
+            self,
+            Shape::Sphere { .. }
+                | Shape::Cylinder { .. }
+                | Shape::Cone { .. }
+                | Shape::Frustum { .. }
+        )
+    }
+
     /// Short name of the shape kind.
     pub fn kind_name(&self) -> &'static str {
         match self {

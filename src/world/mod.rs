@@ -22,7 +22,7 @@ pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
 use crate::accel::{AccelKind, AccelStats, Accelerator, PrimHit};
 use crate::color::Rgb;
 use crate::geometry::Ray;
-use crate::scene::{LightKind, Material, Scene};
+use crate::scene::{LightKind, Material, Scene, Shape};
 use glam::Vec3;
 use std::f32::consts::PI;
 use std::time::Instant;
@@ -37,6 +37,8 @@ pub struct World {
     pub lights: LightSet,
     /// The accelerator over `geometry`.
     accel: Box<dyn Accelerator<SceneGeometry>>,
+    /// Which accelerator.
+    kind: AccelKind,
     /// Wall-clock seconds the accelerator took to build.
     build_seconds: f64,
 }
@@ -54,8 +56,35 @@ impl World {
             geometry,
             lights,
             accel,
+            kind,
             build_seconds,
         })
+    }
+
+    /// This world with every curved analytic shape (sphere, cylinder, cone, frustum) replaced
+    /// by its polygon mesh of `segments` segments around the axis, with the same accelerator
+    /// kind: the surfaces that methods working on those meshes (radiosity patches) must see,
+    /// since the facets lie inside the true surface. `None` when there is no curved shape,
+    /// so this world serves as it is.
+    pub fn faceted(&self, segments: u32) -> Result<Option<World>, GeometryError> {
+        if !self.scene.objects.iter().any(|o| o.shape.is_curved()) {
+            return Ok(None);
+        }
+        let mut scene = self.scene.clone();
+        for (index, object) in scene.objects.iter_mut().enumerate() {
+            if object.shape.is_curved() {
+                let mesh =
+                    object
+                        .shape
+                        .to_mesh(segments)
+                        .map_err(|reason| GeometryError::Degenerate {
+                            object: self.scene.object_name(index),
+                            reason,
+                        })?;
+                object.shape = Shape::Mesh(std::sync::Arc::new(mesh.into_owned()));
+            }
+        }
+        World::new(scene, self.kind).map(Some)
     }
 
     /// The closest surface hit along `ray` (unbounded), described.

@@ -22,6 +22,7 @@ pub use solution::{
 pub use system::{Couplings, RadiositySystem, SystemOptions};
 
 use super::MeshError;
+use crate::world::GeometryError;
 
 /// Error of a radiosity solve.
 #[derive(Debug, thiserror::Error)]
@@ -29,6 +30,9 @@ pub enum SolveError {
     /// The scene could not be meshed.
     #[error(transparent)]
     Mesh(#[from] MeshError),
+    /// The surfaces for visibility rays could not be built.
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
     /// The scene has no finite surface to put patches on.
     #[error("the scene has no finite surfaces to solve radiosity on")]
     NoPatches,

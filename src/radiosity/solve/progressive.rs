@@ -4,7 +4,8 @@
 //!
 //! The shot `s` is the unshot radiosity `ΔB_j`, or with overshooting (negative radiosity)
 //! `ΔB_j + ρ_j × ambient`: the light the patch will still receive is sent ahead, leaving a
-//! negative unshot amount that later shots correct; the fixed point is unchanged. The ambient
+//! negative unshot amount that later shots correct (shooting just that amount, no more light
+//! ahead); the fixed point is unchanged. The ambient
 //! term (Cohen et al. 1988) is `R · Σ_k ΔB_k A_k / Σ_k A_k` with `R = 1 / (1 − ρ̄)` and `ρ̄`
 //! the area-averaged reflectance; it is kept in the solution for display.
 //!
@@ -81,7 +82,11 @@ pub fn solve_progressive(
             break;
         }
         let j = brightest(system, &unshot);
-        let overshoot = if settings.overshoot {
+        // Only light is sent ahead: a patch shooting back a negative unshot amount (light
+        // sent ahead of it that it did not receive) shoots just that, so every shot of a
+        // negative patch brings it to zero; overshooting it again would leave it where it
+        // was and stall the solver on that patch.
+        let overshoot = if settings.overshoot && unshot[j].luminance() > 0.0 {
             (system.reflectance[j] * solution.ambient).map(|v| v.max(0.0))
         } else {
             Rgb64::BLACK

@@ -151,6 +151,7 @@ impl<'w> RadiositySystem<'w> {
             .iter()
             .map(|e| surface::reflectance(scene, mesh.patch(e.patch), e.side))
             .collect();
+        let visibility = Visibility::new(world, options.visibility, options.mesh.segments)?;
         let light_irradiance = linked.unwrap_or_else(|| {
             elements
                 .par_iter()
@@ -158,7 +159,7 @@ impl<'w> RadiositySystem<'w> {
                     scene.lights.iter().fold(Rgb64::BLACK, |sum, light| {
                         let patch = mesh.patch(e.patch);
                         sum + light_irradiance(
-                            world,
+                            visibility.world(),
                             &light.kind,
                             patch,
                             e.side,
@@ -178,7 +179,7 @@ impl<'w> RadiositySystem<'w> {
             light_irradiance,
             setup_seconds: start.elapsed().as_secs_f64(),
             radius,
-            visibility: Visibility::new(world, options.visibility),
+            visibility,
             mesh,
             options,
             form_factors: AtomicU64::new(0),

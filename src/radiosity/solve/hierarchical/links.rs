@@ -12,10 +12,10 @@
 
 use super::nodes::split_node;
 use crate::color::Rgb64;
-use crate::radiosity::clip::{Facing, Plane, facing};
-use crate::radiosity::form_factor::{gauss_points, point_to_polygon};
+use crate::radiosity::clip::{Facing, facing};
+use crate::radiosity::form_factor::{gauss_points, point_to_side};
 use crate::radiosity::light_links::{light_irradiance, point_irradiance};
-use crate::radiosity::mesh::{Patch, PatchMesh};
+use crate::radiosity::mesh::PatchMesh;
 use crate::radiosity::visibility::Visibility;
 use crate::scene::LightKind;
 use crate::world::World;
@@ -97,16 +97,7 @@ impl Linker<'_> {
         if facing(r, rs, e, es) == Facing::Away {
             return None;
         }
-        let (normal, emitter_normal) = (rs.normal(r), es.normal(e));
-        // The point form factor from a point of one patch (unit normal `n`) to the other
-        // patch's polygon, 0 for points behind the other's side.
-        let factor = |p: DVec3, n: DVec3, other: &Patch, other_normal: DVec3| {
-            if Plane::new(other.centroid, other_normal).distance(p) > 0.0 {
-                point_to_polygon(p, n, other.corners())
-            } else {
-                0.0
-            }
-        };
+        let normal = rs.normal(r);
         // The range over the receiver: its Gauss points, centroid and corners (pulled in a
         // little from the edge an emitter may touch).
         let range_points: Vec<DVec3> = gauss_points(r)
@@ -121,23 +112,36 @@ impl Linker<'_> {
             .collect();
         let factors: Vec<f64> = range_points
             .iter()
-            .map(|&p| factor(p, normal, e, emitter_normal))
+            .map(|&p| point_to_side(p, normal, e, es))
             .collect();
-        let f_max = factors.iter().copied().fold(0.0, f64::max);
-        if f_max <= 0.0 {
-            return None;
-        }
         // The transport is integrated over the smaller patch (its Gauss points, each with the
         // share of the other patch it sees) and carried over by reciprocity,
         // A_r·F_re = A_e·F_er: point samples of a small emitter from a large receiver would
         // be far off wherever a sample lies next to it.
-        let (from, from_patch, from_normal, to, to_patch, to_normal, scale) = if r.area <= e.area {
-            (r, rp, normal, e, ep, emitter_normal, 1.0)
+        let (from, from_patch, from_side, to, to_patch, to_side, scale) = if r.area <= e.area {
+            (r, rp, rs, e, ep, es, 1.0)
         } else {
-            (e, ep, emitter_normal, r, rp, normal, e.area / r.area)
+            (e, ep, es, r, rp, rs, e.area / r.area)
         };
+        let from_normal = from_side.normal(from);
         let gauss = gauss_points(from);
         let points: Vec<DVec3> = gauss.iter().map(|g| g.0).collect();
+        let point_factors: Vec<f64> = points
+            .iter()
+            .map(|&p| point_to_side(p, from_normal, to, to_side))
+            .collect();
+        // The unoccluded mean over the receiver, `scale · Σ w F`, is at most the maximum: it
+        // holds the range up where the receiver's samples all miss a small, close emitter.
+        let mean = scale
+            * gauss
+                .iter()
+                .zip(&point_factors)
+                .map(|(g, f)| g.1 * f)
+                .sum::<f64>();
+        let f_max = factors.iter().copied().fold(mean, f64::max);
+        if f_max <= 0.0 {
+            return None;
+        }
         let seen = if unoccluded {
             None
         } else {
@@ -166,7 +170,7 @@ impl Linker<'_> {
             * gauss
                 .iter()
                 .enumerate()
-                .map(|(i, &(p, w))| w * factor(p, from_normal, to, to_normal) * visible_at(i))
+                .map(|(i, &(_, w))| w * point_factors[i] * visible_at(i))
                 .sum::<f64>();
         let visible: f64 = gauss
             .iter()
@@ -196,12 +200,13 @@ impl Linker<'_> {
         let (rp, rs) = split_node(receiver);
         let patch = mesh.patch(rp);
         let kind: &LightKind = &self.world.scene.lights[light as usize].kind;
-        let irradiance = light_irradiance(self.world, kind, patch, rs, self.link_samples);
+        let shadows = self.visibility.world();
+        let irradiance = light_irradiance(shadows, kind, patch, rs, self.link_samples);
         let normal = rs.normal(patch);
         let mut range = (f64::INFINITY, 0.0f64);
         let points = gauss_points(patch);
         for p in points.iter().map(|p| p.0).chain([patch.centroid]) {
-            let y = point_irradiance(self.world, kind, p, normal).luminance();
+            let y = point_irradiance(shadows, kind, p, normal).luminance();
             range = (range.0.min(y), range.1.max(y));
         }
         self.rays

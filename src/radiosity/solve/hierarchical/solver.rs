@@ -76,7 +76,7 @@ pub fn solve_hierarchical<'w>(
     if mesh.roots.is_empty() {
         return Err(SolveError::NoPatches);
     }
-    let visibility = Visibility::new(world, options.visibility);
+    let visibility = Visibility::new(world, options.visibility, options.mesh.segments)?;
     let nodes = Nodes::new(&world.scene, &mesh);
     let mut solver = Solver {
         world,
