@@ -12,7 +12,9 @@ use crate::progress::{Cancel, ProgressListener};
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// Largest `patches²` the matrix solver accepts (at most 12 bytes per stored coupling).
+/// Largest `patches²` the matrix solver accepts. Of the four side pairs of two patches
+/// usually one couples (each lies in front of one side of the other), so about `patches²`
+/// couplings are stored, 12 bytes each.
 pub const MAX_MATRIX_ENTRIES: u64 = 200_000_000;
 
 /// The iteration scheme (`--iteration`).
@@ -62,9 +64,10 @@ pub fn solve_matrix(
     cancel: &Cancel,
 ) -> Result<Solution, SolveError> {
     let n = system.len();
-    if (n as u64) * (n as u64) > MAX_MATRIX_ENTRIES {
+    let patches = system.leaves.len();
+    if (patches as u64) * (patches as u64) > MAX_MATRIX_ENTRIES {
         return Err(SolveError::MatrixTooLarge {
-            patches: n,
+            patches,
             limit: MAX_MATRIX_ENTRIES,
         });
     }
