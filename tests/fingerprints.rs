@@ -137,6 +137,11 @@ fn outputs_match_their_fingerprints() {
             ],
         ),
         case(
+            "solve-hierarchical-shooting",
+            "solve cornell --solver hierarchical-shooting --error 1e-3 --report {}/report.json",
+            &[("report.json", 0xf8932b8ef9dbec4d)],
+        ),
+        case(
             "radiosity-hierarchical",
             "render cornell -o {}/image.pfm --method radiosity --solver hierarchical --error 3e-4 --width 48 --height 40",
             &[("image.pfm", 0xa0bf746e262a2585)],

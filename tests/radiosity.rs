@@ -9,7 +9,9 @@ use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::light_links::solid_angle;
-use strahl::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, solve_hierarchical};
+use strahl::radiosity::solve::hierarchical::{
+    HierarchicalSettings, Oracle, solve_hierarchical, solve_hierarchical_shooting,
+};
 use strahl::radiosity::solve::{
     DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
     Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
@@ -477,6 +479,52 @@ fn hierarchical_furnace_gives_e_over_one_minus_rho() {
                 let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
                 assert!((a / e - 1.0).abs() < 0.01, "absorbed {a} of {e}");
             }
+        }
+    }
+}
+
+#[test]
+fn hierarchical_shooting_furnace_gives_e_over_one_minus_rho() {
+    let world = furnace();
+    let shooting = ShootingSettings {
+        tolerance: 1e-7,
+        ..ShootingSettings::default()
+    };
+    for oracle in [Oracle::Lischinski, Oracle::Bfa] {
+        // Down to 1/512 of the scene's area. Measured: every element within 3.1 % (at the
+        // default minimum area the smallest elements along the edges are off by up to 45 %
+        // while every face stays exact: an open defect of the shooter).
+        let settings = HierarchicalSettings {
+            oracle,
+            error: 1e-6,
+            min_area: 2e-3,
+            ..HierarchicalSettings::default()
+        };
+        let (system, solution) = solve_hierarchical_shooting(
+            &world,
+            options(0),
+            &settings,
+            &shooting,
+            &NoProgress,
+            &Cancel::new(),
+        )
+        .unwrap();
+        assert!(system.leaves.len() > 6 * 64, "{}", system.leaves.len());
+        assert_furnace(&system, &solution, 0.04);
+        let report = Report::new(
+            "furnace",
+            solution.solver.name(),
+            &solution.surface_power(&system),
+            solution.stats(&system),
+        );
+        let per_face = report.totals.emitted_power.luminance() / 6.0;
+        for face in &report.objects {
+            let a = face.absorbed_power.luminance();
+            assert!(
+                (a / per_face - 1.0).abs() < 2e-3,
+                "{}: {a} of {per_face}",
+                face.name
+            );
         }
     }
 }

@@ -10,9 +10,11 @@ use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::mesh::{MeshOptions, MeshSize};
-use strahl::radiosity::solve::hierarchical::{HierarchicalSettings, solve_hierarchical};
+use strahl::radiosity::solve::hierarchical::{
+    HierarchicalSettings, solve_hierarchical, solve_hierarchical_shooting,
+};
 use strahl::radiosity::solve::{
-    RadiositySystem, ShootingSettings, SystemOptions, solve_progressive,
+    RadiositySystem, ShootingSettings, Solution, SystemOptions, solve_progressive,
 };
 use strahl::report::Report;
 use strahl::scene::builtin;
@@ -31,6 +33,16 @@ fn incident(report: &Report) -> HashMap<String, f64> {
         .collect()
 }
 
+/// Incident power (green channel) per object name of a radiosity solution.
+fn incident_of(system: &RadiositySystem, solution: &Solution) -> HashMap<String, f64> {
+    incident(&Report::new(
+        "cornell",
+        solution.solver.name(),
+        &solution.surface_power(system),
+        solution.stats(system),
+    ))
+}
+
 fn radiosity_at(world: &World, levels: u32) -> HashMap<String, f64> {
     let options = SystemOptions {
         mesh: MeshOptions {
@@ -45,12 +57,7 @@ fn radiosity_at(world: &World, levels: u32) -> HashMap<String, f64> {
         ..Default::default()
     };
     let solution = solve_progressive(&system, &settings, &NoProgress, &Cancel::new()).unwrap();
-    incident(&Report::new(
-        "cornell",
-        solution.solver.name(),
-        &solution.surface_power(&system),
-        solution.stats(&system),
-    ))
+    incident_of(&system, &solution)
 }
 
 #[test]
@@ -114,17 +121,31 @@ fn hierarchical_radiosity_agrees_with_the_light_model() {
         &Cancel::new(),
     )
     .unwrap();
-    let r = incident(&Report::new(
-        "cornell",
-        solution.solver.name(),
-        &solution.surface_power(&system),
-        solution.stats(&system),
-    ));
-    let worst = reference
-        .iter()
-        .map(|(name, &e)| (r[name] / e - 1.0).abs())
-        .fold(0.0, f64::max);
-    // Measured at the default error: 2.1 % (the light, lit only indirectly and sitting a
-    // tenth of a millimetre under the ceiling); every other object within 1.5 %.
-    assert!(worst < 0.03, "{worst}");
+    let r = incident_of(&system, &solution);
+    let worst = |r: &HashMap<String, f64>| {
+        reference
+            .iter()
+            .map(|(name, &e)| (r[name] / e - 1.0).abs())
+            .fold(0.0, f64::max)
+    };
+    // Measured at the default error: 2.6 % (the light, lit only indirectly and sitting a
+    // tenth of a millimetre under the ceiling); every other object within 1.6 %.
+    assert!(worst(&r) < 0.03, "{}", worst(&r));
+    // Hierarchical shooting at a coarser error (a shot per leaf side makes it slower).
+    // Measured: 1.95 % (the light); the others within 1.4 %.
+    let settings = HierarchicalSettings {
+        error: 3e-4,
+        ..HierarchicalSettings::default()
+    };
+    let (system, solution) = solve_hierarchical_shooting(
+        &world,
+        options,
+        &settings,
+        &ShootingSettings::default(),
+        &NoProgress,
+        &Cancel::new(),
+    )
+    .unwrap();
+    let r = incident_of(&system, &solution);
+    assert!(worst(&r) < 0.03, "{}", worst(&r));
 }

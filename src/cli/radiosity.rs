@@ -10,7 +10,7 @@ use strahl::image::ToneMapping;
 use strahl::measure::Film;
 use strahl::progress::Cancel;
 use strahl::radiosity::solve::hierarchical::{
-    HierarchicalSettings, Oracle, RefinePass, solve_hierarchical,
+    HierarchicalSettings, Oracle, RefinePass, solve_hierarchical, solve_hierarchical_shooting,
 };
 use strahl::radiosity::solve::{
     DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
@@ -33,6 +33,9 @@ pub enum Solver {
     Progressive,
     /// Hierarchical radiosity: links between quadtree nodes, refined by an oracle.
     Hierarchical,
+    /// Hierarchical shooting: progressive refinement received at the quadtree level an
+    /// oracle allows.
+    HierarchicalShooting,
 }
 
 /// How faces are prepared for linking (seed §6.3.1).
@@ -46,7 +49,9 @@ pub enum Linking {
 
 /// Options of the radiosity solvers.
 #[derive(Debug, Args)]
-#[command(next_help_heading = "Radiosity (--solver matrix|progressive|hierarchical)")]
+#[command(
+    next_help_heading = "Radiosity (--solver matrix|progressive|hierarchical|hierarchical-shooting)"
+)]
 pub struct RadiosityArgs {
     /// Initial patch size: `levels:N` (2ᴺ × 2ᴺ patches per face) or the longest patch edge
     /// in scene units [default: levels:3; hierarchical: levels:0, it refines by itself].
@@ -152,7 +157,7 @@ impl RadiosityArgs {
             mesh: MeshOptions {
                 segments: self.segments,
                 size: self.mesh_size.unwrap_or(match solver {
-                    Solver::Hierarchical => MeshSize::Levels(0),
+                    Solver::Hierarchical | Solver::HierarchicalShooting => MeshSize::Levels(0),
                     _ => MeshSize::Levels(3),
                 }),
                 contact_splits: self.linking == Linking::Asymmetric,
@@ -195,17 +200,42 @@ pub fn solve<'w>(
     let options = args.system_options(solver, run.seed)?;
     let cancel = progress::cancel_flag();
     let (system, solution) = with_threads(run.threads, || -> Result<_> {
-        if solver == Solver::Hierarchical {
-            let settings = HierarchicalSettings {
-                oracle: args.oracle,
-                error: args.error,
-                min_area: args.min_area,
-                refine_pass: args.refine_pass,
-                tolerance: args.tolerance,
-                max_rounds: args.max_rounds,
-            };
-            let bar = progress::Bar::new("refining", run.quiet);
-            return Ok(solve_hierarchical(world, options, &settings, &bar, cancel)?);
+        let hierarchical = HierarchicalSettings {
+            oracle: args.oracle,
+            error: args.error,
+            min_area: args.min_area,
+            refine_pass: args.refine_pass,
+            tolerance: args.tolerance,
+            max_rounds: args.max_rounds,
+        };
+        let shooting = ShootingSettings {
+            tolerance: args.tolerance,
+            max_shots: args.max_shots,
+            overshoot: args.overshoot,
+        };
+        match solver {
+            Solver::Hierarchical => {
+                let bar = progress::Bar::new("refining", run.quiet);
+                return Ok(solve_hierarchical(
+                    world,
+                    options,
+                    &hierarchical,
+                    &bar,
+                    cancel,
+                )?);
+            }
+            Solver::HierarchicalShooting => {
+                let bar = progress::Bar::new("shooting", run.quiet);
+                return Ok(solve_hierarchical_shooting(
+                    world,
+                    options,
+                    &hierarchical,
+                    &shooting,
+                    &bar,
+                    cancel,
+                )?);
+            }
+            _ => {}
         }
         let system = RadiositySystem::new(world, options)?;
         let solution = match solver {
@@ -219,15 +249,10 @@ pub fn solve<'w>(
                 solve_matrix(&system, &settings, &bar, cancel)?
             }
             Solver::Progressive => {
-                let settings = ShootingSettings {
-                    tolerance: args.tolerance,
-                    max_shots: args.max_shots,
-                    overshoot: args.overshoot,
-                };
                 let bar = progress::Bar::new("shooting", run.quiet);
-                solve_progressive(&system, &settings, &bar, cancel)?
+                solve_progressive(&system, &shooting, &bar, cancel)?
             }
-            Solver::Hierarchical | Solver::LightTrace => {
+            Solver::Hierarchical | Solver::HierarchicalShooting | Solver::LightTrace => {
                 bail!("{solver:?} is not a flat radiosity solver")
             }
         };

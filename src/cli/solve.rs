@@ -103,7 +103,10 @@ pub fn run(args: &SolveArgs) -> Result<()> {
             }
             Report::new(&name, LightTraceOutput::SOLVER, &out.power, out.stats())
         }
-        Solver::Matrix | Solver::Progressive | Solver::Hierarchical => {
+        Solver::Matrix
+        | Solver::Progressive
+        | Solver::Hierarchical
+        | Solver::HierarchicalShooting => {
             let run = RunOptions {
                 seed: args.seed,
                 threads: args.threads,

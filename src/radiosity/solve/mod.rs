@@ -11,6 +11,7 @@ mod matrix;
 mod progressive;
 mod solution;
 mod system;
+mod unshot_progress;
 
 pub use display::{DisplaySettings, Shading, render_solution};
 pub use interpolate::{CornerValues, vertex_radiosity};

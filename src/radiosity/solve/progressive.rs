@@ -15,15 +15,13 @@
 use super::SolveError;
 use super::solution::{Solution, SolverKind, power_fraction};
 use super::system::{Couplings, RadiositySystem};
+use super::unshot_progress::UnshotProgress;
 use crate::color::Rgb64;
 use crate::progress::{Cancel, ProgressListener};
 use std::time::Instant;
 
 /// Memory for cached coupling columns, bytes.
 pub const COLUMN_CACHE_BYTES: usize = 512 << 20;
-
-/// Progress-bar units for the way from the first unshot fraction (1) down to the tolerance.
-const PROGRESS_UNITS: u64 = 1000;
 
 /// Settings of progressive refinement.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,9 +67,7 @@ pub fn solve_progressive(
             / total_area
     }));
     let interreflection = mean_reflectance.map(|r| 1.0 / (1.0 - r.min(0.999_999)));
-    let log_tolerance = settings.tolerance.max(1e-300).ln();
-    let mut shown = 0;
-    progress.start(PROGRESS_UNITS);
+    let mut bar = UnshotProgress::start(progress, settings.tolerance);
     let started = Instant::now();
     let mut form_factor_seconds = 0.0;
     let mut fraction = power_fraction(system, &unshot);
@@ -110,17 +106,9 @@ pub fn solve_progressive(
         fraction = power_fraction(system, &unshot);
         solution.ambient = ambient(system, &unshot, total_area, interreflection);
         solution.convergence.push(fraction);
-        let reached = if fraction > 0.0 {
-            ((fraction.ln() / log_tolerance).clamp(0.0, 1.0) * PROGRESS_UNITS as f64) as u64
-        } else {
-            PROGRESS_UNITS
-        };
-        if reached > shown {
-            progress.advance(reached - shown);
-            shown = reached;
-        }
+        bar.reach(fraction);
     }
-    progress.finish();
+    bar.finish();
     solution.converged = fraction <= settings.tolerance;
     solution.seconds.form_factors = form_factor_seconds;
     solution.seconds.iterations = started.elapsed().as_secs_f64() - form_factor_seconds;

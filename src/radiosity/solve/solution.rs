@@ -28,16 +28,20 @@ pub enum SolverKind {
     Progressive,
     /// Hierarchical radiosity, refined by the given oracle.
     Hierarchical(Oracle),
+    /// Hierarchical shooting, receivers refined by the given oracle.
+    HierarchicalShooting(Oracle),
 }
 
 impl SolverKind {
-    /// The solver's name in reports: `matrix-jacobi`, `matrix-gauss-seidel`, `progressive`.
+    /// The solver's name in reports: `matrix-jacobi`, `matrix-gauss-seidel`, `progressive`,
+    /// `hierarchical`, `hierarchical-shooting`.
     pub fn name(self) -> &'static str {
         match self {
             SolverKind::Matrix(Iteration::Jacobi) => "matrix-jacobi",
             SolverKind::Matrix(Iteration::GaussSeidel) => "matrix-gauss-seidel",
             SolverKind::Progressive => "progressive",
             SolverKind::Hierarchical(_) => "hierarchical",
+            SolverKind::HierarchicalShooting(_) => "hierarchical-shooting",
         }
     }
 
@@ -46,7 +50,7 @@ impl SolverKind {
     pub fn convergence_measure(self) -> &'static str {
         match self {
             SolverKind::Matrix(_) => "residual",
-            SolverKind::Progressive => "unshot",
+            SolverKind::Progressive | SolverKind::HierarchicalShooting(_) => "unshot",
             SolverKind::Hierarchical(_) => "change",
         }
     }

@@ -18,13 +18,19 @@
 //!
 //! Link creation, the oracle and the gather run on all threads of the current rayon pool, in
 //! an order that does not depend on the thread count.
+//!
+//! Hierarchical shooting (§5.3, [`solve_hierarchical_shooting`]) shares the quadtrees, the
+//! light links and the link computation, but keeps no patch links: each shot is received at
+//! the level the oracle allows and pushed to the leaves.
 
 mod links;
 mod nodes;
 mod oracle;
+mod shooting;
 mod solver;
 
 pub use oracle::Oracle;
+pub use shooting::solve_hierarchical_shooting;
 pub use solver::{RoundStats, solve_hierarchical};
 
 /// Which links a refinement pass judges.

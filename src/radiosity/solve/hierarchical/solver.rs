@@ -48,16 +48,31 @@ pub struct RoundStats {
     pub seconds_push_pull: f64,
 }
 
-/// The state of a solve.
-struct Solver<'w, 'v> {
-    world: &'w World,
-    mesh: PatchMesh,
-    nodes: Nodes,
+/// The state of a solve (shared with hierarchical shooting, which uses the nodes, the light
+/// links and the linker but keeps no patch links).
+pub(super) struct Solver<'w, 'v> {
+    pub(super) world: &'w World,
+    pub(super) mesh: PatchMesh,
+    pub(super) nodes: Nodes,
     links: Vec<Link>,
     light_links: Vec<LightLink>,
-    linker: Linker<'v>,
-    limits: Limits,
-    settings: HierarchicalSettings,
+    pub(super) linker: Linker<'v>,
+    pub(super) limits: Limits,
+    pub(super) settings: HierarchicalSettings,
+}
+
+/// The root patches of `world`'s scene meshed by `options`, and the visibility estimator
+/// for links between their nodes.
+pub(super) fn prepare<'w>(
+    world: &'w World,
+    options: &SystemOptions,
+) -> Result<(PatchMesh, Visibility<'w>), SolveError> {
+    let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
+    if mesh.roots.is_empty() {
+        return Err(SolveError::NoPatches);
+    }
+    let visibility = Visibility::new(world, options.visibility, options.mesh.segments)?;
+    Ok((mesh, visibility))
 }
 
 /// Solves `world`'s scene by hierarchical radiosity: the mesh (roots, contact splits and any
@@ -72,32 +87,8 @@ pub fn solve_hierarchical<'w>(
     cancel: &Cancel,
 ) -> Result<(RadiositySystem<'w>, Solution), SolveError> {
     let start = Instant::now();
-    let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
-    if mesh.roots.is_empty() {
-        return Err(SolveError::NoPatches);
-    }
-    let visibility = Visibility::new(world, options.visibility, options.mesh.segments)?;
-    let nodes = Nodes::new(&world.scene, &mesh);
-    let mut solver = Solver {
-        world,
-        nodes,
-        links: Vec::new(),
-        light_links: Vec::new(),
-        linker: Linker {
-            world,
-            visibility: &visibility,
-            link_samples: options.link_samples,
-            rays: AtomicU64::new(0),
-            form_factors: AtomicU64::new(0),
-        },
-        limits: Limits {
-            error: 0.0,
-            bfa: 0.0,
-            min_area: 0.0,
-        },
-        settings: *settings,
-        mesh,
-    };
+    let (mesh, visibility) = prepare(world, &options)?;
+    let mut solver = Solver::new(world, mesh, &visibility, &options, settings);
     let setup = start.elapsed().as_secs_f64();
     let mut rounds: Vec<RoundStats> = Vec::new();
     let mut times = PhaseTimes {
@@ -106,8 +97,8 @@ pub fn solve_hierarchical<'w>(
     };
     progress.start(u64::from(settings.max_rounds));
     let t = Instant::now();
-    solver.link_roots();
-    solver.limits = solver.limits();
+    solver.link_root_pairs();
+    solver.link_root_lights();
     let mut round = RoundStats {
         seconds_linking: t.elapsed().as_secs_f64(),
         ..RoundStats::default()
@@ -139,23 +130,73 @@ pub fn solve_hierarchical<'w>(
         times.iterations += r.seconds_gather + r.seconds_push_pull;
     }
     let convergence = rounds.iter().map(|r| r.residual).collect();
-    solver.into_solution(options, times, convergence, converged, interrupted, rounds)
+    let kind = SolverKind::Hierarchical(settings.oracle);
+    solver.into_solution(
+        kind,
+        options,
+        times,
+        convergence,
+        converged,
+        interrupted,
+        rounds,
+    )
 }
 
-impl<'w> Solver<'w, '_> {
-    /// Links every pair of root sides and every root side with every light (seed §6.3).
-    fn link_roots(&mut self) {
-        let roots: Vec<usize> = self
-            .mesh
+impl<'w: 'v, 'v> Solver<'w, 'v> {
+    /// A solver on the root patches `mesh` with no links yet; its limits are set.
+    pub(super) fn new(
+        world: &'w World,
+        mesh: PatchMesh,
+        visibility: &'v Visibility<'v>,
+        options: &SystemOptions,
+        settings: &HierarchicalSettings,
+    ) -> Self {
+        let mut solver = Solver {
+            world,
+            nodes: Nodes::new(&world.scene, &mesh),
+            links: Vec::new(),
+            light_links: Vec::new(),
+            linker: Linker {
+                world,
+                visibility,
+                link_samples: options.link_samples,
+                rays: AtomicU64::new(0),
+                form_factors: AtomicU64::new(0),
+            },
+            limits: Limits {
+                error: 0.0,
+                bfa: 0.0,
+                min_area: 0.0,
+            },
+            settings: *settings,
+            mesh,
+        };
+        solver.limits = solver.limits();
+        solver
+    }
+
+    /// Both sides of every root patch, as nodes.
+    pub(super) fn root_nodes(&self) -> Vec<usize> {
+        self.mesh
             .roots
             .iter()
             .flat_map(|&r| Side::BOTH.map(|s| node(r, s)))
-            .collect();
+            .collect()
+    }
+
+    /// Links every pair of root sides that face and see each other (seed §6.3).
+    fn link_root_pairs(&mut self) {
+        let roots = self.root_nodes();
         let pairs: Vec<(usize, usize, bool)> = roots
             .iter()
             .flat_map(|&r| roots.iter().map(move |&e| (r, e, false)))
             .collect();
         self.links = self.create_links(&pairs);
+    }
+
+    /// Links every root side with every light that reaches it.
+    pub(super) fn link_root_lights(&mut self) {
+        let roots = self.root_nodes();
         let lights = self.world.scene.lights.len() as u32;
         let lights: Vec<(usize, u32)> = (0..lights)
             .flat_map(|l| roots.iter().map(move |&r| (r, l)))
@@ -166,7 +207,7 @@ impl<'w> Solver<'w, '_> {
 
     /// The links of `pairs` (receiver, emitter, known to be unoccluded), in order, computed
     /// in parallel.
-    fn create_links(&self, pairs: &[(usize, usize, bool)]) -> Vec<Link> {
+    pub(super) fn create_links(&self, pairs: &[(usize, usize, bool)]) -> Vec<Link> {
         let (mesh, linker) = (&self.mesh, &self.linker);
         pairs
             .par_iter()
@@ -245,7 +286,7 @@ impl<'w> Solver<'w, '_> {
     }
 
     /// One refinement pass (seed §6.4); true when a link was refined.
-    fn refine(&mut self, round: &mut RoundStats, cancel: &Cancel) -> bool {
+    pub(super) fn refine(&mut self, round: &mut RoundStats, cancel: &Cancel) -> bool {
         let mut refined_any = false;
         loop {
             let t = Instant::now();
@@ -325,9 +366,11 @@ impl<'w> Solver<'w, '_> {
         (count, refined)
     }
 
-    /// The system on the final leaves and the solution on it.
-    fn into_solution(
+    /// The system on the final leaves and the solution on it, by solver `kind`.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn into_solution(
         self,
+        kind: SolverKind,
         options: SystemOptions,
         seconds: PhaseTimes,
         convergence: Vec<f64>,
@@ -351,7 +394,7 @@ impl<'w> Solver<'w, '_> {
         let system = RadiositySystem::from_mesh(self.world, self.mesh, options, Some(lit))?;
         system.count_work(form_factors, rays);
         let solution = Solution {
-            solver: SolverKind::Hierarchical(self.settings.oracle),
+            solver: kind,
             radiosity,
             irradiance,
             ambient: Rgb64::BLACK,
@@ -367,7 +410,7 @@ impl<'w> Solver<'w, '_> {
 }
 
 /// The nodes of the children of node `n`'s patch (same side), splitting it if needed.
-fn children(mesh: &mut PatchMesh, n: usize) -> [usize; 4] {
+pub(super) fn children(mesh: &mut PatchMesh, n: usize) -> [usize; 4] {
     let (patch, side) = split_node(n);
     let ids: [PatchId; 4] = mesh.subdivide(patch);
     ids.map(|c| node(c, side))
