@@ -24,24 +24,28 @@ use strahl::world::World;
 const RHO: f32 = 0.5;
 const L: f32 = 2.0;
 
-/// The unit cube as six parallelograms facing inwards, all emitting `L` with reflectance ρ.
-fn furnace() -> World {
-    let mut scene = Scene::empty("furnace");
-    let m = scene.add_material(Material::emitter("glow", Rgb::splat(RHO), Rgb::splat(L)));
-    let faces = [
+/// The six faces of the unit cube as parallelograms facing inwards (face 1 is the ceiling).
+fn unit_cube_faces() -> [Shape; 6] {
+    [
         (Vec3::ZERO, Vec3::Z, Vec3::X),
         (Vec3::Y, Vec3::X, Vec3::Z),
         (Vec3::ZERO, Vec3::Y, Vec3::Z),
         (Vec3::X, Vec3::Z, Vec3::Y),
         (Vec3::ZERO, Vec3::X, Vec3::Y),
         (Vec3::Z, Vec3::Y, Vec3::X),
-    ];
-    for (k, (origin, edge_u, edge_v)) in faces.into_iter().enumerate() {
-        let shape = Shape::Parallelogram {
-            origin,
-            edge_u,
-            edge_v,
-        };
+    ]
+    .map(|(origin, edge_u, edge_v)| Shape::Parallelogram {
+        origin,
+        edge_u,
+        edge_v,
+    })
+}
+
+/// The unit cube as six parallelograms facing inwards, all emitting `L` with reflectance ρ.
+fn furnace() -> World {
+    let mut scene = Scene::empty("furnace");
+    let m = scene.add_material(Material::emitter("glow", Rgb::splat(RHO), Rgb::splat(L)));
+    for (k, shape) in unit_cube_faces().into_iter().enumerate() {
         scene.add_object(&format!("face{k}"), shape, m);
     }
     World::new(scene, AccelKind::Bvh).unwrap()
@@ -581,20 +585,7 @@ fn closed_box(lamp: bool) -> World {
     let mut scene = Scene::empty("box");
     let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(RHO)));
     let glow = scene.add_material(Material::emitter("glow", Rgb::splat(RHO), Rgb::splat(L)));
-    let faces = [
-        (Vec3::ZERO, Vec3::Z, Vec3::X),
-        (Vec3::Y, Vec3::X, Vec3::Z),
-        (Vec3::ZERO, Vec3::Y, Vec3::Z),
-        (Vec3::X, Vec3::Z, Vec3::Y),
-        (Vec3::ZERO, Vec3::X, Vec3::Y),
-        (Vec3::Z, Vec3::Y, Vec3::X),
-    ];
-    for (k, (origin, edge_u, edge_v)) in faces.into_iter().enumerate() {
-        let shape = Shape::Parallelogram {
-            origin,
-            edge_u,
-            edge_v,
-        };
+    for (k, shape) in unit_cube_faces().into_iter().enumerate() {
         let m = if k == 1 && !lamp { glow } else { grey };
         scene.add_object(&format!("face{k}"), shape, m);
     }

@@ -5,6 +5,7 @@
 //! every subdivision level, while the light model's noise at 4·10⁶ photons is about 0.1 %.
 
 use std::collections::HashMap;
+use std::sync::OnceLock;
 use strahl::accel::AccelKind;
 use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
@@ -60,21 +61,30 @@ fn radiosity_at(world: &World, levels: u32) -> HashMap<String, f64> {
     incident_of(&system, &solution)
 }
 
+/// The light model's incident power per object of the Cornell box at 4·10⁶ photons,
+/// computed once for all tests of this file.
+fn light_model_reference() -> &'static HashMap<String, f64> {
+    static REFERENCE: OnceLock<HashMap<String, f64>> = OnceLock::new();
+    REFERENCE.get_or_init(|| {
+        let settings = LightTraceSettings {
+            photons: 4_000_000,
+            seed: 5,
+            max_bounces: 1000,
+        };
+        let out = trace_light(&cornell(), &settings, &NoProgress, &Cancel::new()).unwrap();
+        incident(&Report::new(
+            "cornell",
+            LightTraceOutput::SOLVER,
+            &out.power,
+            out.stats(),
+        ))
+    })
+}
+
 #[test]
 fn radiosity_converges_to_the_light_model_as_the_mesh_is_refined() {
     let world = cornell();
-    let settings = LightTraceSettings {
-        photons: 4_000_000,
-        seed: 5,
-        max_bounces: 1000,
-    };
-    let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
-    let reference = incident(&Report::new(
-        "cornell",
-        LightTraceOutput::SOLVER,
-        &out.power,
-        out.stats(),
-    ));
+    let reference = light_model_reference();
     let worst: Vec<f64> = (2..=4)
         .map(|levels| {
             let r = radiosity_at(&world, levels);
@@ -94,18 +104,7 @@ fn radiosity_converges_to_the_light_model_as_the_mesh_is_refined() {
 #[test]
 fn hierarchical_radiosity_agrees_with_the_light_model() {
     let world = cornell();
-    let settings = LightTraceSettings {
-        photons: 4_000_000,
-        seed: 5,
-        max_bounces: 1000,
-    };
-    let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
-    let reference = incident(&Report::new(
-        "cornell",
-        LightTraceOutput::SOLVER,
-        &out.power,
-        out.stats(),
-    ));
+    let reference = light_model_reference();
     let options = SystemOptions {
         mesh: MeshOptions {
             size: MeshSize::Levels(0),

@@ -143,3 +143,24 @@ pub fn decide_light(link: &LightLink, mesh: &PatchMesh, limits: &Limits) -> Deci
         Decision::Keep
     }
 }
+
+/// Whether the receiver of `link` takes a shot of radiosity luminance `y` (W·m⁻²) where it
+/// is (hierarchical shooting): the power it brings is certain enough — Lischinski:
+/// `A·(F_max − F_min)·y ≤` the error; BFA: `A·F_max·y <` the BFA threshold — or the
+/// receiver may not be split.
+pub fn accepts_shot(
+    oracle: Oracle,
+    link: &Link,
+    y: f64,
+    mesh: &PatchMesh,
+    limits: &Limits,
+) -> bool {
+    if !splittable(mesh, link.receiver, limits) {
+        return true;
+    }
+    let area = mesh.patch(link.receiver / 2).area;
+    match oracle {
+        Oracle::Lischinski => area * (link.f_max - link.f_min) * y <= limits.error,
+        Oracle::Bfa => area * link.f_max * y < limits.bfa,
+    }
+}

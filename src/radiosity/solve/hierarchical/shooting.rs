@@ -13,9 +13,8 @@
 //! Receivers are judged level by level: all links of one level are computed in parallel, in
 //! an order that does not depend on the thread count.
 
-use super::links::Link;
 use super::nodes::{node, split_node};
-use super::oracle::Oracle;
+use super::oracle::accepts_shot;
 use super::solver::{RoundStats, Solver, children, prepare};
 use super::{HierarchicalSettings, RefinePass};
 use crate::color::Rgb64;
@@ -150,7 +149,13 @@ fn shoot(
         let links = solver.create_links(&frontier);
         let mut next = Vec::new();
         for link in links {
-            if accepts(solver, &link, y) {
+            if accepts_shot(
+                solver.settings.oracle,
+                &link,
+                y,
+                &solver.mesh,
+                &solver.limits,
+            ) {
                 let irradiance = sent * link.coupling;
                 solver.nodes.gathered[link.receiver as usize] += irradiance;
                 received.push((link.receiver as usize, irradiance));
@@ -180,17 +185,5 @@ fn push(solver: &mut Solver, n: usize, h: Rgb64) {
         let l = node(leaf, side);
         nodes.irradiance[l] += h;
         nodes.radiosity[l] += nodes.reflectance[l] * h;
-    }
-}
-
-/// Whether the receiver of `link` takes a shot of radiosity luminance `y` where it is.
-fn accepts(solver: &Solver, link: &Link, y: f64) -> bool {
-    let area = solver.mesh.patch(link.receiver / 2).area;
-    if area <= solver.limits.min_area {
-        return true;
-    }
-    match solver.settings.oracle {
-        Oracle::Lischinski => area * (link.f_max - link.f_min) * y <= solver.limits.error,
-        Oracle::Bfa => area * link.f_max * y < solver.limits.bfa,
     }
 }
