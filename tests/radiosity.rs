@@ -619,14 +619,69 @@ fn hierarchical_closed_box_absorbs_what_it_emits() {
         );
         let t = &report.totals;
         let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
-        // Measured: 0.11 % and 1.2 % (light lost in the millimetre gap above the lamp, where
-        // the minimum area stops refinement).
-        let tolerance = if lamp { 0.015 } else { 0.002 };
+        // Measured: 0.004 % and 0.63 % (light lost in the millimetre gap above the lamp,
+        // where the minimum area stops refinement).
+        let tolerance = if lamp { 0.008 } else { 5e-4 };
         assert!(
             (a / e - 1.0).abs() < tolerance,
             "lamp {lamp}: absorbed {a} of {e}"
         );
     }
+}
+
+/// A black unit floor under a black plate a centimetre above it that leaves only the strip
+/// `x > 0.9` open, lit by a large emitter overhead that ends at `x = 1`: every Gauss point
+/// of the floor is in shadow, its edge is not.
+fn floor_lit_only_at_its_edge() -> World {
+    let mut scene = Scene::empty("strip");
+    let black = scene.add_material(Material::diffuse("black", Rgb::BLACK));
+    let glow = scene.add_material(Material::emitter("glow", Rgb::BLACK, Rgb::splat(L)));
+    let quad = |origin: Vec3, u: Vec3, v: Vec3| Shape::Parallelogram {
+        origin,
+        edge_u: u,
+        edge_v: v,
+    };
+    scene.add_object("floor", quad(Vec3::ZERO, Vec3::Z, Vec3::X), black);
+    let plate = quad(Vec3::new(-3.0, 0.01, -2.0), Vec3::Z * 5.0, Vec3::X * 3.9);
+    scene.add_object("plate", plate, black);
+    let sky = quad(Vec3::new(-2.0, 1.0, -1.0), Vec3::X * 3.0, Vec3::Z * 3.0);
+    scene.add_object("emitter", sky, glow);
+    World::new(scene, AccelKind::Bvh).unwrap()
+}
+
+#[test]
+fn hierarchical_links_a_pair_that_sees_itself_only_near_an_edge() {
+    // The floor's four Gauss points see nothing of the emitter; a link dropped for that would
+    // never be refined and the lit strip would stay black (it did: 0 W).
+    let world = floor_lit_only_at_its_edge();
+    let (system, solution) = hierarchical(&world, &HierarchicalSettings::default());
+    let floor = |report: &Report| {
+        report
+            .objects
+            .iter()
+            .find(|o| o.name == "floor")
+            .unwrap()
+            .incident_power[1]
+    };
+    let radiosity = floor(&report_of(&system, &solution));
+    let settings = LightTraceSettings {
+        photons: 4_000_000,
+        seed: 3,
+        max_bounces: 10,
+    };
+    let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
+    let reference = floor(&Report::new(
+        "strip",
+        LightTraceOutput::SOLVER,
+        &out.power,
+        out.stats(),
+    ));
+    // Measured: 0.66 % apart; 0.45 % of the photons reach the floor, so the light model's
+    // own error is about 0.75 % there.
+    assert!(
+        (radiosity / reference - 1.0).abs() < 0.04,
+        "{radiosity} W vs light model {reference} W"
+    );
 }
 
 #[test]

@@ -10,12 +10,13 @@
 //! linked; a partly visible pair is linked even when its estimate is 0, so the oracle can
 //! refine it.
 
-use super::nodes::split_node;
+use super::nodes::{node, split_node};
 use crate::color::Rgb64;
 use crate::radiosity::clip::{Facing, facing};
+use crate::radiosity::element::Side;
 use crate::radiosity::form_factor::{gauss_points, point_to_side};
 use crate::radiosity::light_links::{light_irradiance, point_irradiance};
-use crate::radiosity::mesh::PatchMesh;
+use crate::radiosity::mesh::{Patch, PatchId, PatchMesh};
 use crate::radiosity::visibility::Visibility;
 use crate::scene::LightKind;
 use crate::world::World;
@@ -29,6 +30,10 @@ const RAYS_PER_POINT: u32 = 16;
 /// How far the corner samples of a receiver are pulled towards its centroid (a share of the
 /// way), so that a corner on an emitter's edge does not sit in the emitter's plane.
 const CORNER_INSET: f64 = 1e-3;
+
+/// How far the edge probes of a pair that no Gauss point sees are pulled towards the
+/// centroid (a share of the way).
+const EDGE_INSET: f64 = 0.05;
 
 /// A receiver node gathering an emitter node's radiosity.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,6 +53,57 @@ pub struct Link {
     pub visible: f64,
     /// True when nothing can block the pair: its children's links need no visibility rays.
     pub unoccluded: bool,
+    /// The share of the transport that leaves each quarter of the emitter (the quarters its
+    /// children will cover, in their order; a quarter each for a triangle). Gathering weighs
+    /// the children's radiosity by it once the emitter is split, so a bright part of the
+    /// emitter that sees the receiver better is not averaged with a dark part that sees it
+    /// worse (with the mean alone that correlation loses light systematically).
+    pub shares: [f32; 4],
+}
+
+impl Link {
+    /// The radiosity the receiver sees, W·m⁻²: the emitter's children's radiosities weighted
+    /// by the link's shares once the emitter is split, else the emitter's own.
+    pub fn emitter_radiosity(&self, mesh: &PatchMesh, radiosity: &[Rgb64]) -> Rgb64 {
+        let (patch, side) = split_node(self.emitter as usize);
+        match mesh.patch(patch).children {
+            Some(children) => children
+                .iter()
+                .zip(self.shares)
+                .map(|(&c, w)| radiosity[node(c, side)] * f64::from(w))
+                .fold(Rgb64::BLACK, |sum, b| sum + b),
+            None => radiosity[self.emitter as usize],
+        }
+    }
+}
+
+/// The shares of the transport from the quarters of `emitter` (side `es`) to `receiver`
+/// (side `rs`): the point form factor from the emitter's Gauss points, one in each quarter
+/// of a quad, to the receiver, weighted. Visibility is not known from that side and is
+/// taken as even.
+fn emitter_shares(emitter: &Patch, es: Side, receiver: &Patch, rs: Side) -> [f32; 4] {
+    let gauss = gauss_points(emitter);
+    let normal = es.normal(emitter);
+    quadrant_shares(emitter, |i| {
+        gauss[i].1 * point_to_side(gauss[i].0, normal, receiver, rs)
+    })
+}
+
+/// Shares in proportion to `weight(i)` of Gauss point `i` of quad `patch`, which lies in
+/// the quarter of child `i`; even shares for a triangle (its Gauss points do not fall one
+/// per child) or when every weight is zero.
+fn quadrant_shares(patch: &Patch, weight: impl Fn(usize) -> f64) -> [f32; 4] {
+    const EVEN: [f32; 4] = [0.25; 4];
+    if patch.is_triangle() {
+        return EVEN;
+    }
+    let w: [f64; 4] = std::array::from_fn(|i| weight(i).max(0.0));
+    let total: f64 = w.iter().sum();
+    if total > 0.0 {
+        w.map(|x| (x / total) as f32)
+    } else {
+        EVEN
+    }
 }
 
 /// A receiver node gathering the irradiance of a light that only sends.
@@ -126,10 +182,15 @@ impl Linker<'_> {
         let from_normal = from_side.normal(from);
         let gauss = gauss_points(from);
         let points: Vec<DVec3> = gauss.iter().map(|g| g.0).collect();
-        let point_factors: Vec<f64> = points
-            .iter()
-            .map(|&p| point_to_side(p, from_normal, to, to_side))
-            .collect();
+        // The receiver's Gauss points lead its range points: their factors are known.
+        let point_factors: Vec<f64> = if scale == 1.0 {
+            factors[..gauss.len()].to_vec()
+        } else {
+            points
+                .iter()
+                .map(|&p| point_to_side(p, from_normal, to, to_side))
+                .collect()
+        };
         // The unoccluded mean over the receiver, `scale · Σ w F`, is at most the maximum: it
         // holds the range up where the receiver's samples all miss a small, close emitter.
         let mean = scale
@@ -162,8 +223,13 @@ impl Linker<'_> {
         };
         self.rays.fetch_add(rays, Ordering::Relaxed);
         let visible_at = |i: usize| seen.as_ref().map_or(1.0, |v| v[i]);
-        // Every ray from every point blocked: the pair cannot see each other.
-        if (0..gauss.len()).all(|i| visible_at(i) <= 0.0) {
+        // Every ray from every Gauss point blocked: the pair may still see each other near
+        // the smaller patch's edges (a large node mostly in shadow). Dropping such a link
+        // would lose that light for good, so the edges are probed too; a link seen only
+        // from there is kept with no coupling and refined by the oracle.
+        if (0..gauss.len()).all(|i| visible_at(i) <= 0.0)
+            && !self.sees_near_edges(mesh, from_patch, from, from_normal, to_patch)
+        {
             return None;
         }
         let coupling: f64 = scale
@@ -177,6 +243,11 @@ impl Linker<'_> {
             .enumerate()
             .map(|(i, &(_, w))| w * visible_at(i))
             .sum();
+        let shares = if scale == 1.0 {
+            emitter_shares(e, es, r, rs)
+        } else {
+            quadrant_shares(e, |i| gauss[i].1 * point_factors[i] * visible_at(i))
+        };
         let partial = (0..gauss.len()).any(|i| visible_at(i) < 1.0);
         let f_min = if partial {
             0.0
@@ -191,7 +262,39 @@ impl Linker<'_> {
             f_max,
             visible,
             unoccluded: seen.is_none(),
+            shares,
         })
+    }
+
+    /// Whether any ray from points near the corners and edge midpoints of patch `from` (id
+    /// `from_patch`, receiving side normal `normal`) reaches patch `to_patch` unblocked.
+    fn sees_near_edges(
+        &self,
+        mesh: &PatchMesh,
+        from_patch: PatchId,
+        from: &Patch,
+        normal: DVec3,
+        to_patch: PatchId,
+    ) -> bool {
+        let corners = from.corners();
+        let n = corners.len();
+        let points: Vec<DVec3> = (0..n)
+            .flat_map(|i| [corners[i], (corners[i] + corners[(i + 1) % n]) * 0.5])
+            .map(|p| p + (from.centroid - p) * EDGE_INSET)
+            .collect();
+        let seen = self.visibility.from_points(
+            mesh,
+            from_patch,
+            &points,
+            normal,
+            to_patch,
+            RAYS_PER_POINT,
+        );
+        let Some((shares, rays)) = seen else {
+            return true;
+        };
+        self.rays.fetch_add(rays, Ordering::Relaxed);
+        shares.iter().any(|&v| v > 0.0)
     }
 
     /// The link from light `light` (an index into the scene's lights) to `receiver`, `None`

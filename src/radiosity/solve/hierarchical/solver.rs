@@ -280,7 +280,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let b = &self.nodes.radiosity;
         let mut gathered = vec![Rgb64::BLACK; b.len()];
         for link in &self.links {
-            gathered[link.receiver as usize] += b[link.emitter as usize] * link.coupling;
+            gathered[link.receiver as usize] +=
+                link.emitter_radiosity(&self.mesh, b) * link.coupling;
         }
         self.nodes.gathered = gathered;
     }
