@@ -619,9 +619,9 @@ fn hierarchical_closed_box_absorbs_what_it_emits() {
         );
         let t = &report.totals;
         let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
-        // Measured: 0.004 % and 0.63 % (light lost in the millimetre gap above the lamp,
-        // where the minimum area stops refinement).
-        let tolerance = if lamp { 0.008 } else { 5e-4 };
+        // Measured: 0.004 % and 0.67 % (0.13 % and 0.71 % at an error of 10⁻⁴; light lost in
+        // the millimetre gap above the lamp, where the minimum area stops refinement).
+        let tolerance = if lamp { 0.01 } else { 0.001 };
         assert!(
             (a / e - 1.0).abs() < tolerance,
             "lamp {lamp}: absorbed {a} of {e}"
@@ -654,7 +654,14 @@ fn hierarchical_links_a_pair_that_sees_itself_only_near_an_edge() {
     // The floor's four Gauss points see nothing of the emitter; a link dropped for that would
     // never be refined and the lit strip would stay black (it did: 0 W).
     let world = floor_lit_only_at_its_edge();
-    let (system, solution) = hierarchical(&world, &HierarchicalSettings::default());
+    // All the floor's light falls on a strip two nodes wide at the default error, where the
+    // oracle lets each link be off by 10⁻⁴ of the 56 W emitted, 2 % of the floor's power:
+    // a finer error makes the comparison sharp.
+    let settings = HierarchicalSettings {
+        error: 2e-6,
+        ..HierarchicalSettings::default()
+    };
+    let (system, solution) = hierarchical(&world, &settings);
     let floor = |report: &Report| {
         report
             .objects
@@ -676,7 +683,7 @@ fn hierarchical_links_a_pair_that_sees_itself_only_near_an_edge() {
         &out.power,
         out.stats(),
     ));
-    // Measured: 0.66 % apart; 0.45 % of the photons reach the floor, so the light model's
+    // Measured: 2.1 % apart; 0.45 % of the photons reach the floor, so the light model's
     // own error is about 0.75 % there.
     assert!(
         (radiosity / reference - 1.0).abs() < 0.04,

@@ -100,7 +100,7 @@ pub struct RadiosityArgs {
     /// hierarchical: the oracle that decides where links are refined.
     #[arg(long, value_parser = choice::<Oracle>(), default_value_t = Oracle::Lischinski)]
     pub oracle: Oracle,
-    /// hierarchical: largest error of a link, relative to the brightest emission.
+    /// hierarchical: largest uncertainty of the power a link brings, as a share of all power emitted in the scene.
     #[arg(long, default_value_t = HierarchicalSettings::default().error)]
     pub error: f64,
     /// hierarchical: nodes are not split below this fraction of the scene's surface area.

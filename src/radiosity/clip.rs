@@ -6,6 +6,7 @@
 use super::element::Side;
 use super::mesh::Patch;
 use glam::{DVec2, DVec3};
+use std::borrow::Cow;
 
 /// Relative width of the band around a plane in which a point counts as lying on it: the band
 /// is this fraction of the size of the configuration tested, so the answer does not change
@@ -226,32 +227,34 @@ pub fn split(plane: &Plane, corners: &[DVec3], uvs: &[DVec2]) -> SplitPolygon {
 /// count as on it). Returns an empty list when nothing lies clearly in front, in particular
 /// for a polygon lying in the plane. Used to clip an emitter to a receiver's front
 /// half-space before the contour integral.
-pub fn clip_to_front(plane: &Plane, polygon: &[DVec3]) -> Vec<DVec3> {
+pub fn clip_to_front<'a>(plane: &Plane, polygon: &'a [DVec3]) -> Cow<'a, [DVec3]> {
     let eps = band(plane, polygon);
-    let d: Vec<f64> = polygon
-        .iter()
-        .map(|&p| {
-            let x = plane.distance(p);
-            if x.abs() <= eps { 0.0 } else { x }
-        })
-        .collect();
-    if d.iter().all(|&x| x > 0.0) {
-        return polygon.to_vec();
+    let distance = |p: DVec3| {
+        let x = plane.distance(p);
+        if x.abs() <= eps { 0.0 } else { x }
+    };
+    // The common case, a polygon wholly in front, is returned as it is.
+    if polygon.iter().all(|&p| distance(p) > 0.0) {
+        return Cow::Borrowed(polygon);
     }
     let n = polygon.len();
     let mut out = Vec::with_capacity(n + 1);
     for i in 0..n {
         let j = (i + 1) % n;
-        if d[i] > 0.0 {
+        let (di, dj) = (distance(polygon[i]), distance(polygon[j]));
+        if di > 0.0 {
             out.push(polygon[i]);
         }
-        if (d[i] > 0.0) != (d[j] > 0.0) {
+        if (di > 0.0) != (dj > 0.0) {
             // The crossing (an on-plane end is the crossing itself: t = 0 or 1).
-            let t = d[i] / (d[i] - d[j]);
+            let t = di / (di - dj);
             out.push(polygon[i].lerp(polygon[j], t));
         }
     }
-    if out.len() < 3 { Vec::new() } else { out }
+    if out.len() < 3 {
+        out.clear();
+    }
+    Cow::Owned(out)
 }
 
 #[cfg(test)]

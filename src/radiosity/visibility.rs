@@ -136,6 +136,8 @@ pub struct Visibility<'w> {
     /// `world` with its curved shapes as polygon meshes, when it has any.
     faceted: Option<World>,
     clusters: Vec<Cluster>,
+    /// Bounding box of every primitive of the world rays are traced in.
+    bounds: Vec<Bounds>,
     options: VisibilityOptions,
 }
 
@@ -160,12 +162,14 @@ impl<'w> Visibility<'w> {
         let faceted = world.faceted(segments)?;
         let geometry = &faceted.as_ref().unwrap_or(world).geometry;
         let mut clusters: Vec<Cluster> = Vec::new();
+        let mut bounds_of = Vec::with_capacity(geometry.len());
         for prim in 0..geometry.len() as u32 {
             let b = PrimitiveSet::bounds(geometry, prim);
             let bounds = Bounds {
                 min: b.min.as_dvec3(),
                 max: b.max.as_dvec3(),
             };
+            bounds_of.push(bounds);
             let object = geometry.owner(prim).0;
             match clusters.last_mut() {
                 Some(c)
@@ -186,6 +190,7 @@ impl<'w> Visibility<'w> {
             world,
             faceted,
             clusters,
+            bounds: bounds_of,
             options,
         })
     }
@@ -281,10 +286,11 @@ impl<'w> Visibility<'w> {
 
     /// The visible share of patch `b` seen from each of `points` (points of patch `a` whose
     /// receiving side has the unit normal `normal`), weighted as the form factor weights it
-    /// (`cos θ·cos θ'/d²` of each ray): from each point 2 × 2 rays to jittered strata of `b`,
-    /// and where any of those is blocked, `per_point` rays to jittered strata of `b` from
-    /// every point. `None` when nothing can block the pair (every share is 1). Deterministic for a
-    /// fixed seed; the second value is the number of rays cast.
+    /// (`cos θ·cos θ'/d²` of each ray): from each point a first probe of 2 × 2 rays to
+    /// jittered strata of `b`; where any of those is blocked, the probe's rays are the
+    /// estimate, joined by `per_point` more rays from every point when `per_point` exceeds
+    /// the probe's four. `None` when nothing can block the pair (every share is 1).
+    /// Deterministic for a fixed seed; the second value is the number of rays cast.
     pub fn from_points(
         &self,
         mesh: &PatchMesh,
@@ -300,36 +306,40 @@ impl<'w> Visibility<'w> {
             return None;
         }
         let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, a, b) ^ 0x9e37);
-        let blocked = |x: DVec3, y: DVec3| self.blocked(x, p.normal, y, q.normal, &occluders);
-        // A first probe: 2 × 2 jittered rays from every point. A shadow edge across the pair
-        // turns up unless it shades less than about a quarter of the emitter from all points.
-        let probe = points.iter().all(|&x| {
-            jittered_points(q, PROBE_PER_AXIS, &mut rng)
-                .iter()
-                .all(|&y| !blocked(x, y))
-        });
-        let mut rays = (points.len() * (PROBE_PER_AXIS * PROBE_PER_AXIS) as usize) as u64;
-        if probe {
-            return Some((vec![1.0; points.len()], rays));
-        }
-        let m = (per_point as f64).sqrt().ceil().max(1.0) as u32;
-        let shares = points
-            .iter()
-            .map(|&x| {
-                let targets = jittered_points(q, m, &mut rng);
-                rays += targets.len() as u64;
-                let (mut seen, mut total) = (0.0, 0.0);
-                for &y in &targets {
+        // Per point: (weight seen, total weight) of the rays to an m × m jittered grid on `b`.
+        let mut cast = |m: u32, sums: &mut [(f64, f64)]| {
+            let mut any_blocked = false;
+            for (&x, sum) in points.iter().zip(sums.iter_mut()) {
+                for y in jittered_points(q, m, &mut rng) {
                     let d = y - x;
                     let d2 = d.length_squared();
                     let weight = normal.dot(d).max(0.0) * q.normal.dot(d).abs() / (d2 * d2);
-                    total += weight;
-                    if weight > 0.0 && !blocked(x, y) {
-                        seen += weight;
+                    sum.1 += weight;
+                    if self.blocked(x, p.normal, y, q.normal, &occluders) {
+                        any_blocked = true;
+                    } else {
+                        sum.0 += weight;
                     }
                 }
-                if total > 0.0 { seen / total } else { 0.0 }
-            })
+            }
+            any_blocked
+        };
+        let mut sums = vec![(0.0, 0.0); points.len()];
+        let probe = PROBE_PER_AXIS * PROBE_PER_AXIS;
+        let mut rays = points.len() as u64 * u64::from(probe);
+        // A shadow edge across the pair turns up in the probe unless it shades less than
+        // about a quarter of `b` from every point.
+        if !cast(PROBE_PER_AXIS, &mut sums) {
+            return Some((vec![1.0; points.len()], rays));
+        }
+        if per_point > probe {
+            let m = (per_point as f64).sqrt().ceil() as u32;
+            cast(m, &mut sums);
+            rays += points.len() as u64 * u64::from(m * m);
+        }
+        let shares = sums
+            .iter()
+            .map(|&(seen, total)| if total > 0.0 { seen / total } else { 0.0 })
             .collect();
         Some((shares, rays))
     }
@@ -354,12 +364,7 @@ impl<'w> Visibility<'w> {
             .filter(|c| shaft.may_intersect(&c.bounds))
             .flat_map(|c| c.first..c.end)
             .filter(|&prim| {
-                let bounds = PrimitiveSet::bounds(geometry, prim);
-                let bounds = Bounds {
-                    min: bounds.min.as_dvec3(),
-                    max: bounds.max.as_dvec3(),
-                };
-                shaft.may_intersect(&bounds)
+                shaft.may_intersect(&self.bounds[prim as usize])
                     && !geometry.triangle(prim).is_some_and(|t| {
                         let corners = t.vertices().map(|v| v.as_dvec3());
                         planes.iter().any(|plane| {

@@ -25,7 +25,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Visibility rays from each receiver sample point to the emitter, where a first probe finds
 /// the pair partly occluded.
-const RAYS_PER_POINT: u32 = 16;
+const RAYS_PER_POINT: u32 = 4;
 
 /// How far the corner samples of a receiver are pulled towards its centroid (a share of the
 /// way), so that a corner on an emitter's edge does not sit in the emitter's plane.
@@ -54,7 +54,7 @@ pub struct Link {
     /// True when nothing can block the pair: its children's links need no visibility rays.
     pub unoccluded: bool,
     /// The share of the transport that leaves each quarter of the emitter (the quarters its
-    /// children will cover, in their order; a quarter each for a triangle). Gathering weighs
+    /// children will cover, in their order). Gathering weighs
     /// the children's radiosity by it once the emitter is split, so a bright part of the
     /// emitter that sees the receiver better is not averaged with a dark part that sees it
     /// worse (with the mean alone that correlation loses light systematically).
@@ -78,8 +78,8 @@ impl Link {
 }
 
 /// The shares of the transport from the quarters of `emitter` (side `es`) to `receiver`
-/// (side `rs`): the point form factor from the emitter's Gauss points, one in each quarter
-/// of a quad, to the receiver, weighted. Visibility is not known from that side and is
+/// (side `rs`): the weighted point form factor from each of the emitter's Gauss points (see
+/// [`quadrant_shares`] for the quarter each lies in) to the receiver. Visibility is not known from that side and is
 /// taken as even.
 fn emitter_shares(emitter: &Patch, es: Side, receiver: &Patch, rs: Side) -> [f32; 4] {
     let gauss = gauss_points(emitter);
@@ -89,20 +89,22 @@ fn emitter_shares(emitter: &Patch, es: Side, receiver: &Patch, rs: Side) -> [f32
     })
 }
 
-/// Shares in proportion to `weight(i)` of Gauss point `i` of quad `patch`, which lies in
-/// the quarter of child `i`; even shares for a triangle (its Gauss points do not fall one
-/// per child) or when every weight is zero.
+/// Shares in proportion to `weight(i)` of Gauss point `i` of `patch`, which lies in the
+/// quarter of child `i`: one per child of a quad; a triangle's three lie in its corner
+/// children, and its middle child gets their mean. Even shares when every weight is zero.
 fn quadrant_shares(patch: &Patch, weight: impl Fn(usize) -> f64) -> [f32; 4] {
-    const EVEN: [f32; 4] = [0.25; 4];
-    if patch.is_triangle() {
-        return EVEN;
-    }
-    let w: [f64; 4] = std::array::from_fn(|i| weight(i).max(0.0));
+    let w: [f64; 4] = if patch.is_triangle() {
+        let corners: [f64; 3] = std::array::from_fn(|i| weight(i).max(0.0));
+        let middle = corners.iter().sum::<f64>() / 3.0;
+        [corners[0], corners[1], corners[2], middle]
+    } else {
+        std::array::from_fn(|i| weight(i).max(0.0))
+    };
     let total: f64 = w.iter().sum();
     if total > 0.0 {
         w.map(|x| (x / total) as f32)
     } else {
-        EVEN
+        [0.25; 4]
     }
 }
 

@@ -277,13 +277,13 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
 
     /// Every node gathers `Σ F·V·B` over its links (seed §6.7).
     fn gather(&mut self) {
-        let b = &self.nodes.radiosity;
-        let mut gathered = vec![Rgb64::BLACK; b.len()];
+        let (b, gathered) = (&self.nodes.radiosity, &mut self.nodes.gathered);
+        gathered.clear();
+        gathered.resize(b.len(), Rgb64::BLACK);
         for link in &self.links {
             gathered[link.receiver as usize] +=
                 link.emitter_radiosity(&self.mesh, b) * link.coupling;
         }
-        self.nodes.gathered = gathered;
     }
 
     /// One refinement pass (seed §6.4); true when a link was refined.
