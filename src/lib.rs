@@ -15,13 +15,16 @@
 //! 5. [`measure`] — what the algorithms fill: films, surface power, lit meshes;
 //! 6. [`trace`], [`light_model`], [`radiosity`] — the algorithms, which never import each
 //!    other;
-//! 7. [`image`], then [`report`] — files made from what was measured.
+//! 7. [`final_gather`] — images from two algorithms together (ray-traced direct light,
+//!    indirect light from radiosity);
+//! 8. [`image`], then [`report`] — files made from what was measured.
 
 #![warn(missing_docs)]
 
 pub mod accel;
 pub mod choice;
 pub mod color;
+pub mod final_gather;
 pub mod geometry;
 pub mod image;
 pub mod lanes;

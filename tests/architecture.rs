@@ -28,6 +28,18 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("trace", ALGORITHM_BASE),
     ("light_model", ALGORITHM_BASE),
     ("radiosity", ALGORITHM_BASE),
+    // Images from two algorithms together.
+    (
+        "final_gather",
+        &[
+            "color",
+            "geometry",
+            "radiosity",
+            "sampling",
+            "trace",
+            "world",
+        ],
+    ),
     // Files made from what was measured.
     ("image", &["choice", "color", "measure"]),
     ("report", &["color", "image", "measure"]),

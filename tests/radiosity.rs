@@ -439,6 +439,41 @@ fn command_line_solves_reports_exports_and_renders() {
         image.to_str().unwrap(),
     ]);
     assert!(image.exists());
+    let gathered = dir.join("gathered.png");
+    run(&[
+        "render",
+        "cornell",
+        "--method",
+        "final-gather",
+        "--solver",
+        "hierarchical",
+        "--error",
+        "1e-3",
+        "--gather-rays",
+        "4",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "-q",
+        "-o",
+        gathered.to_str().unwrap(),
+    ]);
+    assert!(gathered.exists());
+    let refused = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args([
+            "render",
+            "cornell",
+            "--method",
+            "final-gather",
+            "--gather-rays",
+            "0",
+        ])
+        .args(["-o", gathered.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--gather-rays"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -1,7 +1,7 @@
 //! `strahl render`: render an image of a scene.
 
 use super::choice::choice;
-use super::radiosity::{self, RadiosityDisplayArgs, RunOptions};
+use super::radiosity::{self, RadiosityDisplayArgs, RunOptions, Solver};
 use super::tone::ToneArgs;
 use super::{progress, source, with_threads};
 use anyhow::{Context, Result, bail};
@@ -10,9 +10,11 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use strahl::accel::AccelKind;
 use strahl::color::Rgb;
+use strahl::final_gather::FinalGather;
 use strahl::image::{self, ToneMap, ToneMapping};
 use strahl::measure::Film;
 use strahl::progress::Cancel;
+use strahl::radiosity::solve::RadiosityLookup;
 use strahl::sampling::SequenceKind;
 use strahl::trace::{
     AntialiasMode, PathTracer, ProgressiveSettings, RenderSettings, ShadowMode, StandardRayTracer,
@@ -30,6 +32,9 @@ pub enum Method {
     Pathtrace,
     /// Radiosity on the patch mesh, shown flat or smooth (`--solver`, `--shading`).
     Radiosity,
+    /// Direct light ray-traced with exact shadows at each pixel, indirect light gathered from
+    /// the radiosity solution (`--solver`, `--gather-rays`).
+    FinalGather,
 }
 
 /// Arguments of `strahl render`.
@@ -64,9 +69,14 @@ pub struct RenderArgs {
     /// pathtrace: stop after the last pass of samples that fits in this many seconds.
     #[arg(long)]
     pub time_limit: Option<f64>,
-    /// raytrace: shadow rays per area light and for the sky at every shading point.
+    /// raytrace, final-gather: shadow rays per area light and for the sky at every shading
+    /// point.
     #[arg(long, default_value_t = 16)]
     pub light_samples: u32,
+    /// final-gather: rays per camera sample that gather the solution's reflected light
+    /// (rounded up to a square).
+    #[arg(long, default_value_t = 64)]
+    pub gather_rays: u32,
     /// raytrace: antialiasing method (pathtrace always jitters its samples over the pixel).
     #[arg(long, value_parser = choice::<AntialiasMode>(), default_value_t = AntialiasMode::Stochastic)]
     pub aa: AntialiasMode,
@@ -134,6 +144,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let output = match args.method {
         Method::Raytrace => render_standard(args, &world, width, height, &bar, cancel)?,
         Method::Pathtrace => render_path_traced(args, &world, width, height, &bar, cancel)?,
+        Method::FinalGather => {
+            let run = RunOptions {
+                seed: args.seed,
+                threads: args.threads,
+                quiet: args.quiet,
+                tone_mapping: &tone_mapping,
+            };
+            render_final_gather(args, &world, width, height, &run, &bar, cancel)?
+        }
         Method::Radiosity => {
             let run = RunOptions {
                 seed: args.seed,
@@ -226,6 +245,59 @@ fn render_standard(
         subdivisions: output.subdivisions,
         summary: format!("{} camera samples", output.samples_traced),
         complete: output.complete,
+    })
+}
+
+/// Solves the scene by radiosity and renders it by final gathering.
+fn render_final_gather(
+    args: &RenderArgs,
+    world: &World,
+    width: u32,
+    height: u32,
+    run: &RunOptions,
+    bar: &progress::Bar,
+    cancel: &Cancel,
+) -> Result<Rendered> {
+    if args.gather_rays == 0 {
+        bail!("--gather-rays must be at least 1");
+    }
+    if args.radiosity.solver == Solver::LightTrace {
+        bail!("--method final-gather needs --solver matrix, progressive or hierarchical");
+    }
+    let (system, solution) =
+        radiosity::solve(world, &args.radiosity.solve, args.radiosity.solver, run)?;
+    let settings = RenderSettings {
+        width,
+        height,
+        antialias: args.aa,
+        samples_per_pixel: args.spp.unwrap_or(4),
+        adaptive_threshold: args.aa_threshold,
+        seed: args.seed,
+        sequence: SequenceKind::Random,
+    };
+    let integrator = FinalGather {
+        reflected: RadiosityLookup::new(
+            &system,
+            solution.reflected_radiosity(&system),
+            args.radiosity.shading,
+        ),
+        light_samples: args.light_samples,
+        gather_rays: args.gather_rays,
+    };
+    let output = with_threads(args.threads, || {
+        render(world, &integrator, &settings, bar, cancel)
+    })?
+    .context("the camera is degenerate")?;
+    Ok(Rendered {
+        film: output.film,
+        subdivisions: output.subdivisions,
+        summary: format!(
+            "{} camera samples, indirect light from {} patches by {}",
+            output.samples_traced,
+            system.leaves.len(),
+            solution.solver.name()
+        ),
+        complete: output.complete && !solution.interrupted,
     })
 }
 

@@ -1,41 +1,22 @@
 //! Display of a radiosity solution (seed 000 §9.4, seed 001): camera rays hit the leaf
 //! patches (as triangles, under a BVH) and show the radiance `B/π` of a Lambertian surface,
-//! flat per leaf or smooth from the interpolated corner values ([`vertex_radiosity`]), with
+//! flat per leaf or smooth from the interpolated corner values ([`RadiosityLookup`]), with
 //! the patch edges optionally drawn as black lines one pixel wide. Each side of a patch shows
 //! its own radiosity. Surfaces that are not in the mesh (infinite planes) are not shown.
 
-use super::interpolate::{CornerValues, vertex_radiosity};
+use super::lookup::{RadiosityLookup, Shading};
 use super::solution::Solution;
 use super::system::RadiositySystem;
-use crate::accel::{AccelKind, Accelerator, PrimHit, PrimitiveSet};
 use crate::color::Rgb;
-use crate::color::Rgb64;
-use crate::geometry::{Aabb, Ray, Triangle};
+use crate::geometry::Ray;
 use crate::measure::Film;
 use crate::progress::{Cancel, ProgressListener};
-use crate::radiosity::element::Side;
 use crate::scene::Camera;
 use glam::DVec3;
 use rayon::prelude::*;
-use std::f64::consts::PI;
 
 /// Wireframe line half-width in pixels.
 const LINE_HALF_WIDTH_PIXELS: f64 = 0.6;
-
-/// How radiosity is shown across a patch (`--shading`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Shading {
-    /// One colour per leaf patch.
-    Flat,
-    /// Corner values interpolated linearly over each triangle of the leaf.
-    #[default]
-    Smooth,
-}
-
-crate::choice::named_values!(Shading {
-    Shading::Flat = "flat", "One colour per leaf patch";
-    Shading::Smooth = "smooth", "Radiosity interpolated to the patch corners";
-});
 
 /// Image settings of the display.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,54 +33,6 @@ pub struct DisplaySettings {
     pub samples_per_axis: u32,
 }
 
-/// The leaf patches as triangles: quads as the two triangles (0,1,2) and (0,2,3).
-struct LeafTriangles {
-    triangles: Vec<Triangle>,
-    /// Per triangle: leaf index and the leaf's corner indices of its vertices.
-    owners: Vec<(u32, [u8; 3])>,
-}
-
-impl LeafTriangles {
-    fn new(system: &RadiositySystem) -> Self {
-        let mut triangles = Vec::new();
-        let mut owners = Vec::new();
-        for (k, &leaf) in system.leaves.iter().enumerate() {
-            let c = system.mesh.patch(leaf).corners();
-            let splits: &[[u8; 3]] = if c.len() == 3 {
-                &[[0, 1, 2]]
-            } else {
-                &[[0, 1, 2], [0, 2, 3]]
-            };
-            for &s in splits {
-                let v = s.map(|i| c[i as usize].as_vec3());
-                triangles.push(Triangle::new(v[0], v[1], v[2]));
-                owners.push((k as u32, s));
-            }
-        }
-        LeafTriangles { triangles, owners }
-    }
-}
-
-impl PrimitiveSet for LeafTriangles {
-    fn len(&self) -> usize {
-        self.triangles.len()
-    }
-
-    fn bounds(&self, prim: u32) -> Aabb {
-        Aabb::from_points(self.triangles[prim as usize].vertices())
-    }
-
-    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit> {
-        self.triangles[prim as usize]
-            .intersect(ray, t_max)
-            .map(|(t, b1, b2)| PrimHit {
-                t,
-                prim,
-                local: [b1, b2],
-            })
-    }
-}
-
 /// Renders `solution` (its display radiosity, ambient term included) through `camera` at
 /// the settings' resolution as linear radiance, W·sr⁻¹·m⁻². `None` when the camera is
 /// degenerate. Rows are rendered in parallel; `cancel` leaves the remaining rows black.
@@ -114,25 +47,10 @@ pub fn render_solution(
     let rays = camera
         .with_resolution(settings.width, settings.height)
         .rays()?;
-    let flat = solution.display_radiosity(system);
-    let corners = Side::BOTH.map(|side| match settings.shading {
-        Shading::Smooth => {
-            let values: Vec<Rgb64> = (0..system.leaves.len())
-                .map(|k| flat[RadiositySystem::element(k, side)])
-                .collect();
-            vertex_radiosity(&system.mesh, &system.leaves, &values)
-        }
-        Shading::Flat => Vec::new(),
-    });
-    let triangles = LeafTriangles::new(system);
-    let accel = AccelKind::Bvh.build(&triangles);
+    let lookup = RadiosityLookup::new(system, solution.display_radiosity(system), settings.shading);
     let view = Viewer {
-        system,
-        triangles: &triangles,
-        accel: accel.as_ref(),
-        flat: &flat,
-        corners: &corners,
-        settings,
+        lookup: &lookup,
+        wireframe: settings.wireframe,
         pixel_angle: 2.0 * (camera.fov_degrees.to_radians() as f64 * 0.5).tan()
             / settings.height as f64,
     };
@@ -168,48 +86,23 @@ pub fn render_solution(
 
 /// What one camera ray sees.
 struct Viewer<'a> {
-    system: &'a RadiositySystem<'a>,
-    triangles: &'a LeafTriangles,
-    accel: &'a dyn Accelerator<LeafTriangles>,
-    /// Display radiosity per element.
-    flat: &'a [Rgb64],
-    /// Smooth corner values per side, per leaf.
-    corners: &'a [Vec<CornerValues>; 2],
-    settings: &'a DisplaySettings,
+    lookup: &'a RadiosityLookup<'a>,
+    /// Draw the leaf patch edges.
+    wireframe: bool,
     /// Angle one pixel subtends (radians, small-angle).
     pixel_angle: f64,
 }
 
 impl Viewer<'_> {
     fn radiance(&self, ray: &Ray) -> Rgb {
-        let Some(hit) = self.accel.closest_hit(self.triangles, ray, f32::INFINITY) else {
+        let Some(hit) = self.lookup.hit(ray) else {
             return Rgb::BLACK;
         };
-        let (leaf, corner_ids) = self.triangles.owners[hit.prim as usize];
-        let leaf = leaf as usize;
-        let patch = self.system.mesh.patch(self.system.leaves[leaf]);
-        let side = Side::hit_by(patch, ray.dir.as_dvec3());
-        let [b1, b2] = hit.local.map(f64::from);
-        if self.settings.wireframe {
-            let p = self.triangles.triangles[hit.prim as usize]
-                .point(hit.local[0], hit.local[1])
-                .as_dvec3();
-            let width = LINE_HALF_WIDTH_PIXELS * self.pixel_angle * hit.t as f64;
-            if edge_distance(patch.corners(), p) < width {
-                return Rgb::BLACK;
-            }
+        let width = LINE_HALF_WIDTH_PIXELS * self.pixel_angle * hit.distance;
+        if self.wireframe && edge_distance(hit.patch.corners(), hit.point) < width {
+            return Rgb::BLACK;
         }
-        let b: Rgb64 = match self.settings.shading {
-            Shading::Flat => self.flat[RadiositySystem::element(leaf, side)],
-            Shading::Smooth => {
-                let c = &self.corners[side.index()][leaf];
-                let w = [1.0 - b1 - b2, b1, b2];
-                Rgb64::from(std::array::from_fn(|ch| {
-                    (0..3).map(|v| w[v] * c[corner_ids[v] as usize][ch]).sum()
-                }))
-            }
-        };
-        b.map(|x| x / PI).to_f32()
+        hit.radiance
     }
 }
 

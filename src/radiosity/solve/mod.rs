@@ -7,14 +7,16 @@
 mod display;
 pub mod hierarchical;
 mod interpolate;
+mod lookup;
 mod matrix;
 mod progressive;
 mod solution;
 mod system;
 mod unshot_progress;
 
-pub use display::{DisplaySettings, Shading, render_solution};
+pub use display::{DisplaySettings, render_solution};
 pub use interpolate::{CornerValues, vertex_radiosity};
+pub use lookup::{LeafHit, RadiosityLookup, Shading};
 pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};
 pub use solution::{

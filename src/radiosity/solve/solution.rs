@@ -115,6 +115,16 @@ impl Solution {
             .collect()
     }
 
+    /// The radiosity each element reflects, W·m⁻²: its display radiosity without its own
+    /// emission (the light a final gather reads where its rays land).
+    pub fn reflected_radiosity(&self, system: &RadiositySystem) -> Vec<Rgb64> {
+        self.display_radiosity(system)
+            .into_iter()
+            .zip(&system.emission)
+            .map(|(b, &e)| (b - e).map(|x| x.max(0.0)))
+            .collect()
+    }
+
     /// The power per reported surface of `system`'s scene, W, as the module describes.
     pub fn surface_power(&self, system: &RadiositySystem) -> SurfacePower {
         let world = system.world();

@@ -1,0 +1,68 @@
+//! Final gather (seed 000, requirement 5.0): an image that takes the direct light from the
+//! ray tracer and the indirect light from a radiosity solution.
+//!
+//! At the surface a camera ray meets, the light arriving straight from the lights and from
+//! emitting surfaces is traced with exact shadows ([`direct_light`]); the light arriving
+//! after one or more reflections is gathered by cosine-distributed rays that read, where they
+//! land, the radiance the solution reflects there (its radiosity without its own emission,
+//! [`Solution::reflected_radiosity`], smooth across each leaf). Shadows and contact
+//! shading are therefore as sharp as the ray tracer's, and the mesh no longer shows where
+//! the indirect light is smooth. It sits above the algorithms because it uses two of them.
+//!
+//! [`Solution::reflected_radiosity`]: crate::radiosity::solve::Solution::reflected_radiosity
+
+use crate::color::Rgb;
+use crate::geometry::{Frame, Ray, spawn_ray};
+use crate::radiosity::solve::RadiosityLookup;
+use crate::sampling::Sampler;
+use crate::sampling::warp::{cosine_hemisphere, stratified};
+use crate::trace::Integrator;
+use crate::trace::direct::{ShadowMode, direct_light};
+use crate::trace::shading::ShadingPoint;
+use crate::world::{World, emitted};
+use std::f32::consts::PI;
+
+/// The final-gather integrator over a solved radiosity system.
+pub struct FinalGather<'s> {
+    /// The light each element reflects (W·m⁻²), found along gather rays.
+    pub reflected: RadiosityLookup<'s>,
+    /// Shadow rays per area light and for the sky at every camera hit.
+    pub light_samples: u32,
+    /// Gather rays per camera hit (rounded up to a square; stratified over the hemisphere).
+    pub gather_rays: u32,
+}
+
+impl FinalGather<'_> {
+    /// Radiance reflected toward the viewer from the indirect light at `sp`, W·sr⁻¹·m⁻².
+    fn indirect(&self, sp: &ShadingPoint, sampler: &mut Sampler) -> Rgb {
+        let n_side = (self.gather_rays.max(1) as f32).sqrt().ceil() as u32;
+        let frame = Frame::from_normal(sp.n);
+        let mut sum = Rgb::BLACK;
+        for k in 0..n_side * n_side {
+            let wi = frame.to_world(cosine_hemisphere(stratified(k, n_side, sampler.next_2d())));
+            if sp.ng.dot(wi) <= 0.0 {
+                continue;
+            }
+            if let Some(hit) = self.reflected.hit(&spawn_ray(sp.hit.p, sp.ng, wi)) {
+                // f·L·cos θ / p(ω), with p(ω) = cos θ / π.
+                sum += sp.material.eval(sp.n, sp.wo, wi) * hit.radiance * PI;
+            }
+        }
+        sum / (n_side * n_side) as f32
+    }
+}
+
+impl Integrator for FinalGather<'_> {
+    fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
+        let Some(hit) = world.intersect(ray) else {
+            return world.lights.sky.unwrap_or(Rgb::BLACK);
+        };
+        let mut radiance = emitted(&world.scene, &hit);
+        let sp = ShadingPoint::new(world, hit, ray.dir);
+        if sp.material.is_black_from(hit.front_face) {
+            return radiance;
+        }
+        radiance += direct_light(world, &sp, self.light_samples, ShadowMode::On, sampler);
+        radiance + self.indirect(&sp, sampler)
+    }
+}

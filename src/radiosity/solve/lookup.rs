@@ -1,0 +1,157 @@
+//! Looking up a radiosity solution along a ray: the leaf patches as triangles under a BVH, and
+//! a value per element shown flat or interpolated from the patch corners. The display shows
+//! what camera rays meet; final gathering reads the light reflected where gather rays land.
+
+use super::interpolate::{CornerValues, vertex_radiosity};
+use super::system::RadiositySystem;
+use crate::accel::{AccelKind, Accelerator, PrimHit, PrimitiveSet};
+use crate::color::{Rgb, Rgb64};
+use crate::geometry::{Aabb, Ray, Triangle};
+use crate::radiosity::element::Side;
+use crate::radiosity::mesh::Patch;
+use std::f64::consts::PI;
+
+/// How radiosity is shown across a patch (`--shading`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Shading {
+    /// One colour per leaf patch.
+    Flat,
+    /// Corner values interpolated linearly over each triangle of the leaf.
+    #[default]
+    Smooth,
+}
+
+crate::choice::named_values!(Shading {
+    Shading::Flat = "flat", "One colour per leaf patch";
+    Shading::Smooth = "smooth", "Radiosity interpolated to the patch corners";
+});
+
+/// The leaf patches as triangles: quads as the two triangles (0,1,2) and (0,2,3).
+struct LeafTriangles {
+    triangles: Vec<Triangle>,
+    /// Per triangle: leaf index and the leaf's corner indices of its vertices.
+    owners: Vec<(u32, [u8; 3])>,
+}
+
+impl LeafTriangles {
+    fn new(system: &RadiositySystem) -> Self {
+        let mut triangles = Vec::new();
+        let mut owners = Vec::new();
+        for (k, &leaf) in system.leaves.iter().enumerate() {
+            let c = system.mesh.patch(leaf).corners();
+            let splits: &[[u8; 3]] = if c.len() == 3 {
+                &[[0, 1, 2]]
+            } else {
+                &[[0, 1, 2], [0, 2, 3]]
+            };
+            for &s in splits {
+                let v = s.map(|i| c[i as usize].as_vec3());
+                triangles.push(Triangle::new(v[0], v[1], v[2]));
+                owners.push((k as u32, s));
+            }
+        }
+        LeafTriangles { triangles, owners }
+    }
+}
+
+impl PrimitiveSet for LeafTriangles {
+    fn len(&self) -> usize {
+        self.triangles.len()
+    }
+
+    fn bounds(&self, prim: u32) -> Aabb {
+        Aabb::from_points(self.triangles[prim as usize].vertices())
+    }
+
+    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit> {
+        self.triangles[prim as usize]
+            .intersect(ray, t_max)
+            .map(|(t, b1, b2)| PrimHit {
+                t,
+                prim,
+                local: [b1, b2],
+            })
+    }
+}
+
+/// Where a ray meets the leaf mesh.
+pub struct LeafHit<'a> {
+    /// The leaf patch.
+    pub patch: &'a Patch,
+    /// The point hit, scene units.
+    pub point: glam::DVec3,
+    /// Distance along the ray, scene units.
+    pub distance: f64,
+    /// Radiance `value/π` there (W·sr⁻¹·m⁻² when the values are radiosities), on the side
+    /// the ray meets.
+    pub radiance: Rgb,
+}
+
+/// A value per element of a solved system (a radiosity, W·m⁻²), found along rays.
+pub struct RadiosityLookup<'s> {
+    system: &'s RadiositySystem<'s>,
+    triangles: LeafTriangles,
+    accel: Box<dyn Accelerator<LeafTriangles>>,
+    /// Per element.
+    flat: Vec<Rgb64>,
+    /// Smooth corner values per side, per leaf (empty when flat).
+    corners: [Vec<CornerValues>; 2],
+    shading: Shading,
+}
+
+impl<'s> RadiosityLookup<'s> {
+    /// The lookup of `values` (one per element of `system`, in element order) shown by
+    /// `shading`.
+    pub fn new(system: &'s RadiositySystem<'s>, values: Vec<Rgb64>, shading: Shading) -> Self {
+        let corners = Side::BOTH.map(|side| match shading {
+            Shading::Smooth => {
+                let per_leaf: Vec<Rgb64> = (0..system.leaves.len())
+                    .map(|k| values[RadiositySystem::element(k, side)])
+                    .collect();
+                vertex_radiosity(&system.mesh, &system.leaves, &per_leaf)
+            }
+            Shading::Flat => Vec::new(),
+        });
+        let triangles = LeafTriangles::new(system);
+        let accel = AccelKind::Bvh.build(&triangles);
+        RadiosityLookup {
+            system,
+            triangles,
+            accel,
+            flat: values,
+            corners,
+            shading,
+        }
+    }
+
+    /// The first leaf `ray` meets, and the radiance of the value there.
+    pub fn hit(&self, ray: &Ray) -> Option<LeafHit<'_>> {
+        let hit = self
+            .accel
+            .closest_hit(&self.triangles, ray, f32::INFINITY)?;
+        let (leaf, corner_ids) = self.triangles.owners[hit.prim as usize];
+        let leaf = leaf as usize;
+        let patch = self.system.mesh.patch(self.system.leaves[leaf]);
+        let side = Side::hit_by(patch, ray.dir.as_dvec3());
+        let [b1, b2] = hit.local.map(f64::from);
+        let value: Rgb64 = match self.shading {
+            Shading::Flat => self.flat[RadiositySystem::element(leaf, side)],
+            Shading::Smooth => {
+                let c = &self.corners[side.index()][leaf];
+                let w = [1.0 - b1 - b2, b1, b2];
+                Rgb64::from(std::array::from_fn(|ch| {
+                    (0..3).map(|v| w[v] * c[corner_ids[v] as usize][ch]).sum()
+                }))
+            }
+        };
+        let point = self.triangles.triangles[hit.prim as usize]
+            .point(hit.local[0], hit.local[1])
+            .as_dvec3();
+        Some(LeafHit {
+            patch,
+            point,
+            distance: f64::from(hit.t),
+            radiance: value.map(|x| x / PI).to_f32(),
+        })
+    }
+}
