@@ -12,7 +12,7 @@ use strahl::measure::Film;
 use strahl::progress::{Cancel, NoProgress};
 use strahl::radiosity::solve::hierarchical::{HierarchicalSettings, solve_hierarchical};
 use strahl::radiosity::solve::{
-    DisplaySettings, RadiosityLookup, Shading, SystemOptions, render_solution,
+    DisplaySettings, LinkDisplay, RadiosityLookup, Shading, SystemOptions, render_solution,
 };
 use strahl::sampling::SequenceKind;
 use strahl::scene::builtin;
@@ -105,6 +105,7 @@ fn final_gather_and_hierarchical_display_agree_with_the_path_tracer() {
         .unwrap()
         .film;
     let display = DisplaySettings {
+        links: LinkDisplay::None,
         width: SIZE,
         height: SIZE,
         shading: Shading::Smooth,

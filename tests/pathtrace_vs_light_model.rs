@@ -16,8 +16,8 @@ use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::mesh::{MeshOptions, MeshSize};
 use strahl::radiosity::solve::{
-    DisplaySettings, MatrixSettings, RadiositySystem, Shading, SystemOptions, render_solution,
-    solve_matrix,
+    DisplaySettings, LinkDisplay, MatrixSettings, RadiositySystem, Shading, SystemOptions,
+    render_solution, solve_matrix,
 };
 use strahl::report::Report;
 use strahl::scene::builtin;
@@ -73,6 +73,7 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
         solution.stats(&system),
     );
     let display = DisplaySettings {
+        links: LinkDisplay::None,
         width: w,
         height: h,
         shading: Shading::Flat,

@@ -13,8 +13,8 @@ use strahl::radiosity::solve::hierarchical::{
     HierarchicalSettings, Oracle, solve_hierarchical, solve_hierarchical_shooting,
 };
 use strahl::radiosity::solve::{
-    DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
-    Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
+    DisplaySettings, Iteration, LinkDisplay, MatrixSettings, RadiositySystem, Shading,
+    ShootingSettings, Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
 };
 use strahl::radiosity::{MeshOptions, MeshSize, Side};
 use strahl::report::{Report, export_lit_mesh};
@@ -288,6 +288,7 @@ fn display_renders_light_and_flat_and_smooth_have_equal_means() {
     let solution = matrix(&system, Iteration::GaussSeidel, 1e-5);
     let render = |shading, wireframe| {
         let settings = DisplaySettings {
+            links: LinkDisplay::None,
             width: 48,
             height: 48,
             shading,
@@ -324,6 +325,64 @@ fn display_renders_light_and_flat_and_smooth_have_equal_means() {
         .filter(|p| p.luminance() <= 0.0)
         .count();
     assert!(dark < flat.pixels().len() / 10, "{dark} black pixels");
+}
+
+#[test]
+fn display_draws_the_links_of_one_object() {
+    let world = cornell();
+    let settings = HierarchicalSettings {
+        error: 1e-3,
+        ..HierarchicalSettings::default()
+    };
+    let (system, solution) = hierarchical(&world, &settings);
+    let light = world
+        .scene
+        .objects
+        .iter()
+        .position(|o| o.name.as_deref() == Some("light"))
+        .unwrap() as u32;
+    let of_light = solution
+        .link_segments
+        .iter()
+        .filter(|l| l.receiver_object == light || l.emitter_object == light)
+        .count();
+    assert!(of_light > 0 && of_light < solution.link_segments.len());
+    let render = |links| {
+        let settings = DisplaySettings {
+            links,
+            width: 48,
+            height: 48,
+            shading: Shading::Flat,
+            wireframe: false,
+            samples_per_axis: 1,
+        };
+        let camera = &world.scene.camera;
+        render_solution(
+            &system,
+            &solution,
+            camera,
+            &settings,
+            &NoProgress,
+            &Cancel::new(),
+        )
+        .unwrap()
+    };
+    let plain = render(LinkDisplay::None);
+    let lines = render(LinkDisplay::Object(light));
+    let all = render(LinkDisplay::All);
+    let changed = |film: &strahl::measure::Film| {
+        film.pixels()
+            .iter()
+            .zip(plain.pixels())
+            .filter(|(a, b)| a != b)
+            .count()
+    };
+    // The light's links fan out from the ceiling over much of the room; all links cover more.
+    let (some, more) = (changed(&lines), changed(&all));
+    assert!(
+        some > 48 && some <= more,
+        "{some} and {more} pixels changed"
+    );
 }
 
 #[test]
@@ -460,6 +519,25 @@ fn command_line_solves_reports_exports_and_renders() {
         gathered.to_str().unwrap(),
     ]);
     assert!(gathered.exists());
+    run(&[
+        "render",
+        "cornell",
+        "--method",
+        "radiosity",
+        "--solver",
+        "hierarchical",
+        "--error",
+        "1e-3",
+        "--links",
+        "light",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "-q",
+        "-o",
+        image.to_str().unwrap(),
+    ]);
     let refused = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
         .args([
             "render",

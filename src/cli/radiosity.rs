@@ -13,8 +13,8 @@ use strahl::radiosity::solve::hierarchical::{
     HierarchicalSettings, Oracle, RefinePass, solve_hierarchical, solve_hierarchical_shooting,
 };
 use strahl::radiosity::solve::{
-    DisplaySettings, Iteration, MatrixSettings, RadiositySystem, Shading, ShootingSettings,
-    Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
+    DisplaySettings, Iteration, LinkDisplay, MatrixSettings, RadiositySystem, Shading,
+    ShootingSettings, Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
 };
 use strahl::radiosity::{
     FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,
@@ -130,6 +130,10 @@ pub struct RadiosityDisplayArgs {
     /// Draw the patch edges.
     #[arg(long)]
     pub wireframe: bool,
+    /// hierarchical: draw the links of the solution as lines, all of them or (`--links NAME`)
+    /// those that receive on or emit from the named object.
+    #[arg(long, value_name = "OBJECT", num_args = 0..=1, default_missing_value = "")]
+    pub links: Option<String>,
     /// Solver options.
     #[command(flatten)]
     pub solve: RadiosityArgs,
@@ -361,8 +365,31 @@ pub fn render(
     if display.solver == Solver::LightTrace {
         bail!("--method radiosity needs --solver matrix, progressive or hierarchical");
     }
+    let links = match display.links.as_deref() {
+        None => LinkDisplay::None,
+        Some(_) if display.solver != Solver::Hierarchical => {
+            bail!("--links needs --solver hierarchical (the other solvers keep no links)")
+        }
+        Some("") => LinkDisplay::All,
+        Some(name) => {
+            let objects = &world.scene.objects;
+            let index = objects
+                .iter()
+                .position(|o| o.name.as_deref() == Some(name))
+                .with_context(|| {
+                    let names: Vec<&str> =
+                        objects.iter().filter_map(|o| o.name.as_deref()).collect();
+                    format!(
+                        "--links: no object named '{name}' (objects: {})",
+                        names.join(", ")
+                    )
+                })?;
+            LinkDisplay::Object(index as u32)
+        }
+    };
     let (system, solution) = solve(world, &display.solve, display.solver, run)?;
     let settings = DisplaySettings {
+        links,
         width,
         height,
         shading: display.shading,

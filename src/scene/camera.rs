@@ -45,6 +45,7 @@ impl Camera {
         let half_w = half_h * self.width as f32 / self.height as f32;
         Some(CameraRays {
             origin: self.position,
+            forward,
             // Image positions map linearly to the view plane: x ∈ [0, width] to −1…1 along
             // `right`, y ∈ [0, height] to 1…−1 along `up`.
             right: right * (2.0 * half_w / self.width as f32),
@@ -58,6 +59,8 @@ impl Camera {
 #[derive(Clone, Copy, Debug)]
 pub struct CameraRays {
     origin: Vec3,
+    /// Unit view direction.
+    forward: Vec3,
     /// Direction through the top-left corner of the image (unnormalised).
     corner: Vec3,
     /// Change of the direction per pixel to the right.
@@ -73,11 +76,46 @@ impl CameraRays {
         let dir = (self.corner + self.right * x + self.up * y).normalize();
         Ray::new(self.origin, dir)
     }
+
+    /// The image position `(x, y)` in pixels of the world point `p` (the inverse of
+    /// [`Self::ray`]), `None` when `p` lies behind the camera or in its plane.
+    pub fn project(&self, p: Vec3) -> Option<(f32, f32)> {
+        let d = p - self.origin;
+        let depth = d.dot(self.forward);
+        if depth <= 0.0 {
+            return None;
+        }
+        // `corner` has unit length along `forward`; `right` and `up` are across it.
+        let v = d / depth - self.corner;
+        Some((
+            v.dot(self.right) / self.right.length_squared(),
+            v.dot(self.up) / self.up.length_squared(),
+        ))
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn project_inverts_ray() {
+        let cam = Camera {
+            position: Vec3::new(1.0, 2.0, -3.0),
+            look_at: Vec3::new(0.5, 1.0, 4.0),
+            up: Vec3::Y,
+            fov_degrees: 50.0,
+            width: 64,
+            height: 48,
+        };
+        let rays = cam.rays().unwrap();
+        for (x, y) in [(0.0, 0.0), (12.5, 40.25), (64.0, 48.0)] {
+            let ray = rays.ray(x, y);
+            let (px, py) = rays.project(ray.origin + ray.dir * 7.0).unwrap();
+            assert!((px - x).abs() < 1e-3 && (py - y).abs() < 1e-3, "{px} {py}");
+            assert!(rays.project(ray.origin - ray.dir).is_none());
+        }
+    }
 
     #[test]
     fn centre_ray_looks_at_target_and_corners_span_fov() {

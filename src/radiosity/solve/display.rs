@@ -5,13 +5,13 @@
 //! its own radiosity. Surfaces that are not in the mesh (infinite planes) are not shown.
 
 use super::lookup::{RadiosityLookup, Shading};
-use super::solution::Solution;
+use super::solution::{LinkSegment, Solution};
 use super::system::RadiositySystem;
 use crate::color::Rgb;
 use crate::geometry::Ray;
 use crate::measure::Film;
 use crate::progress::{Cancel, ProgressListener};
-use crate::scene::Camera;
+use crate::scene::{Camera, CameraRays};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -31,6 +31,31 @@ pub struct DisplaySettings {
     pub wireframe: bool,
     /// Camera rays per pixel and axis (a regular grid; `n²` rays per pixel).
     pub samples_per_axis: u32,
+    /// Which links of a hierarchical solution to draw over the image.
+    pub links: LinkDisplay,
+}
+
+/// Which links the display draws (seed 000's figures of links), as lines from the centroid
+/// of the receiving node to that of the emitting node, over everything else.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LinkDisplay {
+    /// None.
+    #[default]
+    None,
+    /// Every link of the solution.
+    All,
+    /// The links that receive on or emit from the object with this index.
+    Object(u32),
+}
+
+impl LinkDisplay {
+    fn shows(self, link: &LinkSegment) -> bool {
+        match self {
+            LinkDisplay::None => false,
+            LinkDisplay::All => true,
+            LinkDisplay::Object(o) => link.receiver_object == o || link.emitter_object == o,
+        }
+    }
 }
 
 /// Renders `solution` (its display radiosity, ambient term included) through `camera` at
@@ -81,7 +106,38 @@ pub fn render_solution(
         })
         .collect();
     progress.finish();
-    Film::from_pixels(settings.width, settings.height, pixels)
+    let mut film = Film::from_pixels(settings.width, settings.height, pixels)?;
+    if settings.links != LinkDisplay::None {
+        draw_links(&mut film, &rays, solution, settings.links);
+    }
+    Some(film)
+}
+
+/// Draws the links `which` selects as one-pixel lines in a light cyan twice as bright as
+/// the image's mean luminance (so tone mapping keeps them visible).
+fn draw_links(film: &mut Film, rays: &CameraRays, solution: &Solution, which: LinkDisplay) {
+    let (width, height) = (film.width() as i64, film.height() as i64);
+    let mean =
+        film.pixels().iter().map(|p| p.luminance()).sum::<f32>() / film.pixels().len() as f32;
+    let colour = Rgb::new(0.3, 1.0, 1.0) * (2.0 * mean.max(f32::MIN_POSITIVE));
+    let pixels = film.pixels_mut();
+    for link in solution.link_segments.iter().filter(|l| which.shows(l)) {
+        let ends = (
+            rays.project(link.receiver.as_vec3()),
+            rays.project(link.emitter.as_vec3()),
+        );
+        let (Some((x0, y0)), Some((x1, y1))) = ends else {
+            continue;
+        };
+        let steps = (x1 - x0).abs().max((y1 - y0).abs()).ceil().clamp(1.0, 1e5) as usize;
+        for k in 0..=steps {
+            let t = k as f32 / steps as f32;
+            let (x, y) = ((x0 + (x1 - x0) * t) as i64, (y0 + (y1 - y0) * t) as i64);
+            if (0..width).contains(&x) && (0..height).contains(&y) {
+                pixels[(y * width + x) as usize] = colour;
+            }
+        }
+    }
 }
 
 /// What one camera ray sees.

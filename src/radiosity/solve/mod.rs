@@ -14,13 +14,13 @@ mod solution;
 mod system;
 mod unshot_progress;
 
-pub use display::{DisplaySettings, render_solution};
+pub use display::{DisplaySettings, LinkDisplay, render_solution};
 pub use interpolate::{CornerValues, vertex_radiosity};
 pub use lookup::{LeafHit, RadiosityLookup, Shading};
 pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};
 pub use solution::{
-    CONVERGENCE_ROWS, PhaseTimes, Solution, SolverKind, power_fraction, source_power,
+    CONVERGENCE_ROWS, LinkSegment, PhaseTimes, Solution, SolverKind, power_fraction, source_power,
 };
 pub use system::{Couplings, RadiositySystem, SystemOptions};
 

@@ -17,6 +17,7 @@ use super::system::RadiositySystem;
 use crate::color::Rgb64;
 use crate::measure::{LitMesh, Stats, SurfacePower, SurfaceTable};
 use crate::radiosity::element::Side;
+use glam::DVec3;
 use glam::Vec3;
 
 /// Which solver produced a solution.
@@ -98,6 +99,23 @@ pub struct Solution {
     pub rounds: Vec<RoundStats>,
     /// Hierarchical solvers: links at the end (0 for flat solvers).
     pub links: usize,
+    /// Hierarchical radiosity: the patch links at the end, as segments between the centroids
+    /// of their receiver and emitter (empty for the other solvers).
+    pub link_segments: Vec<LinkSegment>,
+}
+
+/// A link drawn as a segment: from the centroid of the receiving node to that of the
+/// emitting node (scene units), with the objects the two patches belong to.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkSegment {
+    /// Centroid of the receiving node.
+    pub receiver: DVec3,
+    /// Centroid of the emitting node.
+    pub emitter: DVec3,
+    /// Object index of the receiving patch.
+    pub receiver_object: u32,
+    /// Object index of the emitting patch.
+    pub emitter_object: u32,
 }
 
 impl Solution {
@@ -232,6 +250,7 @@ impl Solution {
             },
             rounds: Vec::new(),
             links: 0,
+            link_segments: Vec::new(),
         }
     }
 }

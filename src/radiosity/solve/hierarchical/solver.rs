@@ -10,7 +10,7 @@ use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
 use crate::radiosity::solve::{
-    PhaseTimes, RadiositySystem, Solution, SolveError, SolverKind, SystemOptions,
+    LinkSegment, PhaseTimes, RadiositySystem, Solution, SolveError, SolverKind, SystemOptions,
 };
 use crate::radiosity::visibility::Visibility;
 use crate::world::World;
@@ -390,6 +390,20 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let irradiance = per_element(&self.nodes.irradiance);
         let lit = per_element(&self.nodes.lit_total);
         let links = self.links.len() + self.light_links.len();
+        let link_segments = self
+            .links
+            .iter()
+            .map(|l| {
+                let r = self.mesh.patch(split_node(l.receiver as usize).0);
+                let e = self.mesh.patch(split_node(l.emitter as usize).0);
+                LinkSegment {
+                    receiver: r.centroid,
+                    emitter: e.centroid,
+                    receiver_object: r.object,
+                    emitter_object: e.object,
+                }
+            })
+            .collect();
         let form_factors = self.linker.form_factors.load(Ordering::Relaxed);
         let rays = self.linker.rays.load(Ordering::Relaxed);
         let system = RadiositySystem::from_mesh(self.world, self.mesh, options, Some(lit))?;
@@ -405,6 +419,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             seconds,
             rounds,
             links,
+            link_segments,
         };
         Ok((system, solution))
     }
