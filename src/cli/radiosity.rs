@@ -304,7 +304,7 @@ fn print_summary(system: &RadiositySystem, solution: &Solution) {
 pub fn print_convergence(solution: &Solution) {
     if !solution.rounds.is_empty() {
         eprintln!(
-            "{:>5} {:>9} {:>9} {:>9} {:>8} {:>10} {:>7} {:>10} {:>8} {:>8} {:>8}",
+            "{:>5} {:>9} {:>9} {:>9} {:>8} {:>10} {:>7} {:>10} {:>8} {:>8} {:>8} {:>8}",
             "round",
             "created",
             "refined",
@@ -315,11 +315,12 @@ pub fn print_convergence(solution: &Solution) {
             "change",
             "link s",
             "refine s",
-            "gather s"
+            "gather s",
+            "peak MB"
         );
         for (k, r) in solution.rounds.iter().enumerate() {
             eprintln!(
-                "{:>5} {:>9} {:>9} {:>9} {:>8} {:>10} {:>7} {:>10.3e} {:>8.3} {:>8.3} {:>8.3}",
+                "{:>5} {:>9} {:>9} {:>9} {:>8} {:>10} {:>7} {:>10.3e} {:>8.3} {:>8.3} {:>8.3} {:>8}",
                 k + 1,
                 r.links_created,
                 r.links_refined,
@@ -330,7 +331,9 @@ pub fn print_convergence(solution: &Solution) {
                 r.residual,
                 r.seconds_linking,
                 r.seconds_refine,
-                r.seconds_gather + r.seconds_push_pull
+                r.seconds_gather + r.seconds_push_pull,
+                r.peak_memory_bytes
+                    .map_or("?".to_string(), |b| format!("{:.1}", b as f64 / 1e6))
             );
         }
         return;

@@ -1,16 +1,18 @@
 //! What the algorithms measure, in plain containers that they fill and that `report` and
 //! `image` turn into files: the [`Film`] (radiance per pixel), the [`SurfacePower`] (power
 //! per reported surface, over the [`SurfaceTable`] of a scene), the [`LitMesh`] (radiosity
-//! per polygon corner) and the run's [`Stats`].
+//! per polygon corner) and the run's [`Stats`], with the process's peak memory.
 
 mod film;
 mod lit_mesh;
+mod memory;
 mod stats;
 mod surface_power;
 mod surfaces;
 
 pub use film::Film;
 pub use lit_mesh::LitMesh;
+pub use memory::peak_resident_bytes;
 pub use stats::Stats;
 pub use surface_power::{PowerBalance, SurfacePower, Totals};
 pub use surfaces::{ReportSurface, SurfaceTable};

@@ -6,6 +6,7 @@ use super::nodes::{Nodes, node, split_node};
 use super::oracle::{Decision, Limits, decide, decide_light};
 use super::{HierarchicalSettings, RefinePass};
 use crate::color::Rgb64;
+use crate::measure::peak_resident_bytes;
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
@@ -46,6 +47,10 @@ pub struct RoundStats {
     pub seconds_gather: f64,
     /// Seconds spent in push-pull.
     pub seconds_push_pull: f64,
+    /// Peak resident memory of the process at the end of the round, bytes (where the system
+    /// reports it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_memory_bytes: Option<u64>,
 }
 
 /// The state of a solve (shared with hierarchical shooting, which uses the nodes, the light
@@ -110,6 +115,7 @@ pub fn solve_hierarchical<'w>(
         round.links = (solver.links.len() + solver.light_links.len()) as u64;
         round.leaves = solver.mesh.leaves().len() as u64;
         round.rays = solver.linker.rays.load(Ordering::Relaxed);
+        round.peak_memory_bytes = peak_resident_bytes();
         rounds.push(round);
         progress.advance(1);
         if cancel.is_requested() {
