@@ -59,6 +59,10 @@ pub struct Link {
     /// emitter that sees the receiver better is not averaged with a dark part that sees it
     /// worse (with the mean alone that correlation loses light systematically).
     pub shares: [f32; 4],
+    /// The point form factor (times the visible share, where known) at the receiver's Gauss
+    /// points, one per quarter its children cover (a triangle's middle child: their mean):
+    /// how a shot taken at a split receiver divides among its children.
+    pub receiver_weights: [f32; 4],
 }
 
 impl Link {
@@ -77,6 +81,53 @@ impl Link {
     }
 }
 
+impl Link {
+    /// Where the mean irradiance `mean` (W·m⁻²) the link brings its receiver goes: to the
+    /// receiver itself while it is a leaf; once split, to its children in proportion to the
+    /// link's receiver weights (the point form factor in each child's quarter), the power
+    /// unchanged — a child in the corner next to the emitter gets its share, not the mean.
+    pub fn divide(&self, mesh: &PatchMesh, mean: Rgb64) -> Divided {
+        let r = self.receiver as usize;
+        let (patch, side) = split_node(r);
+        let parent = mesh.patch(patch);
+        let Some(children) = parent.children else {
+            return Divided::Whole(r, mean);
+        };
+        let weights = self.receiver_weights.map(f64::from);
+        let norm: f64 = children
+            .iter()
+            .zip(weights)
+            .map(|(&c, w)| mesh.patch(c).area / parent.area * w)
+            .sum();
+        if norm <= 0.0 {
+            return Divided::Whole(r, mean);
+        }
+        Divided::Quarters(std::array::from_fn(|k| {
+            (node(children[k], side), mean * (weights[k] / norm))
+        }))
+    }
+}
+
+/// Irradiance a link brings, by node (see [`Link::divide`]).
+pub enum Divided {
+    /// All of it to one node.
+    Whole(usize, Rgb64),
+    /// To the four children of the receiver.
+    Quarters([(usize, Rgb64); 4]),
+}
+
+impl IntoIterator for Divided {
+    type Item = (usize, Rgb64);
+    type IntoIter = std::iter::Take<std::array::IntoIter<(usize, Rgb64), 4>>;
+
+    fn into_iter(self) -> Self::IntoIter {
+        match self {
+            Divided::Whole(n, h) => [(n, h); 4].into_iter().take(1),
+            Divided::Quarters(q) => q.into_iter().take(4),
+        }
+    }
+}
+
 /// The shares of the transport from the quarters of `emitter` (side `es`) to `receiver`
 /// (side `rs`): the weighted point form factor from each of the emitter's Gauss points (see
 /// [`quadrant_shares`] for the quarter each lies in) to the receiver. Visibility is not known from that side and is
@@ -89,23 +140,30 @@ fn emitter_shares(emitter: &Patch, es: Side, receiver: &Patch, rs: Side) -> [f32
     })
 }
 
-/// Shares in proportion to `weight(i)` of Gauss point `i` of `patch`, which lies in the
-/// quarter of child `i`: one per child of a quad; a triangle's three lie in its corner
-/// children, and its middle child gets their mean. Even shares when every weight is zero.
+/// Shares in proportion to `weight(i)` of Gauss point `i` of `patch` (see
+/// [`quarter_values`]); even shares when every weight is zero.
 fn quadrant_shares(patch: &Patch, weight: impl Fn(usize) -> f64) -> [f32; 4] {
-    let w: [f64; 4] = if patch.is_triangle() {
-        let corners: [f64; 3] = std::array::from_fn(|i| weight(i).max(0.0));
-        let middle = corners.iter().sum::<f64>() / 3.0;
-        [corners[0], corners[1], corners[2], middle]
-    } else {
-        std::array::from_fn(|i| weight(i).max(0.0))
-    };
-    let total: f64 = w.iter().sum();
+    let w = quarter_values(patch, weight);
+    let total: f32 = w.iter().sum();
     if total > 0.0 {
-        w.map(|x| (x / total) as f32)
+        w.map(|x| x / total)
     } else {
         [0.25; 4]
     }
+}
+
+/// `value(i)` at Gauss point `i` of `patch`, which lies in the quarter of child `i`: one per
+/// child of a quad; a triangle's three lie in its corner children, and its middle child gets
+/// their mean. Negative values count as zero.
+fn quarter_values(patch: &Patch, value: impl Fn(usize) -> f64) -> [f32; 4] {
+    let v: [f64; 4] = if patch.is_triangle() {
+        let corners: [f64; 3] = std::array::from_fn(|i| value(i).max(0.0));
+        let middle = corners.iter().sum::<f64>() / 3.0;
+        [corners[0], corners[1], corners[2], middle]
+    } else {
+        std::array::from_fn(|i| value(i).max(0.0))
+    };
+    v.map(|x| x as f32)
 }
 
 /// A receiver node gathering the irradiance of a light that only sends.
@@ -250,6 +308,8 @@ impl Linker<'_> {
         } else {
             quadrant_shares(e, |i| gauss[i].1 * point_factors[i] * visible_at(i))
         };
+        let receiver_visible = |i: usize| if scale == 1.0 { visible_at(i) } else { 1.0 };
+        let receiver_weights = quarter_values(r, |i| factors[i] * receiver_visible(i));
         let partial = (0..gauss.len()).any(|i| visible_at(i) < 1.0);
         let f_min = if partial {
             0.0
@@ -265,6 +325,7 @@ impl Linker<'_> {
             visible,
             unoccluded: seen.is_none(),
             shares,
+            receiver_weights,
         })
     }
 

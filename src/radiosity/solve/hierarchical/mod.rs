@@ -69,12 +69,12 @@ pub struct HierarchicalSettings {
 }
 
 impl Default for HierarchicalSettings {
-    /// Lischinski's oracle at an error of 5·10⁻⁵ of the emitted power, minimum area 2·10⁻⁵
+    /// Lischinski's oracle at an error of 10⁻⁴ of the emitted power, minimum area 2·10⁻⁵
     /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds.
     fn default() -> Self {
         HierarchicalSettings {
             oracle: Oracle::Lischinski,
-            error: 5e-5,
+            error: 1e-4,
             min_area: 2e-5,
             refine_pass: RefinePass::Original,
             tolerance: 1e-4,

@@ -148,6 +148,7 @@ fn shoot(
     while !frontier.is_empty() {
         let links = solver.create_links(&frontier);
         let mut next = Vec::new();
+        let mut accepted = Vec::new();
         for link in links {
             if accepts_shot(
                 solver.settings.oracle,
@@ -156,9 +157,7 @@ fn shoot(
                 &solver.mesh,
                 &solver.limits,
             ) {
-                let irradiance = sent * link.coupling;
-                solver.nodes.gathered[link.receiver as usize] += irradiance;
-                received.push((link.receiver as usize, irradiance));
+                accepted.push(link);
                 continue;
             }
             for child in children(&mut solver.mesh, link.receiver as usize) {
@@ -170,6 +169,14 @@ fn shoot(
             let (patch, side) = split_node(shot.len());
             let parent = solver.mesh.patch(patch).parent.map(|p| node(p, side));
             shot.push(parent.map_or(Rgb64::BLACK, |p| shot[p]));
+        }
+        // Taken after the splits of this level, which may have split an accepted receiver
+        // (through its other side).
+        for link in accepted {
+            for (n, irradiance) in link.divide(&solver.mesh, sent * link.coupling) {
+                solver.nodes.gathered[n] += irradiance;
+                received.push((n, irradiance));
+            }
         }
         frontier = next;
     }

@@ -287,8 +287,10 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         gathered.clear();
         gathered.resize(b.len(), Rgb64::BLACK);
         for link in &self.links {
-            gathered[link.receiver as usize] +=
-                link.emitter_radiosity(&self.mesh, b) * link.coupling;
+            let h = link.emitter_radiosity(&self.mesh, b) * link.coupling;
+            for (n, h) in link.divide(&self.mesh, h) {
+                gathered[n] += h;
+            }
         }
     }
 
