@@ -17,8 +17,8 @@ use strahl::progress::Cancel;
 use strahl::radiosity::solve::RadiosityLookup;
 use strahl::sampling::SequenceKind;
 use strahl::trace::{
-    AntialiasMode, PathTracer, ProgressiveSettings, RenderSettings, ShadowMode, StandardRayTracer,
-    render, render_progressive,
+    AntialiasMode, Integrator, PathTracer, ProgressiveSettings, RenderOutput, RenderSettings,
+    ShadowMode, StandardRayTracer, render, render_progressive,
 };
 use strahl::world::World;
 
@@ -222,6 +222,31 @@ fn render_standard(
     if args.first_hit_paths.is_some() || args.time_limit.is_some() {
         bail!("--first-hit-paths and --time-limit need --method pathtrace");
     }
+    let integrator = StandardRayTracer {
+        max_depth: args.depth.unwrap_or(6),
+        light_samples: args.light_samples,
+        shadows: args.shadows,
+    };
+    let output = render_tiles(args, world, width, height, &integrator, bar, cancel)?;
+    Ok(Rendered {
+        film: output.film,
+        subdivisions: output.subdivisions,
+        summary: format!("{} camera samples", output.samples_traced),
+        complete: output.complete,
+    })
+}
+
+/// Renders `integrator` in tiles at `width × height` with the antialiasing, samples and seed
+/// of `args`.
+fn render_tiles(
+    args: &RenderArgs,
+    world: &World,
+    width: u32,
+    height: u32,
+    integrator: &dyn Integrator,
+    bar: &progress::Bar,
+    cancel: &Cancel,
+) -> Result<RenderOutput> {
     let settings = RenderSettings {
         width,
         height,
@@ -231,21 +256,10 @@ fn render_standard(
         seed: args.seed,
         sequence: SequenceKind::Random,
     };
-    let integrator = StandardRayTracer {
-        max_depth: args.depth.unwrap_or(6),
-        light_samples: args.light_samples,
-        shadows: args.shadows,
-    };
-    let output = with_threads(args.threads, || {
-        render(world, &integrator, &settings, bar, cancel)
+    with_threads(args.threads, || {
+        render(world, integrator, &settings, bar, cancel)
     })?
-    .context("the camera is degenerate")?;
-    Ok(Rendered {
-        film: output.film,
-        subdivisions: output.subdivisions,
-        summary: format!("{} camera samples", output.samples_traced),
-        complete: output.complete,
-    })
+    .context("the camera is degenerate")
 }
 
 /// Solves the scene by radiosity and renders it by final gathering.
@@ -266,15 +280,6 @@ fn render_final_gather(
     }
     let (system, solution) =
         radiosity::solve(world, &args.radiosity.solve, args.radiosity.solver, run)?;
-    let settings = RenderSettings {
-        width,
-        height,
-        antialias: args.aa,
-        samples_per_pixel: args.spp.unwrap_or(4),
-        adaptive_threshold: args.aa_threshold,
-        seed: args.seed,
-        sequence: SequenceKind::Random,
-    };
     let integrator = FinalGather {
         reflected: RadiosityLookup::new(
             &system,
@@ -284,10 +289,7 @@ fn render_final_gather(
         light_samples: args.light_samples,
         gather_rays: args.gather_rays,
     };
-    let output = with_threads(args.threads, || {
-        render(world, &integrator, &settings, bar, cancel)
-    })?
-    .context("the camera is degenerate")?;
+    let output = render_tiles(args, world, width, height, &integrator, bar, cancel)?;
     Ok(Rendered {
         film: output.film,
         subdivisions: output.subdivisions,
