@@ -330,47 +330,50 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// Replaces every link with a refining decision by links to the children of its receiver
     /// or emitter (splitting those nodes); returns the links created and refined.
     fn apply(&mut self, decisions: &[Decision], light_decisions: &[Decision]) -> (u64, u64) {
-        let mut keep = Vec::with_capacity(self.links.len());
+        // Refined links are removed in place (the kept keep their order), so no round copies
+        // the whole link list.
         let mut pairs: Vec<(usize, usize, bool)> = Vec::new();
         let mut refined = 0;
-        for (link, decision) in self.links.iter().zip(decisions) {
+        let mesh = &mut self.mesh;
+        let mut decision = decisions.iter();
+        self.links.retain(|link| {
             let (r, e) = (link.receiver as usize, link.emitter as usize);
-            match decision {
-                Decision::Keep => keep.push(*link),
-                Decision::Receiver => {
+            match decision.next() {
+                Some(Decision::Receiver) => {
                     refined += 1;
-                    for child in children(&mut self.mesh, r) {
+                    for child in children(mesh, r) {
                         pairs.push((child, e, link.unoccluded));
                     }
+                    false
                 }
-                Decision::Emitter => {
+                Some(Decision::Emitter) => {
                     refined += 1;
-                    for child in children(&mut self.mesh, e) {
+                    for child in children(mesh, e) {
                         pairs.push((r, child, link.unoccluded));
                     }
+                    false
                 }
+                Some(Decision::Keep) | None => true,
             }
-        }
-        let mut keep_lights = Vec::with_capacity(self.light_links.len());
+        });
         let mut light_pairs: Vec<(usize, u32)> = Vec::new();
-        for (link, decision) in self.light_links.iter().zip(light_decisions) {
-            if *decision == Decision::Keep {
-                keep_lights.push(*link);
-            } else {
-                refined += 1;
-                for child in children(&mut self.mesh, link.receiver as usize) {
-                    light_pairs.push((child, link.light));
-                }
+        let mut decision = light_decisions.iter();
+        self.light_links.retain(|link| {
+            if decision.next().is_none_or(|d| *d == Decision::Keep) {
+                return true;
             }
-        }
+            refined += 1;
+            for child in children(mesh, link.receiver as usize) {
+                light_pairs.push((child, link.light));
+            }
+            false
+        });
         self.nodes.grow(&self.world.scene, &self.mesh);
         let created = self.create_links(&pairs);
         let created_lights = self.create_light_links(&light_pairs);
         let count = (created.len() + created_lights.len()) as u64;
-        keep.extend(created);
-        keep_lights.extend(created_lights);
-        self.links = keep;
-        self.light_links = keep_lights;
+        self.links.extend(created);
+        self.light_links.extend(created_lights);
         self.sum_light_links();
         (count, refined)
     }
