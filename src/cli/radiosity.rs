@@ -130,7 +130,7 @@ pub struct RadiosityDisplayArgs {
     /// Draw the patch edges.
     #[arg(long)]
     pub wireframe: bool,
-    /// hierarchical: draw the links of the solution as lines, all of them or (`--links NAME`)
+    /// hierarchical: draw the links of the solution as lines, all of them or (`--links OBJECT`)
     /// those that receive on or emit from the named object.
     #[arg(long, value_name = "OBJECT", num_args = 0..=1, default_missing_value = "")]
     pub links: Option<String>,
