@@ -4,11 +4,19 @@
 //! A patch link stores the transport coefficient: the area average over the smaller of the
 //! two patches (its Gauss points, [`gauss_points`]) of the point form factor to the other
 //! side times the share of it visible from the point ([`Visibility::from_points`]), carried
-//! to the receiver by reciprocity when the emitter is the smaller, together with the smallest and largest point form factor over the receiver's Gauss points,
-//! centroid and corners (`F_min = 0` when the pair is partly occluded), which the oracles
-//! judge. A pair that cannot see each other (every ray from every point blocked) is never
-//! linked; a partly visible pair is linked even when its estimate is 0, so the oracle can
-//! refine it.
+//! to the receiver by reciprocity when the emitter is the smaller, together with the
+//! smallest and largest point form factor over the receiver's Gauss points, centroid and
+//! corners (`F_min = 0` when the pair is partly occluded), which the oracles judge. A pair
+//! that cannot see each other (every ray from every Gauss point and from near every corner
+//! and edge midpoint blocked) is never linked; a partly visible pair is linked even when its
+//! estimate is 0, so the oracle can refine it.
+//!
+//! Once other links split its ends, a link kept at a coarse level still transports what the
+//! finer level shows: it gathers the emitter's children's radiosities weighted by how much of
+//! the transport leaves each child's quarter ([`Link::emitter_radiosity`]), and hands the
+//! receiver's children the share the form factor at each gives them ([`Link::divide`]). With
+//! the means alone, a bright part of an emitter that sees the receiver better than its dark
+//! part (the shadow of the very light that makes it bright) loses light link after link.
 
 use super::nodes::{node, split_node};
 use crate::color::Rgb64;
@@ -23,8 +31,10 @@ use crate::world::World;
 use glam::DVec3;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Visibility rays from each receiver sample point to the emitter, where a first probe finds
-/// the pair partly occluded.
+/// Visibility rays per Gauss point of the smaller patch where the pair may be occluded: the
+/// first probe's 2 × 2 alone ([`Visibility::from_points`] adds rays only above four). 16 more
+/// per point changed no Cornell-box figure beyond seed-to-seed noise: the oracle refines
+/// partly occluded links until their share is small.
 const RAYS_PER_POINT: u32 = 4;
 
 /// How far the corner samples of a receiver are pulled towards its centroid (a share of the
@@ -54,10 +64,8 @@ pub struct Link {
     /// True when nothing can block the pair: its children's links need no visibility rays.
     pub unoccluded: bool,
     /// The share of the transport that leaves each quarter of the emitter (the quarters its
-    /// children will cover, in their order). Gathering weighs
-    /// the children's radiosity by it once the emitter is split, so a bright part of the
-    /// emitter that sees the receiver better is not averaged with a dark part that sees it
-    /// worse (with the mean alone that correlation loses light systematically).
+    /// children will cover, in their order): gathering weighs the children's radiosities by
+    /// it once the emitter is split.
     pub shares: [f32; 4],
     /// The point form factor (times the visible share, where known) at the receiver's Gauss
     /// points, one per quarter its children cover (a triangle's middle child: their mean):
@@ -79,9 +87,7 @@ impl Link {
             None => radiosity[self.emitter as usize],
         }
     }
-}
 
-impl Link {
     /// Where the mean irradiance `mean` (W·m⁻²) the link brings its receiver goes: to the
     /// receiver itself while it is a leaf; once split, to its children in proportion to the
     /// link's receiver weights (the point form factor in each child's quarter), the power
@@ -130,8 +136,8 @@ impl IntoIterator for Divided {
 
 /// The shares of the transport from the quarters of `emitter` (side `es`) to `receiver`
 /// (side `rs`): the weighted point form factor from each of the emitter's Gauss points (see
-/// [`quadrant_shares`] for the quarter each lies in) to the receiver. Visibility is not known from that side and is
-/// taken as even.
+/// [`quarter_values`] for the quarter each lies in) to the receiver. Visibility is not known
+/// from that side and is taken as even.
 fn emitter_shares(emitter: &Patch, es: Side, receiver: &Patch, rs: Side) -> [f32; 4] {
     let gauss = gauss_points(emitter);
     let normal = es.normal(emitter);
