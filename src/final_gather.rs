@@ -2,12 +2,12 @@
 //! ray tracer and the indirect light from a radiosity solution.
 //!
 //! At the surface a camera ray meets, the light arriving straight from the lights and from
-//! emitting surfaces is traced with exact shadows ([`direct_light`]); the light arriving
+//! emitting surfaces is traced with exact shadows ([`seen_directly`]); the light arriving
 //! after one or more reflections is gathered by cosine-distributed rays that read, where they
 //! land, the radiance the solution reflects there (its radiosity without its own emission,
 //! [`Solution::reflected_radiosity`], smooth across each leaf). Shadows and contact
-//! shading are therefore as sharp as the ray tracer's, and the mesh no longer shows where
-//! the indirect light is smooth. It sits above the algorithms because it uses two of them.
+//! shading are therefore as sharp as the ray tracer's, and the radiosity mesh no longer
+//! shows in the image. It sits above the algorithms because it uses two of them.
 //!
 //! [`Solution::reflected_radiosity`]: crate::radiosity::solve::Solution::reflected_radiosity
 
@@ -17,9 +17,9 @@ use crate::radiosity::solve::RadiosityLookup;
 use crate::sampling::Sampler;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::trace::Integrator;
-use crate::trace::direct::{ShadowMode, direct_light};
+use crate::trace::direct::{ShadowMode, seen_directly};
 use crate::trace::shading::ShadingPoint;
-use crate::world::{World, emitted};
+use crate::world::World;
 use std::f32::consts::PI;
 
 /// The final-gather integrator over a solved radiosity system.
@@ -54,15 +54,9 @@ impl FinalGather<'_> {
 
 impl Integrator for FinalGather<'_> {
     fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
-        let Some(hit) = world.intersect(ray) else {
-            return world.lights.sky.unwrap_or(Rgb::BLACK);
-        };
-        let mut radiance = emitted(&world.scene, &hit);
-        let sp = ShadingPoint::new(world, hit, ray.dir);
-        if sp.material.is_black_from(hit.front_face) {
-            return radiance;
+        match seen_directly(world, ray, self.light_samples, ShadowMode::On, sampler) {
+            (direct, Some(sp)) => direct + self.indirect(&sp, sampler),
+            (direct, None) => direct,
         }
-        radiance += direct_light(world, &sp, self.light_samples, ShadowMode::On, sampler);
-        radiance + self.indirect(&sp, sampler)
     }
 }

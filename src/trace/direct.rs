@@ -3,11 +3,11 @@
 
 use super::shading::ShadingPoint;
 use crate::color::Rgb;
-use crate::geometry::Frame;
+use crate::geometry::{Frame, Ray};
 use crate::sampling::Sampler;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::scene::Incidence;
-use crate::world::World;
+use crate::world::{World, emitted};
 use std::f32::consts::PI;
 
 /// How shadows are decided (seed 002 §4.4: `Shadows` and `NoShadows` processors).
@@ -30,6 +30,29 @@ impl ShadowMode {
     fn lets_through(self, unblocked: impl FnOnce() -> bool) -> bool {
         self == ShadowMode::Off || unblocked()
     }
+}
+
+/// What a ray sees directly, W·sr⁻¹·m⁻²: the sky (or black) when it meets nothing, else
+/// what the surface it meets emits toward it plus the direct light that surface reflects
+/// ([`direct_light`]); with the shading point when the surface scatters light from the side
+/// the ray meets, for integrators that go on from there.
+pub fn seen_directly(
+    world: &World,
+    ray: &Ray,
+    light_samples: u32,
+    shadows: ShadowMode,
+    sampler: &mut Sampler,
+) -> (Rgb, Option<ShadingPoint>) {
+    let Some(hit) = world.intersect(ray) else {
+        return (world.lights.sky.unwrap_or(Rgb::BLACK), None);
+    };
+    let emitted = emitted(&world.scene, &hit);
+    let sp = ShadingPoint::new(world, hit, ray.dir);
+    if sp.material.is_black_from(hit.front_face) {
+        return (emitted, None);
+    }
+    let radiance = emitted + direct_light(world, &sp, light_samples, shadows, sampler);
+    (radiance, Some(sp))
 }
 
 /// Radiance reflected toward the viewer from light arriving directly from all lights.

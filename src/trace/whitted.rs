@@ -3,13 +3,12 @@
 //! recursion to a fixed depth; indirect diffuse light is ignored.
 
 use super::Integrator;
-use super::direct::{ShadowMode, direct_light};
-use super::shading::ShadingPoint;
+use super::direct::{ShadowMode, seen_directly};
 use crate::color::Rgb;
 use crate::geometry::{Ray, spawn_ray};
 use crate::sampling::Sampler;
+use crate::world::World;
 use crate::world::optics::{fresnel_dielectric, reflect, refract};
-use crate::world::{World, emitted};
 
 /// Settings of the standard ray tracer.
 #[derive(Clone, Debug)]
@@ -34,18 +33,15 @@ impl Default for StandardRayTracer {
 
 impl StandardRayTracer {
     fn trace(&self, world: &World, ray: &Ray, depth: u32, sampler: &mut Sampler) -> Rgb {
-        let Some(hit) = world.intersect(ray) else {
-            return world.lights.sky.unwrap_or(Rgb::BLACK);
-        };
-        let mut radiance = emitted(&world.scene, &hit);
-        let sp = ShadingPoint::new(world, hit, ray.dir);
-        if sp.material.is_black_from(hit.front_face) {
+        let (mut radiance, sp) =
+            seen_directly(world, ray, self.light_samples, self.shadows, sampler);
+        let Some(sp) = sp else {
             return radiance;
-        }
-        radiance += direct_light(world, &sp, self.light_samples, self.shadows, sampler);
+        };
         if depth >= self.max_depth {
             return radiance;
         }
+        let hit = sp.hit;
         let m = sp.material;
         let follow = |dir, weight: Rgb, sampler: &mut Sampler| {
             if weight.is_black() {
