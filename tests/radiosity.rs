@@ -786,18 +786,7 @@ fn hierarchical_links_a_pair_that_sees_itself_only_near_an_edge() {
             .incident_power[1]
     };
     let radiosity = floor(&report_of(&system, &solution));
-    let settings = LightTraceSettings {
-        photons: 4_000_000,
-        seed: 3,
-        max_bounces: 10,
-    };
-    let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
-    let reference = floor(&Report::new(
-        "strip",
-        LightTraceOutput::SOLVER,
-        &out.power,
-        out.stats(),
-    ));
+    let reference = floor(&light_model_report(&world, 4_000_000, 3));
     // Measured: 2.1 % apart; 0.45 % of the photons reach the floor, so the light model's
     // own error is about 0.75 % there.
     assert!(
@@ -855,18 +844,7 @@ fn hierarchical_refines_next_to_an_emitter_until_its_light_is_right() {
     // 0.003 % apart; leaves 64 times smaller under the lamp than at the corners.
     let floor_power = |report: &Report| report.objects[0].incident_power[1];
     let radiosity = floor_power(&report_of(&system, &solution));
-    let settings = LightTraceSettings {
-        photons: 1_000_000,
-        seed: 4,
-        max_bounces: 10,
-    };
-    let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
-    let reference = floor_power(&Report::new(
-        "lamp-over-floor",
-        LightTraceOutput::SOLVER,
-        &out.power,
-        out.stats(),
-    ));
+    let reference = floor_power(&light_model_report(&world, 1_000_000, 4));
     assert!(
         (radiosity / reference - 1.0).abs() < 0.005,
         "{radiosity} W vs light model {reference} W"
@@ -931,6 +909,22 @@ fn absorbed(report: &Report) -> std::collections::HashMap<String, f64> {
         .collect()
 }
 
+/// The light model's report of `world` at `photons` photons from seed `seed`.
+fn light_model_report(world: &World, photons: u64, seed: u64) -> Report {
+    let settings = LightTraceSettings {
+        photons,
+        seed,
+        max_bounces: 1000,
+    };
+    let out = trace_light(world, &settings, &NoProgress, &Cancel::new()).unwrap();
+    Report::new(
+        &world.scene.name,
+        LightTraceOutput::SOLVER,
+        &out.power,
+        out.stats(),
+    )
+}
+
 fn report_of(system: &RadiositySystem, solution: &Solution) -> Report {
     Report::new(
         "ball-on-quad",
@@ -971,20 +965,7 @@ fn a_ball_touching_a_quad_gives_finite_light_that_agrees_with_the_light_model() 
             assert!(o.absorbed_power.luminance() > 0.0, "{}", o.name);
         }
     }
-    let reference = {
-        let settings = LightTraceSettings {
-            photons: 4_000_000,
-            seed: 5,
-            max_bounces: 1000,
-        };
-        let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
-        absorbed(&Report::new(
-            "ball-on-quad",
-            LightTraceOutput::SOLVER,
-            &out.power,
-            out.stats(),
-        ))
-    };
+    let reference = absorbed(&light_model_report(&world, 4_000_000, 5));
     let mut options = options(0);
     options.mesh.segments = 32;
     let (system, solution) = hierarchical_with(&world, options, &HierarchicalSettings::default());
