@@ -119,10 +119,10 @@ pub struct RadiosityArgs {
 
 /// Options of the radiosity display.
 #[derive(Debug, Args)]
-#[command(next_help_heading = "Radiosity display (--method radiosity)")]
+#[command(next_help_heading = "Radiosity (--method radiosity|final-gather)")]
 pub struct RadiosityDisplayArgs {
-    /// The radiosity solver: matrix, progressive or hierarchical.
-    #[arg(long, value_enum, default_value_t = Solver::Progressive)]
+    /// The radiosity solver (hierarchical by default: it refines where the light needs it).
+    #[arg(long, value_enum, default_value_t = Solver::Hierarchical)]
     pub solver: Solver,
     /// Flat patches or radiosity interpolated to the vertices.
     #[arg(long, value_parser = choice::<Shading>(), default_value_t = Shading::Smooth)]
