@@ -222,8 +222,9 @@ impl Linker<'_> {
         let normal = rs.normal(r);
         // The range over the receiver: its Gauss points, centroid and corners (pulled in a
         // little from the edge an emitter may touch).
-        let range_points: Vec<DVec3> = gauss_points(r)
-            .into_iter()
+        let receiver_gauss = gauss_points(r);
+        let range_points: Vec<DVec3> = receiver_gauss
+            .iter()
             .map(|g| g.0)
             .chain([r.centroid])
             .chain(
@@ -246,7 +247,11 @@ impl Linker<'_> {
             (e, ep, es, r, rp, rs, e.area / r.area)
         };
         let from_normal = from_side.normal(from);
-        let gauss = gauss_points(from);
+        let gauss = if scale == 1.0 {
+            receiver_gauss
+        } else {
+            gauss_points(from)
+        };
         let points: Vec<DVec3> = gauss.iter().map(|g| g.0).collect();
         // The receiver's Gauss points lead its range points: their factors are known.
         let point_factors: Vec<f64> = if scale == 1.0 {
