@@ -136,8 +136,8 @@ fn outputs_match_their_fingerprints() {
             "solve-hierarchical",
             "solve cornell --solver hierarchical --error 3e-4 --report {}/report.json --export {}/solution.ply",
             &[
-                ("report.json", 0xd06232820e2fcd32),
-                ("solution.ply", 0x2504166676e219fd),
+                ("report.json", 0x59bcc31a6aadde89),
+                ("solution.ply", 0x1462fad4a4b93adb),
             ],
         ),
         case(
@@ -148,12 +148,12 @@ fn outputs_match_their_fingerprints() {
         case(
             "radiosity-hierarchical",
             "render cornell -o {}/image.pfm --method radiosity --solver hierarchical --error 3e-4 --width 48 --height 40",
-            &[("image.pfm", 0xdd2bdb06df6b8aa7)],
+            &[("image.pfm", 0x2465e2b32f2cde10)],
         ),
         case(
             "final-gather",
             "render cornell -o {}/image.pfm --method final-gather --solver hierarchical --error 1e-3 --gather-rays 4 --spp 1 --width 32 --height 24",
-            &[("image.pfm", 0x8259ac9884a7c6c0)],
+            &[("image.pfm", 0x0561c28c0db21dde)],
         ),
         // Every other built-in scene.
         case(
@@ -175,6 +175,11 @@ fn outputs_match_their_fingerprints() {
             "canopy",
             "solve canopy:300 --solver light-trace --photons 50000 --report {}/report.json",
             &[("report.json", 0xa5237c808036accb)],
+        ),
+        case(
+            "blocks",
+            "solve blocks:20 --solver hierarchical --error 1e-3 --report {}/report.json",
+            &[("report.json", 0x30d8a2fb4df156eb)],
         ),
     ];
     let mut mismatches = Vec::new();

@@ -344,7 +344,7 @@ fn display_draws_the_links_of_one_object() {
     let of_light = solution
         .link_segments
         .iter()
-        .filter(|l| l.receiver_object == light || l.emitter_object == light)
+        .filter(|l| l.receiver_object == Some(light) || l.emitter_object == Some(light))
         .count();
     assert!(of_light > 0 && of_light < solution.link_segments.len());
     let render = |links| {

@@ -112,6 +112,9 @@ pub struct RadiosityArgs {
     /// hierarchical: refinement rounds at most.
     #[arg(long, default_value_t = HierarchicalSettings::default().max_rounds)]
     pub max_rounds: u32,
+    /// hierarchical: link every pair of root patches instead of grouping them into clusters.
+    #[arg(long)]
+    pub no_clustering: bool,
     /// Write the solution as a mesh with radiosity vertex colours (.glb, .gltf or .ply).
     #[arg(long)]
     pub export: Option<PathBuf>,
@@ -211,6 +214,7 @@ pub fn solve<'w>(
             refine_pass: args.refine_pass,
             tolerance: args.tolerance,
             max_rounds: args.max_rounds,
+            clustering: !args.no_clustering,
         };
         let shooting = ShootingSettings {
             tolerance: args.tolerance,

@@ -344,6 +344,12 @@ impl<'w> Visibility<'w> {
         Some((shares, rays))
     }
 
+    /// Whether the segment between surface points `x` (normal `nx`) and `y` (normal `ny`) is
+    /// blocked by anything in the scene (both ends moved off their surfaces first).
+    pub fn segment_blocked(&self, x: DVec3, nx: DVec3, y: DVec3, ny: DVec3) -> bool {
+        self.blocked(x, nx, y, ny, &Occluders::Scene)
+    }
+
     /// The primitives that may block rays between `a` and `b` after shaft culling, or `None`
     /// when shaft culling is off. Primitives in either patch's plane are left out.
     pub fn candidates(&self, a: &Patch, b: &Patch) -> Option<Vec<u32>> {

@@ -53,7 +53,9 @@ impl LinkDisplay {
         match self {
             LinkDisplay::None => false,
             LinkDisplay::All => true,
-            LinkDisplay::Object(o) => link.receiver_object == o || link.emitter_object == o,
+            LinkDisplay::Object(o) => {
+                link.receiver_object == Some(o) || link.emitter_object == Some(o)
+            }
         }
     }
 }

@@ -108,14 +108,14 @@ pub struct Solution {
 /// emitting node (scene units), with the objects the two patches belong to.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinkSegment {
-    /// Centroid of the receiving node.
+    /// Centroid of the receiving node (centre of a cluster).
     pub receiver: DVec3,
-    /// Centroid of the emitting node.
+    /// Centroid of the emitting node (centre of a cluster).
     pub emitter: DVec3,
-    /// Object index of the receiving patch.
-    pub receiver_object: u32,
-    /// Object index of the emitting patch.
-    pub emitter_object: u32,
+    /// Object index of the receiving patch (`None` for a cluster of patches).
+    pub receiver_object: Option<u32>,
+    /// Object index of the emitting patch (`None` for a cluster of patches).
+    pub emitter_object: Option<u32>,
 }
 
 impl Solution {

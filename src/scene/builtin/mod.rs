@@ -1,6 +1,8 @@
 //! Scenes built into the engine, loaded by name: `cornell`, `cornell-textured`, `spheres`
-//! (or `spheres:N`), `neon` and `canopy` (or `canopy:N`). Lengths are in metres.
+//! (or `spheres:N`), `neon`, `canopy` (or `canopy:N`) and `blocks` (or `blocks:N`). Lengths
+//! are in metres.
 
+pub mod blocks;
 pub mod canopy;
 pub mod cornell;
 pub mod cornell_textured;
@@ -11,7 +13,7 @@ pub mod spheres;
 use super::Scene;
 
 /// The built-in scenes: name and one-line description.
-const NAMES: [(&str, &str); 5] = [
+const NAMES: [(&str, &str); 6] = [
     (
         "cornell",
         "the measured Cornell box (Cornell University data, metres, spectral colours)",
@@ -32,6 +34,10 @@ const NAMES: [(&str, &str); 5] = [
         "canopy",
         "canopy:N (default 10000) small leaves under sky and sun, for the light model",
     ),
+    (
+        "blocks",
+        "blocks:N (default 1000) small cubes in a closed room under a lamp, for radiosity",
+    ),
 ];
 
 /// The built-in scene names with a one-line description each.
@@ -40,7 +46,7 @@ pub fn names() -> &'static [(&'static str, &'static str)] {
 }
 
 /// Builds the built-in scene `spec`: a name from [`names`], optionally followed by `:` and a
-/// parameter (`spheres:N` and `canopy:N` take one). `None` when `spec` names no built-in scene;
+/// parameter (`spheres:N`, `canopy:N` and `blocks:N` take one). `None` when `spec` names no built-in scene;
 /// `Some(Err)` with a message for a bad parameter.
 pub fn load(spec: &str) -> Option<Result<Scene, String>> {
     let (name, parameter) = match spec.split_once(':') {
@@ -59,6 +65,7 @@ pub fn load(spec: &str) -> Option<Result<Scene, String>> {
         "neon" => no_parameter(|| Ok(neon::scene())),
         "spheres" => spheres::parse_count(parameter).map(spheres::scene),
         "canopy" => canopy::parse_count(parameter).map(canopy::scene),
+        "blocks" => blocks::parse_count(parameter).map(blocks::scene),
         _ => return None,
     })
 }
@@ -73,7 +80,14 @@ mod tests {
         let listed: Vec<&str> = names().iter().map(|(n, _)| *n).collect();
         assert_eq!(
             listed,
-            ["cornell", "cornell-textured", "spheres", "neon", "canopy"]
+            [
+                "cornell",
+                "cornell-textured",
+                "spheres",
+                "neon",
+                "canopy",
+                "blocks"
+            ]
         );
         for (name, description) in names() {
             assert!(!description.is_empty());

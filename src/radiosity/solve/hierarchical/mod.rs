@@ -4,8 +4,12 @@
 //! 1. **Initial linking** (§6.3): every pair of root-patch sides that face each other and can
 //!    see each other is linked, with form factor and visibility stored in the link; every
 //!    root side is linked to every point, spot and directional light and the sky that reaches
-//!    it. With the asymmetric linking of the mesh ([`crate::radiosity::contact`], the default) faces that
-//!    others stand on are split at their planes first.
+//!    it. With the asymmetric linking of the mesh ([`crate::radiosity::contact`], the
+//!    default) faces that others stand on are split at their planes first. With clustering
+//!    (the default, `clusters.rs`) root patches far apart against their size are linked as
+//!    groups instead, so the links do not grow with the square of the number of faces; a
+//!    cluster link the oracle refines is replaced by links to the children of its larger
+//!    end, down to pairs of root patches.
 //! 2. **Gather and push-pull** (§6.7, §6.8) until the radiosity changes by less than the
 //!    tolerance: every node gathers `Σ F·V·B` over its links, irradiance is pushed down to
 //!    the leaves, where it becomes `B = E + ρ·H`, and radiosity is pulled up area-weighted.
@@ -23,6 +27,7 @@
 //! light links and the link computation, but keeps no patch links: each shot is received at
 //! the level the oracle allows and pushed to the leaves.
 
+mod clusters;
 mod links;
 mod nodes;
 mod oracle;
@@ -66,11 +71,14 @@ pub struct HierarchicalSettings {
     pub tolerance: f64,
     /// Refinement rounds at most.
     pub max_rounds: u32,
+    /// Group the root patches into clusters that exchange light as a whole while they are
+    /// small against their distance.
+    pub clustering: bool,
 }
 
 impl Default for HierarchicalSettings {
     /// Lischinski's oracle at an error of 10⁻⁴ of the emitted power, minimum area 2·10⁻⁵
-    /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds.
+    /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds, clustering on.
     fn default() -> Self {
         HierarchicalSettings {
             oracle: Oracle::Lischinski,
@@ -79,6 +87,7 @@ impl Default for HierarchicalSettings {
             refine_pass: RefinePass::Original,
             tolerance: 1e-4,
             max_rounds: 100,
+            clustering: true,
         }
     }
 }

@@ -24,7 +24,8 @@
 //!   (measured in the furnace: 25 % too much light).
 //!
 //! Light links are refined at the receiver when the power they bring varies over it by more
-//! than the threshold. Decisions use luminance (Y), not the RGB mean (§7.3). Nothing smaller
+//! than the threshold. Cluster links (`clusters.rs`) are kept only while the largest power
+//! they can bring at all is below it: their point-to-point exchange has no tighter bound. Decisions use luminance (Y), not the RGB mean (§7.3). Nothing smaller
 //! than the minimum area is refined.
 
 use super::links::{LightLink, Link};

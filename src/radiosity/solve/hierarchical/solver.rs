@@ -1,6 +1,7 @@
 //! The hierarchical solve: initial linking, then rounds of gathering, push-pull and
 //! refinement until no link is refined (the steps of the module documentation).
 
+use super::clusters::{ClusterLink, ClusterTree, End, Split};
 use super::links::{LightLink, Link, Linker};
 use super::nodes::{Nodes, node, split_node};
 use super::oracle::{Decision, Limits, decide, decide_light};
@@ -29,8 +30,10 @@ pub struct RoundStats {
     pub links_created: u64,
     /// Links refined (replaced by links to children).
     pub links_refined: u64,
-    /// Links after the round (patch links and light links).
+    /// Links after the round (patch links, cluster links and light links).
     pub links: u64,
+    /// Of those, links with a cluster at one end at least.
+    pub cluster_links: u64,
     /// Leaf patches after the round.
     pub leaves: u64,
     /// Visibility and shadow rays cast so far.
@@ -61,6 +64,8 @@ pub(super) struct Solver<'w, 'v> {
     pub(super) nodes: Nodes,
     links: Vec<Link>,
     light_links: Vec<LightLink>,
+    clusters: Option<ClusterTree>,
+    cluster_links: Vec<ClusterLink>,
     pub(super) linker: Linker<'v>,
     pub(super) limits: Limits,
     pub(super) settings: HierarchicalSettings,
@@ -112,7 +117,8 @@ pub fn solve_hierarchical<'w>(
     let mut interrupted = false;
     for _ in 0..settings.max_rounds {
         solver.gather_to_convergence(&mut round, cancel);
-        round.links = (solver.links.len() + solver.light_links.len()) as u64;
+        round.links = solver.link_count() as u64;
+        round.cluster_links = solver.cluster_links.len() as u64;
         round.leaves = solver.mesh.leaves().len() as u64;
         round.rays = solver.linker.rays.load(Ordering::Relaxed);
         round.peak_memory_bytes = peak_resident_bytes();
@@ -162,6 +168,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             nodes: Nodes::new(&world.scene, &mesh),
             links: Vec::new(),
             light_links: Vec::new(),
+            clusters: None,
+            cluster_links: Vec::new(),
             linker: Linker {
                 world,
                 visibility,
@@ -190,14 +198,89 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             .collect()
     }
 
-    /// Links every pair of root sides that face and see each other (seed §6.3).
+    /// Links every pair of root sides that face and see each other (seed §6.3); with
+    /// clustering, links the root cluster with itself and refines that link until every
+    /// cluster link is either certain enough or replaced by links between root sides.
     fn link_root_pairs(&mut self) {
+        if self.settings.clustering {
+            self.clusters = ClusterTree::new(&self.world.scene, &self.mesh);
+        }
+        if let Some(tree) = &self.clusters {
+            let root = tree.root();
+            let mut rays = 0;
+            self.cluster_links =
+                vec![tree.link(&self.mesh, self.linker.visibility, root, root, &mut rays)];
+            self.linker.rays.fetch_add(rays, Ordering::Relaxed);
+            self.refine_clusters();
+            return;
+        }
         let roots = self.root_nodes();
         let pairs: Vec<(usize, usize, bool)> = roots
             .iter()
             .flat_map(|&r| roots.iter().map(move |&e| (r, e, false)))
             .collect();
         self.links = self.create_links(&pairs);
+    }
+
+    /// Patch, cluster and light links.
+    fn link_count(&self) -> usize {
+        self.links.len() + self.cluster_links.len() + self.light_links.len()
+    }
+
+    /// Refines cluster links until every one left brings at most the error threshold's
+    /// power; links between two root patches become links between their sides. Whatever the
+    /// refine pass, new cluster links are judged at once: judging one costs a sum over its
+    /// members, and a link between large clusters reaches the level it needs only after
+    /// many splits. Returns the links created and refined.
+    fn refine_clusters(&mut self) -> (u64, u64) {
+        let Some(tree) = &self.clusters else {
+            return (0, 0);
+        };
+        let (mut created, mut refined) = (0, 0);
+        loop {
+            let (mesh, b, error) = (&self.mesh, &self.nodes.radiosity, self.limits.error);
+            let refine: Vec<bool> = self
+                .cluster_links
+                .par_iter()
+                .map(|l| tree.power_bound(mesh, l, b) > error)
+                .collect();
+            let mut ends: Vec<(End, End)> = Vec::new();
+            let mut pairs: Vec<(usize, usize, bool)> = Vec::new();
+            let mut decision = refine.iter();
+            self.cluster_links.retain(|link| {
+                if !decision.next().copied().unwrap_or(false) {
+                    return true;
+                }
+                match tree.split(mesh, link) {
+                    Split::Links(new) => ends.extend(new),
+                    Split::Patches(r, e) => pairs.extend(
+                        Side::BOTH
+                            .into_iter()
+                            .flat_map(|rs| Side::BOTH.map(|es| (node(r, rs), node(e, es), false))),
+                    ),
+                }
+                false
+            });
+            let count = refine.iter().filter(|&&r| r).count() as u64;
+            if count == 0 {
+                return (created, refined);
+            }
+            refined += count;
+            let visibility = self.linker.visibility;
+            let new: Vec<(ClusterLink, u64)> = ends
+                .par_iter()
+                .map(|&(r, e)| {
+                    let mut rays = 0;
+                    (tree.link(mesh, visibility, r, e, &mut rays), rays)
+                })
+                .collect();
+            let rays: u64 = new.iter().map(|n| n.1).sum();
+            self.linker.rays.fetch_add(rays, Ordering::Relaxed);
+            let patch_links = self.create_links(&pairs);
+            created += (new.len() + patch_links.len()) as u64;
+            self.cluster_links.extend(new.into_iter().map(|n| n.0));
+            self.links.extend(patch_links);
+        }
     }
 
     /// Links every root side with every light that reaches it.
@@ -292,6 +375,11 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 gathered[n] += h;
             }
         }
+        if let Some(tree) = &self.clusters {
+            for link in &self.cluster_links {
+                tree.gather(&self.mesh, link, b, gathered);
+            }
+        }
     }
 
     /// One refinement pass (seed §6.4); true when a link was refined.
@@ -314,6 +402,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             round.seconds_refine += t.elapsed().as_secs_f64();
             let t = Instant::now();
             let (created, refined) = self.apply(&decisions, &light_decisions);
+            let (created_clusters, refined_clusters) = self.refine_clusters();
+            let (created, refined) = (created + created_clusters, refined + refined_clusters);
             round.seconds_linking += t.elapsed().as_secs_f64();
             round.links_created += created;
             round.links_refined += refined;
@@ -400,8 +490,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let radiosity = per_element(&self.nodes.radiosity);
         let irradiance = per_element(&self.nodes.irradiance);
         let lit = per_element(&self.nodes.lit_total);
-        let links = self.links.len() + self.light_links.len();
-        let link_segments = self
+        let links = self.link_count();
+        let mut link_segments: Vec<LinkSegment> = self
             .links
             .iter()
             .map(|l| {
@@ -410,11 +500,27 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 LinkSegment {
                     receiver: r.centroid,
                     emitter: e.centroid,
-                    receiver_object: r.object,
-                    emitter_object: e.object,
+                    receiver_object: Some(r.object),
+                    emitter_object: Some(e.object),
                 }
             })
             .collect();
+        if let Some(tree) = &self.clusters {
+            let end = |end: End| match end {
+                End::Patch(p) => (self.mesh.patch(p).centroid, Some(self.mesh.patch(p).object)),
+                End::Cluster(_) => (tree.ball(&self.mesh, end).0, None),
+            };
+            link_segments.extend(self.cluster_links.iter().map(|l| {
+                let ((receiver, receiver_object), (emitter, emitter_object)) =
+                    (end(l.receiver), end(l.emitter));
+                LinkSegment {
+                    receiver,
+                    emitter,
+                    receiver_object,
+                    emitter_object,
+                }
+            }));
+        }
         let form_factors = self.linker.form_factors.load(Ordering::Relaxed);
         let rays = self.linker.rays.load(Ordering::Relaxed);
         let system = RadiositySystem::from_mesh(self.world, self.mesh, options, Some(lit))?;
