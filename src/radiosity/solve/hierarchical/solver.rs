@@ -107,7 +107,7 @@ pub fn solve_hierarchical<'w>(
     };
     progress.start(u64::from(settings.max_rounds));
     let t = Instant::now();
-    solver.link_root_pairs();
+    solver.link_root_pairs(cancel);
     solver.link_root_lights();
     let mut round = RoundStats {
         seconds_linking: t.elapsed().as_secs_f64(),
@@ -201,7 +201,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// Links every pair of root sides that face and see each other (seed §6.3); with
     /// clustering, links the root cluster with itself and refines that link until every
     /// cluster link is either certain enough or replaced by links between root sides.
-    fn link_root_pairs(&mut self) {
+    fn link_root_pairs(&mut self, cancel: &Cancel) {
         if self.settings.clustering {
             self.clusters = ClusterTree::new(&self.world.scene, &self.mesh);
         }
@@ -211,7 +211,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             self.cluster_links =
                 vec![tree.link(&self.mesh, self.linker.visibility, root, root, &mut rays)];
             self.linker.rays.fetch_add(rays, Ordering::Relaxed);
-            self.refine_clusters();
+            self.refine_clusters(cancel);
             return;
         }
         let roots = self.root_nodes();
@@ -231,13 +231,14 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// power; links between two root patches become links between their sides. Whatever the
     /// refine pass, new cluster links are judged at once: judging one costs a sum over its
     /// members, and a link between large clusters reaches the level it needs only after
-    /// many splits. Returns the links created and refined.
-    fn refine_clusters(&mut self) -> (u64, u64) {
+    /// many splits. Stops early when `cancel` is requested. Returns the links created and
+    /// refined.
+    fn refine_clusters(&mut self, cancel: &Cancel) -> (u64, u64) {
         let Some(tree) = &self.clusters else {
             return (0, 0);
         };
         let (mut created, mut refined) = (0, 0);
-        loop {
+        while !cancel.is_requested() {
             let (mesh, b, error) = (&self.mesh, &self.nodes.radiosity, self.limits.error);
             let refine: Vec<bool> = self
                 .cluster_links
@@ -281,6 +282,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             self.cluster_links.extend(new.into_iter().map(|n| n.0));
             self.links.extend(patch_links);
         }
+        (created, refined)
     }
 
     /// Links every root side with every light that reaches it.
@@ -402,7 +404,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             round.seconds_refine += t.elapsed().as_secs_f64();
             let t = Instant::now();
             let (created, refined) = self.apply(&decisions, &light_decisions);
-            let (created_clusters, refined_clusters) = self.refine_clusters();
+            let (created_clusters, refined_clusters) = self.refine_clusters(cancel);
             let (created, refined) = (created + created_clusters, refined + refined_clusters);
             round.seconds_linking += t.elapsed().as_secs_f64();
             round.links_created += created;
