@@ -34,15 +34,7 @@ const SEED: u64 = 11;
 
 /// Parses the `N` of `blocks:N` (default [`DEFAULT_BLOCKS`]).
 pub fn parse_count(parameter: Option<&str>) -> Result<usize, String> {
-    let Some(p) = parameter else {
-        return Ok(DEFAULT_BLOCKS);
-    };
-    match p.trim().parse::<usize>() {
-        Ok(n) if (1..=MAX_BLOCKS).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "blocks:N needs a cube count from 1 to {MAX_BLOCKS} (got '{p}')"
-        )),
-    }
+    super::parse_count("blocks", "cube", parameter, DEFAULT_BLOCKS, MAX_BLOCKS)
 }
 
 /// The room with `blocks` cubes.

@@ -16,15 +16,7 @@ pub const MAX_LEAVES: usize = 4_000_000;
 
 /// Parses the `N` of `canopy:N` (default [`DEFAULT_LEAVES`]).
 pub fn parse_count(parameter: Option<&str>) -> Result<usize, String> {
-    let Some(p) = parameter else {
-        return Ok(DEFAULT_LEAVES);
-    };
-    match p.trim().parse::<usize>() {
-        Ok(n) if (1..=MAX_LEAVES).contains(&n) => Ok(n),
-        _ => Err(format!(
-            "canopy:N needs a leaf count from 1 to {MAX_LEAVES} (got '{p}')"
-        )),
-    }
+    super::parse_count("canopy", "leaf", parameter, DEFAULT_LEAVES, MAX_LEAVES)
 }
 
 /// The canopy with `leaves` leaves: rows of ⌈√leaves⌉ leaves, as many rows as needed.

@@ -70,6 +70,25 @@ pub fn load(spec: &str) -> Option<Result<Scene, String>> {
     })
 }
 
+/// Parses the `N` of `name:N`, a count of `what` from 1 to `max`; `default` without one.
+fn parse_count(
+    name: &str,
+    what: &str,
+    parameter: Option<&str>,
+    default: usize,
+    max: usize,
+) -> Result<usize, String> {
+    let Some(p) = parameter else {
+        return Ok(default);
+    };
+    match p.trim().parse::<usize>() {
+        Ok(n) if (1..=max).contains(&n) => Ok(n),
+        _ => Err(format!(
+            "{name}:N needs a {what} count from 1 to {max} (got '{p}')"
+        )),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -422,29 +422,33 @@ impl ClusterTree {
         }
         let (_, receiver_radius) = self.ball(mesh, link.receiver);
         let (_, emitter_radius) = self.ball(mesh, link.emitter);
-        let intensity: f64 = self
-            .members(&link.emitter)
-            .iter()
-            .map(|&p| {
-                let patch = mesh.patch(p);
-                let cosines = self.cosine_bounds(patch, link.receiver_centre, receiver_radius);
-                Side::BOTH
-                    .iter()
-                    .zip(cosines)
-                    .map(|(&side, cos)| radiosity[node(p, side)].luminance() * patch.area * cos)
-                    .sum::<f64>()
-            })
-            .sum::<f64>()
-            / PI;
-        let area: f64 = self
-            .members(&link.receiver)
-            .iter()
-            .map(|&p| {
-                let patch = mesh.patch(p);
-                let cosines = self.cosine_bounds(patch, link.emitter_centre, emitter_radius);
-                patch.area * cosines.iter().sum::<f64>()
-            })
-            .sum();
+        // Σ A·cos·weight over the member sides of `end` facing a ball at `centre`.
+        let sum = |end: End, centre: DVec3, radius: f64, weight: &dyn Fn(PatchId, Side) -> f64| {
+            self.members(&end)
+                .iter()
+                .map(|&p| {
+                    let patch = mesh.patch(p);
+                    let cosines = self.cosine_bounds(patch, centre, radius);
+                    Side::BOTH
+                        .iter()
+                        .zip(cosines)
+                        .map(|(&side, cos)| weight(p, side) * patch.area * cos)
+                        .sum::<f64>()
+                })
+                .sum::<f64>()
+        };
+        let intensity = sum(
+            link.emitter,
+            link.receiver_centre,
+            receiver_radius,
+            &|p, side| radiosity[node(p, side)].luminance(),
+        ) / PI;
+        let area = sum(
+            link.receiver,
+            link.emitter_centre,
+            emitter_radius,
+            &|_, _| 1.0,
+        );
         intensity * area / (link.gap * link.gap)
     }
 
