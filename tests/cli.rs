@@ -136,3 +136,22 @@ fn info_and_bench_report_statistics() {
     assert!(json["closest_hit"]["mrays_per_second"].as_f64().unwrap() > 0.0);
     assert!(json["any_hit"]["hits"].as_u64().unwrap() > 0);
 }
+
+#[test]
+fn radiosity_warns_about_light_it_does_not_follow() {
+    // The canopy's leaves transmit 10 %: radiosity counts that light as absorbed.
+    let o = strahl(&["solve", "canopy:4", "--solver", "hierarchical", "--quiet"]);
+    assert!(o.status.success());
+    let err = stderr(&o);
+    assert!(err.contains("warning") && err.contains("leaf"), "{err}");
+    let o = strahl(&[
+        "solve",
+        "cornell",
+        "--solver",
+        "hierarchical",
+        "--error",
+        "1e-3",
+        "-q",
+    ]);
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+}

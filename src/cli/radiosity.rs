@@ -205,6 +205,21 @@ pub fn solve<'w>(
     run: &RunOptions,
 ) -> Result<(RadiositySystem<'w>, Solution)> {
     let options = args.system_options(solver, run.seed)?;
+    let non_diffuse = strahl::radiosity::surface::non_diffuse_materials(&world.scene);
+    if !non_diffuse.is_empty() {
+        let names: Vec<String> = non_diffuse.iter().map(|n| format!("'{n}'")).collect();
+        let (materials, verbs) = if names.len() == 1 {
+            ("material", "reflects specularly or transmits")
+        } else {
+            ("materials", "reflect specularly or transmit")
+        };
+        eprintln!(
+            "warning: radiosity reflects light diffusely only; the light {materials} {} \
+             {verbs} counts as absorbed (the light model, --solver light-trace, and the path \
+             tracer follow it)",
+            names.join(", ")
+        );
+    }
     let cancel = progress::cancel_flag();
     let (system, solution) = with_threads(run.threads, || -> Result<_> {
         let hierarchical = HierarchicalSettings {

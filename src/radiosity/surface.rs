@@ -33,6 +33,22 @@ pub fn reflectance(scene: &Scene, patch: &Patch, side: Side) -> Rgb64 {
     (m.diffuse.to_f64() * tex).map(|v| v.clamp(0.0, 1.0))
 }
 
+/// The names of the materials of `scene`'s objects that reflect or pass light other than
+/// diffusely (specular, mirror or transmission parts), in order of first use: radiosity
+/// counts that light as absorbed.
+pub fn non_diffuse_materials(scene: &Scene) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    for object in &scene.objects {
+        let m = &scene.materials[object.material as usize];
+        let diffuse_only =
+            m.specular.is_black() && m.mirror.is_black() && m.transmission.is_black();
+        if !diffuse_only && !names.contains(&m.name.as_str()) {
+            names.push(&m.name);
+        }
+    }
+    names
+}
+
 fn texture(scene: &Scene, id: Option<u32>) -> Option<&Texture> {
     id.and_then(|t| scene.textures.get(t as usize))
 }
