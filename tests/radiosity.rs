@@ -281,6 +281,25 @@ fn point_light_link_gives_the_exact_mean_irradiance_and_the_lights_full_power() 
     }
 }
 
+/// The display of `solution` through the scene's camera.
+fn display(
+    world: &World,
+    system: &RadiositySystem,
+    solution: &Solution,
+    settings: &DisplaySettings,
+) -> strahl::measure::Film {
+    let camera = &world.scene.camera;
+    render_solution(
+        system,
+        solution,
+        camera,
+        settings,
+        &NoProgress,
+        &Cancel::new(),
+    )
+    .unwrap()
+}
+
 #[test]
 fn display_renders_light_and_flat_and_smooth_have_equal_means() {
     let world = cornell();
@@ -295,16 +314,7 @@ fn display_renders_light_and_flat_and_smooth_have_equal_means() {
             wireframe,
             samples_per_axis: 2,
         };
-        let camera = &world.scene.camera;
-        render_solution(
-            &system,
-            &solution,
-            camera,
-            &settings,
-            &NoProgress,
-            &Cancel::new(),
-        )
-        .unwrap()
+        display(&world, &system, &solution, &settings)
     };
     let flat = render(Shading::Flat, false);
     let smooth = render(Shading::Smooth, false);
@@ -356,16 +366,7 @@ fn display_draws_the_links_of_one_object() {
             wireframe: false,
             samples_per_axis: 1,
         };
-        let camera = &world.scene.camera;
-        render_solution(
-            &system,
-            &solution,
-            camera,
-            &settings,
-            &NoProgress,
-            &Cancel::new(),
-        )
-        .unwrap()
+        display(&world, &system, &solution, &settings)
     };
     let plain = render(LinkDisplay::None);
     let lines = render(LinkDisplay::Object(light));

@@ -227,44 +227,37 @@ impl ClusterTree {
         } else {
             DVec3::Y
         };
-        let separated = receiver != emitter && distance >= SEPARATION * (rr + er);
-        let visible = if separated {
-            self.member_visibility(mesh, visibility, receiver, direction, ec, emitter, rc, rays)
-        } else {
-            Box::default()
-        };
-        ClusterLink {
+        let mut link = ClusterLink {
             receiver,
             emitter,
             receiver_centre: rc,
             emitter_centre: ec,
+            receiver_radius: rr,
+            emitter_radius: er,
             direction,
             distance,
-            gap: distance - rr - er,
-            separated,
-            visible,
+            visible: Box::default(),
+        };
+        if link.separated() {
+            link.visible = self.member_visibility(mesh, visibility, &link, rays);
         }
+        link
     }
 
-    /// Per member of `receiver` (ball centre `receiver_centre`), the share of rays from its
-    /// centroid to points of `emitter` (ball centre `emitter_centre`; `direction` the unit
-    /// direction from it to the receiver's) that arrive, in 255ths: one ray per member to one
-    /// of [`TARGETS`] emitter points (members stratified by projected area, taken in turn),
-    /// [`MIN_RAYS`] rays in all at least. Zero for members that do not face the emitter.
-    #[allow(clippy::too_many_arguments)]
+    /// Per member of `link`'s receiver, the share of rays from its centroid to points of the
+    /// emitter that arrive, in 255ths: one ray per member to one of [`TARGETS`] emitter
+    /// points (members stratified by projected area, taken in turn), [`MIN_RAYS`] rays in all
+    /// at least. Zero for members that do not face the emitter.
     fn member_visibility(
         &self,
         mesh: &PatchMesh,
         visibility: &Visibility,
-        receiver: End,
-        direction: DVec3,
-        emitter_centre: DVec3,
-        emitter: End,
-        receiver_centre: DVec3,
+        link: &ClusterLink,
         rays: &mut u64,
     ) -> Box<[u8]> {
-        let targets = self.ray_ends(mesh, emitter, direction, receiver_centre);
-        let members = self.members(&receiver);
+        let (direction, emitter_centre) = (link.direction, link.emitter_centre);
+        let targets = self.ray_ends(mesh, link.emitter, direction, link.receiver_centre);
+        let members = self.members(&link.receiver);
         let facing: Vec<Option<(DVec3, DVec3)>> = members
             .iter()
             .map(|&p| {
@@ -389,7 +382,7 @@ impl ClusterTree {
         radiosity: &[Rgb64],
         gathered: &mut [Rgb64],
     ) {
-        if !link.separated || link.visible.iter().all(|&v| v == 0) {
+        if !link.separated() || link.visible.iter().all(|&v| v == 0) {
             return;
         }
         // Each member at its own distance `d` and angle from the emitter's centre: the
@@ -417,11 +410,9 @@ impl ClusterTree {
     /// ball allows: a side that grazes the other end's centre may face part of a large end
     /// squarely); infinite while the ends are not well separated.
     pub fn power_bound(&self, mesh: &PatchMesh, link: &ClusterLink, radiosity: &[Rgb64]) -> f64 {
-        if !link.separated {
+        if !link.separated() {
             return f64::INFINITY;
         }
-        let (_, receiver_radius) = self.ball(mesh, link.receiver);
-        let (_, emitter_radius) = self.ball(mesh, link.emitter);
         // Σ A·cos·weight over the member sides of `end` facing a ball at `centre`.
         let sum = |end: End, centre: DVec3, radius: f64, weight: &dyn Fn(PatchId, Side) -> f64| {
             self.members(&end)
@@ -440,16 +431,16 @@ impl ClusterTree {
         let intensity = sum(
             link.emitter,
             link.receiver_centre,
-            receiver_radius,
+            link.receiver_radius,
             &|p, side| radiosity[node(p, side)].luminance(),
         ) / PI;
         let area = sum(
             link.receiver,
             link.emitter_centre,
-            emitter_radius,
+            link.emitter_radius,
             &|_, _| 1.0,
         );
-        intensity * area / (link.gap * link.gap)
+        intensity * area / link.gap().powi(2)
     }
 
     /// Per side of `patch` (front, back): the largest cosine between its normal and the
@@ -525,15 +516,29 @@ pub struct ClusterLink {
     pub emitter_centre: DVec3,
     /// Unit direction of travel, from the emitter's centre to the receiver's.
     pub direction: DVec3,
+    /// Radius of the receiver's ball, scene units.
+    pub receiver_radius: f64,
+    /// Radius of the emitter's ball, scene units.
+    pub emitter_radius: f64,
     /// Distance between the centres, scene units.
     pub distance: f64,
-    /// Distance between the ends' balls, scene units.
-    pub gap: f64,
-    /// The ends are far enough apart to exchange light as points.
-    pub separated: bool,
     /// Per member of the receiver (in the tree's order), the share of its rays to the
     /// emitter that arrive, in 255ths (empty while the ends are not separated).
     pub visible: Box<[u8]>,
+}
+
+impl ClusterLink {
+    /// Whether the ends are two and at least [`SEPARATION`] times the sum of their radii
+    /// apart: far enough to exchange light as points.
+    pub fn separated(&self) -> bool {
+        self.receiver != self.emitter
+            && self.distance >= SEPARATION * (self.receiver_radius + self.emitter_radius)
+    }
+
+    /// Distance between the ends' balls, scene units.
+    pub fn gap(&self) -> f64 {
+        self.distance - self.receiver_radius - self.emitter_radius
+    }
 }
 
 /// What refining a cluster link gives.
@@ -618,7 +623,7 @@ mod tests {
         let tree = ClusterTree::new(&scene, &mesh).unwrap();
         let root = tree.root();
         let link = tree.link(&mesh, &visibility, root, root, &mut 0);
-        assert!(!link.separated);
+        assert!(!link.separated());
         let Split::Links(pairs) = tree.split(&mesh, &link) else {
             panic!("a cluster splits into links");
         };
@@ -659,7 +664,7 @@ mod tests {
         assert_eq!(tree.members(&receiver).len(), low.len());
         let mut rays = 0;
         let link = tree.link(&mesh, &visibility, receiver, emitter, &mut rays);
-        assert!(link.separated && rays > 0);
+        assert!(link.separated() && rays > 0);
         let mut radiosity = vec![Rgb64::BLACK; 2 * mesh.len()];
         for &p in &high {
             radiosity[node(p, Side::Front)] = Rgb64::splat(1.0);
