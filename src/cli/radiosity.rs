@@ -214,9 +214,9 @@ pub fn solve<'w>(
             ("materials", "reflect specularly or transmit")
         };
         eprintln!(
-            "warning: radiosity reflects light diffusely only; the light {materials} {} \
-             {verbs} counts as absorbed (the light model, --solver light-trace, and the path \
-             tracer follow it)",
+            "warning: radiosity reflects light diffusely only: the light that {materials} {} \
+             {verbs} is counted as absorbed (the light model, --solver light-trace, and the \
+             path tracer follow it)",
             names.join(", ")
         );
     }

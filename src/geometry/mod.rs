@@ -7,6 +7,7 @@
 //! shapes are intersected in their object space, with the world ray carried there by the
 //! inverse transform.
 
+pub mod angle;
 mod bounds;
 pub mod cuboid;
 mod frame;

@@ -12,6 +12,7 @@
 use super::clip::{Plane, clip_to_front};
 use super::element::Side;
 use super::mesh::Patch;
+use crate::geometry::angle::upper_angle;
 use glam::DVec3;
 use std::f64::consts::{PI, TAU};
 
@@ -82,8 +83,8 @@ pub fn point_to_polygon(point: DVec3, normal: DVec3, polygon: &[DVec3]) -> f64 {
         let cross = a.cross(b);
         let length = cross.length();
         if length > 0.0 {
-            // atan2 keeps full precision for small and for near-π angles.
-            sum += cross * (length.atan2(a.dot(b)) / length);
+            // The edge's angle, with full precision for small and for near-π angles.
+            sum += cross * (upper_angle(length, a.dot(b)) / length);
         }
     }
     (sum.dot(normal).abs() / TAU).min(1.0)

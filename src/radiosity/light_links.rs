@@ -16,6 +16,7 @@ use super::element::Side;
 use super::form_factor::receiver_points;
 use super::mesh::Patch;
 use crate::color::Rgb64;
+use crate::geometry::angle::upper_angle;
 use crate::geometry::{Frame, Ray, offset_origin};
 use crate::sampling::hash64;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
@@ -185,7 +186,7 @@ pub fn solid_angle(point: DVec3, corners: &[DVec3]) -> f64 {
         let (la, lb, lc) = (a.length(), b.length(), c.length());
         let numerator = a.dot(b.cross(c)).abs();
         let denominator = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-        total += 2.0 * numerator.atan2(denominator);
+        total += 2.0 * upper_angle(numerator, denominator);
     }
     total
 }

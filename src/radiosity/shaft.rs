@@ -4,6 +4,9 @@
 //!
 //! The shaft is the union box of the two boxes cut by planes that join an edge of one box to
 //! the parallel edge of the other wherever the two boxes define adjacent faces of the union.
+//! Between two convex polygons ([`Shaft::between_polygons`]) it is further cut by the faces
+//! of the polygons' convex hull, which holds every segment from one polygon to the other and
+//! is much tighter than the boxes' shaft for tilted or far-apart patches.
 
 use glam::DVec3;
 
@@ -62,6 +65,9 @@ pub struct Shaft {
     /// Bounding planes `normal · x ≤ offset` (normals not unit length, lying in a coordinate
     /// plane).
     planes: Vec<(DVec3, f64)>,
+    /// Faces `normal · x ≤ offset` (unit normals) of the convex hull of the two polygons
+    /// the shaft was built from; empty for a shaft between boxes.
+    hull: Vec<(DVec3, f64)>,
     /// Tolerance added to every plane test (relative to the shaft's size), so that boxes
     /// touching the shaft are kept.
     tolerance: f64,
@@ -86,15 +92,68 @@ impl Shaft {
                 }
             }
         }
-        let size = (bounds.max - bounds.min)
-            .abs()
-            .max_element()
-            .max(bounds.max.abs().max_element());
         Shaft {
             bounds,
             planes,
-            tolerance: SHAFT_TOLERANCE * size,
+            hull: Vec::new(),
+            tolerance: tolerance(&bounds),
         }
+    }
+
+    /// The shaft between the convex planar polygons `a` and `b` (corners in order): the
+    /// union of their bounding boxes cut by the faces of their convex hull (which lies
+    /// inside the boxes' shaft, so the boxes' cutting planes are left out). A hull face is
+    /// the plane of one polygon or holds an edge of one polygon and a corner of the other
+    /// (a face holding two corners of a planar convex polygon holds the polygon's plane or
+    /// one of its edges), so those candidates are tried and the supporting ones kept.
+    pub fn between_polygons(a: &[DVec3], b: &[DVec3]) -> Shaft {
+        let bounds = Bounds::from_points(a.iter().chain(b).copied());
+        let mut shaft = Shaft {
+            bounds,
+            planes: Vec::new(),
+            hull: Vec::new(),
+            tolerance: tolerance(&bounds),
+        };
+        let points: Vec<DVec3> = a.iter().chain(b).copied().collect();
+        let tolerance = shaft.tolerance;
+        let mut add = |normal: DVec3, at: DVec3| {
+            let length = normal.length();
+            if length.is_nan() || length <= 0.0 {
+                return;
+            }
+            let n = normal / length;
+            let offset = n.dot(at);
+            // Degenerate (near-parallel) candidates give a direction of no use; the
+            // supporting test below rejects those that do not bound the points.
+            let (mut above, mut below) = (false, false);
+            for p in &points {
+                let d = n.dot(*p) - offset;
+                above |= d > tolerance;
+                below |= d < -tolerance;
+            }
+            match (above, below) {
+                (false, true) => shaft.hull.push((n, offset)),
+                (true, false) => shaft.hull.push((-n, -offset)),
+                (false, false) => {
+                    // Every point on the plane: the hull is flat, bounded on both sides.
+                    shaft.hull.push((n, offset));
+                    shaft.hull.push((-n, -offset));
+                }
+                (true, true) => {}
+            }
+        };
+        for (polygon, other) in [(a, b), (b, a)] {
+            if let [p0, p1, p2, ..] = polygon {
+                add((*p1 - *p0).cross(*p2 - *p0), *p0);
+            }
+            for (i, &p) in polygon.iter().enumerate() {
+                let edge = polygon[(i + 1) % polygon.len()] - p;
+                for &q in other {
+                    add(edge.cross(q - p), p);
+                }
+            }
+        }
+        shaft
     }
 
     /// Number of cutting planes (0 when one box contains the other, up to 8).
@@ -103,8 +162,10 @@ impl Shaft {
     }
 
     /// False when `candidate` lies entirely outside the shaft (it cannot block any segment
-    /// between the two boxes); true when it may intersect it. Conservative: boxes with
-    /// infinite extent are always kept.
+    /// between the two boxes), or for a shaft between polygons, on or outside one of the
+    /// hull's faces (it can block no segment through the hull's interior — the box of the
+    /// solid a patch is a face of, say); true when it may intersect it. Conservative: boxes
+    /// with infinite extent are always kept.
     pub fn may_intersect(&self, candidate: &Bounds) -> bool {
         if !(candidate.min.is_finite() && candidate.max.is_finite()) {
             return true;
@@ -112,12 +173,35 @@ impl Shaft {
         if !self.bounds.overlaps(candidate) {
             return false;
         }
+        // The candidate's corner furthest into the shaft side of plane `n`.
+        let nearest = |n: DVec3| DVec3::select(n.cmpgt(DVec3::ZERO), candidate.min, candidate.max);
         self.planes.iter().all(|&(n, offset)| {
-            // The candidate's corner furthest into the shaft side of the plane.
-            let nearest = DVec3::select(n.cmpgt(DVec3::ZERO), candidate.min, candidate.max);
-            n.dot(nearest) <= offset + self.tolerance * n.abs().max_element()
-        })
+            n.dot(nearest(n)) <= offset + self.tolerance * n.abs().max_element()
+        }) && self
+            .hull
+            .iter()
+            .all(|&(n, offset)| n.dot(nearest(n)) < offset - self.tolerance)
     }
+
+    /// False when the convex hull of `points` (a triangle that passed
+    /// [`Shaft::may_intersect`] on its bounds) lies on or outside one of the hull faces of a
+    /// shaft between polygons, so that it can block no segment through the hull's interior
+    /// — a face of a box touching the patch along an edge, say; true otherwise (always for
+    /// a shaft between boxes).
+    pub fn may_intersect_points(&self, points: &[DVec3]) -> bool {
+        self.hull
+            .iter()
+            .all(|&(n, offset)| points.iter().any(|p| n.dot(*p) < offset - self.tolerance))
+    }
+}
+
+/// The absolute tolerance of the plane tests of a shaft whose union box is `bounds`.
+fn tolerance(bounds: &Bounds) -> f64 {
+    let size = (bounds.max - bounds.min)
+        .abs()
+        .max_element()
+        .max(bounds.max.abs().max_element());
+    SHAFT_TOLERANCE * size
 }
 
 /// The plane at the union-box corner edge `(i side, j side)` when the two faces there are
@@ -206,6 +290,72 @@ mod tests {
                 "point {x} on a segment was culled"
             );
         }
+    }
+
+    /// A unit square about `centre`, horizontal (normal +y) when `tilt` is 0, tilted by
+    /// `tilt` radians about the x axis.
+    fn square(centre: DVec3, tilt: f64) -> Vec<DVec3> {
+        let (sin, cos) = tilt.sin_cos();
+        [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)]
+            .map(|(x, z)| centre + DVec3::new(x, z * sin, z * cos))
+            .to_vec()
+    }
+
+    #[test]
+    fn polygon_shaft_keeps_every_segment_between_the_polygons() {
+        let a = square(DVec3::ZERO, 0.3);
+        let b = square(DVec3::new(2.0, 3.0, -1.0), -1.1);
+        let shaft = Shaft::between_polygons(&a, &b);
+        let f = |x: u32| 0.02 + 0.96 * (x as f64 * 0.618_033_988_75).fract();
+        let inside = |quad: &[DVec3], u: f64, v: f64| {
+            quad[0].lerp(quad[1], u).lerp(quad[3].lerp(quad[2], u), v)
+        };
+        for k in 0..1000 {
+            let p = inside(&a, f(k), f(k + 7));
+            let q = inside(&b, f(k + 3), f(k + 11));
+            let x = p.lerp(q, f(k + 5));
+            let tiny = 1e-6;
+            let triangle = [x, x + DVec3::X * tiny, x + DVec3::Y * tiny];
+            assert!(shaft.may_intersect(&Bounds { min: x, max: x }));
+            assert!(
+                shaft.may_intersect_points(&triangle),
+                "segment point {x} culled"
+            );
+        }
+    }
+
+    #[test]
+    fn polygon_shaft_drops_what_only_touches_it_or_lies_beside_it() {
+        // A floor patch and a parallel ceiling patch 2 above it.
+        let floor = square(DVec3::ZERO, 0.0);
+        let ceiling = square(DVec3::new(0.0, 2.0, 0.0), 0.0);
+        let shaft = Shaft::between_polygons(&floor, &ceiling);
+        // A blocker half-way up: kept.
+        let blocker = [
+            DVec3::new(-0.2, 1.0, -0.2),
+            DVec3::new(0.2, 1.0, -0.2),
+            DVec3::new(0.0, 1.0, 0.2),
+        ];
+        assert!(shaft.may_intersect_points(&blocker));
+        // A wall hanging down from the floor's edge (a box face sharing the edge): dropped.
+        let below = [
+            DVec3::new(-0.5, 0.0, 0.5),
+            DVec3::new(0.5, 0.0, 0.5),
+            DVec3::new(0.0, -1.0, 0.5),
+        ];
+        assert!(!shaft.may_intersect_points(&below));
+        // A triangle inside the union box of an offset pair but beside their hull (below
+        // the plane through the near edge of one and the far edge of the other): dropped.
+        let a = square(DVec3::ZERO, 0.0);
+        let b = square(DVec3::new(3.0, 1.0, 0.0), 0.0);
+        let side = Shaft::between_polygons(&a, &b);
+        let off = [
+            DVec3::new(2.9, 0.1, 0.0),
+            DVec3::new(3.1, 0.1, 0.1),
+            DVec3::new(3.0, 0.2, -0.1),
+        ];
+        assert!(side.bounds.overlaps(&Bounds::from_points(off)));
+        assert!(!side.may_intersect_points(&off));
     }
 
     #[test]

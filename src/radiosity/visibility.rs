@@ -359,10 +359,7 @@ impl<'w> Visibility<'w> {
     }
 
     fn shaft_survivors(&self, a: &Patch, b: &Patch) -> Vec<u32> {
-        let shaft = Shaft::new(
-            Bounds::from_points(a.corners().iter().copied()),
-            Bounds::from_points(b.corners().iter().copied()),
-        );
+        let shaft = Shaft::between_polygons(a.corners(), b.corners());
         let planes = [Plane::of_patch(a), Plane::of_patch(b)];
         let geometry = &self.world().geometry;
         self.clusters
@@ -370,13 +367,17 @@ impl<'w> Visibility<'w> {
             .filter(|c| shaft.may_intersect(&c.bounds))
             .flat_map(|c| c.first..c.end)
             .filter(|&prim| {
-                shaft.may_intersect(&self.bounds[prim as usize])
-                    && !geometry.triangle(prim).is_some_and(|t| {
-                        let corners = t.vertices().map(|v| v.as_dvec3());
-                        planes.iter().any(|plane| {
-                            let s = SideCounts::of(plane, &corners);
-                            s.front == 0 && s.back == 0
-                        })
+                if !shaft.may_intersect(&self.bounds[prim as usize]) {
+                    return false;
+                }
+                let Some(triangle) = geometry.triangle(prim) else {
+                    return true;
+                };
+                let corners = triangle.vertices().map(|v| v.as_dvec3());
+                shaft.may_intersect_points(&corners)
+                    && !planes.iter().any(|plane| {
+                        let s = SideCounts::of(plane, &corners);
+                        s.front == 0 && s.back == 0
                     })
             })
             .collect()
