@@ -75,17 +75,20 @@ impl Default for FormFactorOptions {
 /// in the point's own plane gives 0. Result in `[0, 1]`.
 pub fn point_to_polygon(point: DVec3, normal: DVec3, polygon: &[DVec3]) -> f64 {
     let visible = clip_to_front(&Plane::new(point, normal), polygon);
-    let n = visible.len();
+    let Some(&last) = visible.last() else {
+        return 0.0;
+    };
     let mut sum = DVec3::ZERO;
-    for i in 0..n {
-        let a = visible[i] - point;
-        let b = visible[(i + 1) % n] - point;
+    let mut a = last - point;
+    for &corner in visible.iter() {
+        let b = corner - point;
         let cross = a.cross(b);
         let length = cross.length();
         if length > 0.0 {
             // The edge's angle, with full precision for small and for near-π angles.
             sum += cross * (upper_angle(length, a.dot(b)) / length);
         }
+        a = b;
     }
     (sum.dot(normal).abs() / TAU).min(1.0)
 }

@@ -112,6 +112,19 @@ impl Patch {
         parametric(self.corners(), s, t)
     }
 
+    /// The area element of [`Patch::point_at`] at `(s, t)`, `|∂p/∂s × ∂p/∂t|` (scene units²
+    /// per unit of `s·t`): the patch's area everywhere on a triangle and a parallelogram, so
+    /// that `1/area_element` is the density of uniform `(s, t)` over the patch's area.
+    pub fn area_element(&self, s: f64, t: f64) -> f64 {
+        let c = self.corners();
+        if self.is_triangle() {
+            return self.area;
+        }
+        let along_s = (c[1] - c[0]).lerp(c[2] - c[3], t);
+        let along_t = c[3].lerp(c[2], s) - c[0].lerp(c[1], s);
+        along_s.cross(along_t).length()
+    }
+
     /// The texture coordinates at parametric coordinates `(s, t)`, by the map of
     /// [`Patch::point_at`].
     pub fn uv_at(&self, s: f64, t: f64) -> DVec2 {

@@ -11,6 +11,7 @@ pub mod form_factor;
 pub mod light_links;
 pub mod mesh;
 pub mod shaft;
+pub mod solid_angle;
 pub mod solve;
 pub mod surface;
 pub mod visibility;

@@ -130,6 +130,9 @@ impl Shaft {
                 let d = n.dot(*p) - offset;
                 above |= d > tolerance;
                 below |= d < -tolerance;
+                if above && below {
+                    return;
+                }
             }
             match (above, below) {
                 (false, true) => shaft.hull.push((n, offset)),

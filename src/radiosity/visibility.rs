@@ -17,9 +17,10 @@
 //! ray leaving a facet does not hit the true sphere it lies inside, and the inside of a
 //! sphere sees only the inside.
 
-use super::clip::{Plane, SideCounts};
+use super::clip::{Plane, SideCounts, clip_to_front};
 use super::mesh::{Patch, PatchId, PatchMesh};
 use super::shaft::{Bounds, Shaft};
+use super::solid_angle::points_by_solid_angle;
 use crate::accel::PrimitiveSet;
 use crate::geometry::{Ray, offset_origin};
 
@@ -27,6 +28,7 @@ use crate::world::{GeometryError, World};
 use glam::DVec3;
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64Mcg;
+use std::f64::consts::PI;
 use std::fmt;
 use std::str::FromStr;
 
@@ -34,6 +36,9 @@ use std::str::FromStr;
 const ADAPTIVE_RAYS_PER_RATIO: f64 = 4.0;
 /// Largest adaptive grid per axis (64 rays).
 const ADAPTIVE_MAX_PER_AXIS: u32 = 8;
+/// Where the squared distances from a point to a patch's corners differ by more than this
+/// factor, [`Visibility::from_points`] spreads its rays by solid angle rather than by area.
+const SKEW: f64 = 4.0;
 /// Rays per axis of the first probe of [`Visibility::from_points`].
 const PROBE_PER_AXIS: u32 = 2;
 /// Consecutive primitives of one object grouped under one bounding box for the shaft test.
@@ -43,6 +48,28 @@ const DIRECT_TEST_LIMIT: usize = 48;
 /// Pairs with fewer rays than this skip the shaft (one or two BVH rays cost less than
 /// building and testing the shaft).
 const SHAFT_MIN_RAYS: u32 = 4;
+
+/// What the visibility rays from points of one patch to another found
+/// ([`Visibility::from_points`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointShares {
+    /// Per point, the visible share of the other patch as the form factor weighs it, in
+    /// `[0, 1]`.
+    pub shares: Vec<f64>,
+    /// Rays cast.
+    pub rays: u64,
+    /// Whether any ray arrived unblocked.
+    pub any_unblocked: bool,
+}
+
+/// One point's rays: their number and the form factor they stand for (each ray's
+/// `cos θ·cos θ'/(π d²)` over its sampling density), all of them and those that arrived.
+#[derive(Clone, Copy, Debug, Default)]
+struct RaySums {
+    rays: u32,
+    total: f64,
+    seen: f64,
+}
 
 /// How many visibility rays per patch pair (`--vis-rays N|adaptive`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -266,7 +293,7 @@ impl<'w> Visibility<'w> {
             let arrived = from
                 .iter()
                 .zip(&to)
-                .filter(|&(&x, &y)| !self.blocked(x, p.normal, y, q.normal, &occluders))
+                .filter(|&(&(x, _), &(y, _))| !self.blocked(x, p.normal, y, q.normal, &occluders))
                 .count();
             rays += from.len() as u64;
             // Mixed answers (a shadow edge crosses the pair) or none arriving (the pair would
@@ -285,63 +312,113 @@ impl<'w> Visibility<'w> {
     }
 
     /// The visible share of patch `b` seen from each of `points` (points of patch `a` whose
-    /// receiving side has the unit normal `normal`), weighted as the form factor weights it
-    /// (`cos θ·cos θ'/d²` of each ray): from each point a first probe of 2 × 2 rays to
-    /// jittered strata of `b`; where any of those is blocked, the probe's rays are the
-    /// estimate, joined by `per_point` more rays from every point when `per_point` exceeds
-    /// the probe's four. `None` when nothing can block the pair (every share is 1).
-    /// Deterministic for a fixed seed; the second value is the number of rays cast.
+    /// receiving side has the unit normal `normal`) as the form factor weighs it: the form
+    /// factor the unblocked rays stand for over that of all rays, each ray standing for its
+    /// `cos θ·cos θ'/(π d²)` over its sampling density. From each point a first probe of
+    /// 2 × 2 rays to jittered strata of the part of `b` in front of it (by area or by solid
+    /// angle, see [`Visibility::targets`]), joined by `per_point` more rays from every point
+    /// when any of those is blocked and `per_point` exceeds the probe's four. `None` when
+    /// nothing can block the pair (every share is 1). Deterministic for a fixed seed.
     pub fn from_points(
         &self,
         mesh: &PatchMesh,
-        a: PatchId,
-        points: &[DVec3],
-        normal: DVec3,
+        (a, points, normal): (PatchId, &[DVec3], DVec3),
         b: PatchId,
         per_point: u32,
-    ) -> Option<(Vec<f64>, u64)> {
+    ) -> Option<PointShares> {
         let (p, q) = (mesh.patch(a), mesh.patch(b));
         let occluders = self.occluders(p, q);
         if matches!(occluders, Occluders::None) {
             return None;
         }
         let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, a, b) ^ 0x9e37);
-        // Per point: (weight seen, total weight) of the rays to an m × m jittered grid on `b`.
-        let mut cast = |m: u32, sums: &mut [(f64, f64)]| {
+        let mut sums = vec![RaySums::default(); points.len()];
+        let mut any_unblocked = false;
+        // Casts an m × m jittered grid on `b` from every point; true when any ray is blocked.
+        let mut cast = |m: u32, sums: &mut [RaySums]| {
             let mut any_blocked = false;
             for (&x, sum) in points.iter().zip(sums.iter_mut()) {
-                for y in jittered_points(q, m, &mut rng) {
+                for (y, element) in self.targets(q, x, normal, m, &mut rng) {
                     let d = y - x;
                     let d2 = d.length_squared();
+                    // cos θ·cos θ'/d², and the form factor a ray stands for.
                     let weight = normal.dot(d).max(0.0) * q.normal.dot(d).abs() / (d2 * d2);
-                    sum.1 += weight;
+                    let factor = weight * element / PI;
+                    sum.total += factor;
+                    sum.rays += 1;
                     if self.blocked(x, p.normal, y, q.normal, &occluders) {
                         any_blocked = true;
                     } else {
-                        sum.0 += weight;
+                        any_unblocked = true;
+                        sum.seen += factor;
                     }
                 }
             }
             any_blocked
         };
-        let mut sums = vec![(0.0, 0.0); points.len()];
         let probe = PROBE_PER_AXIS * PROBE_PER_AXIS;
-        let mut rays = points.len() as u64 * u64::from(probe);
-        // A shadow edge across the pair turns up in the probe unless it shades less than
-        // about a quarter of `b` from every point.
-        if !cast(PROBE_PER_AXIS, &mut sums) {
-            return Some((vec![1.0; points.len()], rays));
+        if cast(PROBE_PER_AXIS, &mut sums) && per_point > probe {
+            cast((per_point as f64).sqrt().ceil() as u32, &mut sums);
         }
-        if per_point > probe {
-            let m = (per_point as f64).sqrt().ceil() as u32;
-            cast(m, &mut sums);
-            rays += points.len() as u64 * u64::from(m * m);
-        }
+        let rays = sums.iter().map(|s| u64::from(s.rays)).sum();
         let shares = sums
             .iter()
-            .map(|&(seen, total)| if total > 0.0 { seen / total } else { 0.0 })
+            .map(|sum| {
+                if sum.total > 0.0 {
+                    sum.seen / sum.total
+                } else if sum.rays == 0 {
+                    // No part of `b` in front of the point: it has nothing to lose.
+                    1.0
+                } else {
+                    0.0
+                }
+            })
             .collect();
-        Some((shares, rays))
+        Some(PointShares {
+            shares,
+            rays,
+            any_unblocked,
+        })
+    }
+
+    /// The ray targets on patch `q` from point `x` (receiving normal `normal`), each with
+    /// the area it stands for (the inverse of its sampling density, scene units²): an
+    /// `m × m` jittered grid over the part of `q` in front of `x` — over its area where `q`
+    /// lies wholly in front and its corners' squared distances differ at most [`SKEW`]
+    /// times; otherwise over the solid angle that part subtends (points behind `x` would
+    /// stand for nothing, and the few near ones of a close patch for most of the form
+    /// factor). Empty when no part of `q` lies in front of `x`.
+    fn targets(
+        &self,
+        q: &Patch,
+        x: DVec3,
+        normal: DVec3,
+        m: u32,
+        rng: &mut Pcg64Mcg,
+    ) -> Vec<(DVec3, f64)> {
+        let plane = Plane::new(x, normal);
+        let sides = SideCounts::of(&plane, q.corners());
+        if sides.front == 0 {
+            return Vec::new();
+        }
+        let straddles = sides.back > 0;
+        if straddles || distance_varies(q, x) {
+            let front = clip_to_front(&plane, q.corners());
+            if let Some((targets, omega)) =
+                points_by_solid_angle(&front, q.normal, x, m, || (rng.random(), rng.random()))
+            {
+                // The area per ray: d²·Ω/cos θ' = d³·Ω/|n'·d|.
+                return targets
+                    .into_iter()
+                    .map(|y| {
+                        let d = y - x;
+                        let d2 = d.length_squared();
+                        (y, d2 * d2.sqrt() * omega / q.normal.dot(d).abs())
+                    })
+                    .collect();
+            }
+        }
+        jittered_points(q, m, rng)
     }
 
     /// Whether the segment between surface points `x` (normal `nx`) and `y` (normal `ny`) is
@@ -422,15 +499,29 @@ impl<'w> Visibility<'w> {
     }
 }
 
-/// One jittered point per stratum of an `m × m` grid over `patch`.
-fn jittered_points(patch: &Patch, m: u32, rng: &mut Pcg64Mcg) -> Vec<DVec3> {
+/// Whether the squared distance from `x` to the corners of `patch` varies by more than
+/// [`SKEW`] times.
+fn distance_varies(patch: &Patch, x: DVec3) -> bool {
+    let (near, far) = patch
+        .corners()
+        .iter()
+        .map(|c| c.distance_squared(x))
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), d| {
+            (lo.min(d), hi.max(d))
+        });
+    far > SKEW * near
+}
+
+/// One jittered point per stratum of an `m × m` grid over `patch`, with its area element
+/// ([`Patch::area_element`]).
+fn jittered_points(patch: &Patch, m: u32, rng: &mut Pcg64Mcg) -> Vec<(DVec3, f64)> {
     let step = 1.0 / m as f64;
     let mut points = Vec::with_capacity((m * m) as usize);
     for i in 0..m {
         for j in 0..m {
             let s = (i as f64 + rng.random::<f64>()) * step;
             let t = (j as f64 + rng.random::<f64>()) * step;
-            points.push(patch.point_at(s, t));
+            points.push((patch.point_at(s, t), patch.area_element(s, t)));
         }
     }
     points
@@ -449,6 +540,7 @@ fn pair_key(seed: u64, lo: PatchId, hi: PatchId) -> u64 {
 mod tests {
     use super::*;
     use crate::accel::AccelKind;
+    use crate::radiosity::form_factor::point_to_polygon;
     use crate::radiosity::mesh::MeshOptions;
     use crate::scene::{Material, Scene, Shape};
     use glam::Vec3;
@@ -552,6 +644,61 @@ mod tests {
         let m_large = vis.rays_per_axis(large.patch(0), large.patch(1));
         assert_eq!(m_small, 4, "⌈4·√1 / 1⌉");
         assert_eq!(m_small, m_large);
+    }
+
+    /// The mean over seeds of the visible share from a point 0.1 from two edges of a unit
+    /// square, of a parallel unit square `height` above it behind a plate at half height
+    /// that covers `x < 0.5` (rays to `x < 0.8` of the upper square are blocked, the near
+    /// part), and the exact share from the analytic form factors.
+    fn mean_share_under_a_plate(height: f64, seeds: u64) -> (f64, f64) {
+        let h = height as f32;
+        let mut scene = Scene::empty("plate");
+        let m = scene.add_material(Material::default());
+        let square = |origin: Vec3, u: Vec3, v: Vec3| Shape::Parallelogram {
+            origin,
+            edge_u: u,
+            edge_v: v,
+        };
+        scene.add_object("bottom", square(Vec3::ZERO, Vec3::X, Vec3::Y), m);
+        scene.add_object("top", square(Vec3::Z * h, Vec3::Y, Vec3::X), m);
+        let plate = square(Vec3::new(-1.0, -1.0, h / 2.0), Vec3::X * 1.5, Vec3::Y * 3.0);
+        scene.add_object("plate", plate, m);
+        let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
+        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let x = DVec3::new(0.2, 0.1, 0.0);
+        let top = mesh.patch(1).corners().to_vec();
+        let seen: Vec<DVec3> = top
+            .iter()
+            .map(|c| DVec3::new(c.x.max(0.8), c.y, c.z))
+            .collect();
+        let exact = point_to_polygon(x, DVec3::Z, &seen) / point_to_polygon(x, DVec3::Z, &top);
+        let mut sum = 0.0;
+        for seed in 0..seeds {
+            let options = VisibilityOptions {
+                seed,
+                ..fixed(4, true)
+            };
+            let vis = Visibility::new(&world, options, 16).unwrap();
+            let found = vis.from_points(&mesh, (0, &[x], DVec3::Z), 1, 4).unwrap();
+            sum += found.shares[0];
+        }
+        (sum / seeds as f64, exact)
+    }
+
+    #[test]
+    fn four_rays_estimate_the_share_behind_a_near_blocker_with_a_small_bias() {
+        // The ratio of seen to cast ray weights is biased for four rays. Far (rays by area;
+        // the corners' squared distances differ 2.3-fold) it is 0.0058 high here (5 %);
+        // near (by solid angle; they differ 13-fold) 0.0026 high, where by area it was
+        // 0.0094 high (twice the share): the rays to the near, blocked part weighed far more
+        // than the rest. The oracle refines partly blocked links until what remains is small.
+        for (height, tolerance) in [(1.0, 0.008), (0.2, 0.004)] {
+            let (mean, exact) = mean_share_under_a_plate(height, 2000);
+            assert!(
+                (mean - exact).abs() < tolerance,
+                "height {height}: mean share {mean} vs exact {exact}"
+            );
+        }
     }
 
     #[test]

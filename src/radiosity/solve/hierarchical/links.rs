@@ -279,28 +279,24 @@ impl Linker<'_> {
         } else {
             self.visibility.from_points(
                 mesh,
-                from_patch,
-                &points,
-                from_normal,
+                (from_patch, &points, from_normal),
                 to_patch,
                 RAYS_PER_POINT,
             )
         };
         self.form_factors
             .fetch_add((range_points.len() + gauss.len()) as u64, Ordering::Relaxed);
-        let (seen, rays) = match seen {
-            Some((shares, rays)) => (Some(shares), rays),
-            None => (None, 0),
-        };
-        self.rays.fetch_add(rays, Ordering::Relaxed);
+        let any_unblocked = seen.as_ref().is_none_or(|s| s.any_unblocked);
+        let seen = seen.map(|s| {
+            self.rays.fetch_add(s.rays, Ordering::Relaxed);
+            s.shares
+        });
         let visible_at = |i: usize| seen.as_ref().map_or(1.0, |v| v[i]);
         // Every ray from every Gauss point blocked: the pair may still see each other near
         // the smaller patch's edges (a large node mostly in shadow). Dropping such a link
         // would lose that light for good, so the edges are probed too; a link seen only
         // from there is kept with no coupling and refined by the oracle.
-        if (0..gauss.len()).all(|i| visible_at(i) <= 0.0)
-            && !self.sees_near_edges(mesh, from_patch, from, from_normal, to_patch)
-        {
+        if !any_unblocked && !self.sees_near_edges(mesh, from_patch, from, from_normal, to_patch) {
             return None;
         }
         let coupling: f64 = scale
@@ -358,17 +354,15 @@ impl Linker<'_> {
             .collect();
         let seen = self.visibility.from_points(
             mesh,
-            from_patch,
-            &points,
-            normal,
+            (from_patch, &points, normal),
             to_patch,
             RAYS_PER_POINT,
         );
-        let Some((shares, rays)) = seen else {
+        let Some(seen) = seen else {
             return true;
         };
-        self.rays.fetch_add(rays, Ordering::Relaxed);
-        shares.iter().any(|&v| v > 0.0)
+        self.rays.fetch_add(seen.rays, Ordering::Relaxed);
+        seen.any_unblocked
     }
 
     /// The link from light `light` (an index into the scene's lights) to `receiver`, `None`
