@@ -344,6 +344,9 @@ impl<'w> Visibility<'w> {
                     // cos θ·cos θ'/d², and the form factor a ray stands for.
                     let weight = normal.dot(d).max(0.0) * q.normal.dot(d).abs() / (d2 * d2);
                     let factor = weight * element / PI;
+                    // A target on the point itself (patches touching there) stands for
+                    // nothing.
+                    let factor = if factor.is_finite() { factor } else { 0.0 };
                     sum.total += factor;
                     sum.rays += 1;
                     if self.blocked(x, p.normal, y, q.normal, &occluders) {
