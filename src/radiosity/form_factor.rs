@@ -151,7 +151,7 @@ pub fn receiver_points(patch: &Patch, n: u32) -> Vec<(DVec3, f64)> {
     for i in 0..n {
         for j in 0..n {
             let (s, t) = ((i as f64 + 0.5) * step, (j as f64 + 0.5) * step);
-            points.push((patch.point_at(s, t), jacobian(patch, s, t)));
+            points.push((patch.point_at(s, t), patch.area_element(s, t)));
         }
     }
     let total: f64 = points.iter().map(|p| p.1).sum();
@@ -183,24 +183,13 @@ pub fn gauss_points(patch: &Patch) -> Vec<(DVec3, f64)> {
         (0.5 - g, 0.5 + g),
     ]
     .into_iter()
-    .map(|(s, t)| (patch.point_at(s, t), jacobian(patch, s, t)))
+    .map(|(s, t)| (patch.point_at(s, t), patch.area_element(s, t)))
     .collect();
     let total: f64 = points.iter().map(|p| p.1).sum();
     for p in &mut points {
         p.1 /= total;
     }
     points
-}
-
-/// Area density of [`Patch::point_at`] at `(s, t)` (up to a constant factor).
-fn jacobian(patch: &Patch, s: f64, t: f64) -> f64 {
-    if patch.is_triangle() {
-        return 1.0;
-    }
-    let c = patch.corners();
-    let ds = (c[1] - c[0]).lerp(c[2] - c[3], t);
-    let dt = (c[3] - c[0]).lerp(c[2] - c[1], s);
-    ds.cross(dt).length()
 }
 
 /// `F_ij` from side `receiver_side` of `receiver` (i) to side `emitter_side` of `emitter` (j)
