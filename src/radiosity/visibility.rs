@@ -315,8 +315,8 @@ impl<'w> Visibility<'w> {
     /// receiving side has the unit normal `normal`) as the form factor weighs it: the form
     /// factor the unblocked rays stand for over that of all rays, each ray standing for its
     /// `cos θ·cos θ'/(π d²)` over its sampling density. From each point a first probe of
-    /// 2 × 2 rays to jittered strata of the part of `b` in front of it (by area or by solid
-    /// angle, see [`Visibility::targets`]), joined by `per_point` more rays from every point
+    /// 2 × 2 rays to jittered strata of the part of `b` in front of it (by area, or by solid
+    /// angle where that part is clipped or close), joined by `per_point` more rays from every point
     /// when any of those is blocked and `per_point` exceeds the probe's four. `None` when
     /// nothing can block the pair (every share is 1). Deterministic for a fixed seed.
     pub fn from_points(
