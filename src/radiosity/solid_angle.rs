@@ -1,4 +1,4 @@
-//! Points on a patch spread evenly over the solid angle it subtends from a point (Arvo,
+//! Points on a convex polygon spread evenly over the solid angle it subtends from a point (Arvo,
 //! "Stratified sampling of spherical triangles", SIGGRAPH 1995): a ray from the point to
 //! each is then equally likely per steradian, so the form factor's `cos θ'/d²` needs no
 //! weighting, only the receiver's `cos θ`. Visibility estimated from a few such rays is not

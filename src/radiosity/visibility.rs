@@ -6,11 +6,17 @@
 //! exactly one ray. The jitter and the pairing come from a generator seeded with
 //! `(seed, lower patch id, higher patch id)`: the result is deterministic and symmetric.
 //!
-//! Occluders: a shaft (Haines & Wallace) between the patches' bounding boxes discards the
-//! clusters of primitives that cannot block any ray; when few primitives survive, the rays
-//! test only those, otherwise the scene's BVH is used. Surfaces lying in either patch's plane
-//! cannot block a ray leaving that plane and are skipped; a ray between two faces of the
-//! same convex object is still blocked by its other faces.
+//! The hierarchical solvers ask instead, per Gauss point of one patch, for the share of the
+//! other patch it sees ([`Visibility::from_points`]): rays go to the part of that patch in
+//! front of the point, spread by area, or by solid angle where that part is clipped or
+//! close, each weighted by the form factor it stands for.
+//!
+//! Occluders: a shaft (Haines & Wallace) between the two patches — the convex hull of
+//! their corners inside the union of their bounding boxes — discards the clusters of
+//! primitives that cannot block any ray, and those that only touch it; when few primitives
+//! survive, the rays test only those, otherwise the scene's BVH is used. Surfaces lying in
+//! either patch's plane cannot block a ray leaving that plane and are skipped; a ray between
+//! two faces of the same convex object is still blocked by its other faces.
 //!
 //! Rays are traced against the surfaces the patches lie on: curved analytic shapes are
 //! replaced by the same polygon meshes the patches were cut from ([`World::faceted`]), so a
@@ -649,8 +655,8 @@ mod tests {
         assert_eq!(m_small, m_large);
     }
 
-    /// The mean over seeds of the visible share from a point 0.1 from two edges of a unit
-    /// square, of a parallel unit square `height` above it behind a plate at half height
+    /// The mean over seeds of the visible share from a point near a corner of a unit square
+    /// (0.2 and 0.1 from its edges), of a parallel unit square `height` above it behind a plate at half height
     /// that covers `x < 0.5` (rays to `x < 0.8` of the upper square are blocked, the near
     /// part), and the exact share from the analytic form factors.
     fn mean_share_under_a_plate(height: f64, seeds: u64) -> (f64, f64) {
@@ -692,7 +698,7 @@ mod tests {
     fn four_rays_estimate_the_share_behind_a_near_blocker_with_a_small_bias() {
         // The ratio of seen to cast ray weights is biased for four rays. Far (rays by area;
         // the corners' squared distances differ 2.3-fold) it is 0.0058 high here (5 %);
-        // near (by solid angle; they differ 13-fold) 0.0026 high, where by area it was
+        // near (by solid angle; they differ 17-fold) 0.0026 high, where by area it was
         // 0.0094 high (twice the share): the rays to the near, blocked part weighed far more
         // than the rest. The oracle refines partly blocked links until what remains is small.
         for (height, tolerance) in [(1.0, 0.008), (0.2, 0.004)] {
