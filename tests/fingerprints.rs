@@ -143,7 +143,7 @@ fn outputs_match_their_fingerprints() {
         case(
             "solve-hierarchical-shooting",
             "solve cornell --solver hierarchical-shooting --error 1e-3 --report {}/report.json",
-            &[("report.json", 0x34a7df25c5625f56)],
+            &[("report.json", 0x0225d2d523f1664b)],
         ),
         case(
             "radiosity-hierarchical",

@@ -609,15 +609,13 @@ fn hierarchical_shooting_furnace_gives_e_over_one_minus_rho() {
         ..ShootingSettings::default()
     };
     for oracle in [Oracle::Lischinski, Oracle::Bfa] {
-        // Down to 1/512 of the scene's area: every element within 4 %. At the default
-        // minimum area the smallest elements in the corners are up to 25 % too bright (40 %
-        // before a split receiver divided each shot among its children by the form factor)
-        // while every face stays exact: an open defect, the oracle bounds each shot's error,
-        // and tens of thousands of shots add up with one sign there.
+        // Every element within 1 % with Lischinski (measured: 0.84 % at the smallest elements,
+        // in the corners), 4 % with BFA, which does not bound the form factors' variation
+        // (measured: 3.2 %). Shooting from single elements and refining receivers only (the
+        // seed's way), the elements along the edges took 20 % too much light.
         let settings = HierarchicalSettings {
             oracle,
             error: 1e-6,
-            min_area: 2e-3,
             ..HierarchicalSettings::default()
         };
         let (system, solution) = solve_hierarchical_shooting(
@@ -630,7 +628,11 @@ fn hierarchical_shooting_furnace_gives_e_over_one_minus_rho() {
         )
         .unwrap();
         assert!(system.leaves.len() > 6 * 64, "{}", system.leaves.len());
-        assert_furnace(&system, &solution, 0.04);
+        let tolerance = match oracle {
+            Oracle::Lischinski => 0.01,
+            Oracle::Bfa => 0.04,
+        };
+        assert_furnace(&system, &solution, tolerance);
         let report = Report::new(
             "furnace",
             solution.solver.name(),

@@ -33,8 +33,8 @@ pub enum Solver {
     Progressive,
     /// Hierarchical radiosity: links between quadtree nodes, refined by an oracle.
     Hierarchical,
-    /// Hierarchical shooting: progressive refinement received at the quadtree level an
-    /// oracle allows.
+    /// Hierarchical shooting: progressive refinement, each root side's unshot light sent
+    /// over links refined by an oracle.
     HierarchicalShooting,
 }
 

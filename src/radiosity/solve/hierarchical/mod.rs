@@ -24,8 +24,9 @@
 //! an order that does not depend on the thread count.
 //!
 //! Hierarchical shooting (§5.3, [`solve_hierarchical_shooting`]) shares the quadtrees, the
-//! light links and the link computation, but keeps no patch links: each shot is received at
-//! the level the oracle allows and pushed to the leaves.
+//! light links, the link computation and the oracle, but keeps no patch links: each shot
+//! goes from one root side to all others, its links refined at either end as the oracle
+//! asks, and what a receiver takes is pushed to the leaves.
 
 mod clusters;
 mod links;

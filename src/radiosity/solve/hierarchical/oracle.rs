@@ -29,7 +29,6 @@
 //! than the minimum area is refined.
 
 use super::links::{LightLink, Link};
-use super::nodes::Nodes;
 use crate::radiosity::clip::needs_split;
 use crate::radiosity::mesh::PatchMesh;
 
@@ -77,11 +76,12 @@ fn splittable(mesh: &PatchMesh, node: u32, limits: &Limits) -> bool {
     mesh.patch(node / 2).area > limits.min_area
 }
 
-/// The decision on `link` by `oracle`.
+/// The decision on `link` by `oracle`, its emitter's radiosity luminance lying in
+/// `(b_min, b_max)` (W·m⁻²).
 pub fn decide(
     oracle: Oracle,
     link: &Link,
-    nodes: &Nodes,
+    (b_min, b_max): (f64, f64),
     mesh: &PatchMesh,
     limits: &Limits,
 ) -> Decision {
@@ -92,7 +92,6 @@ pub fn decide(
         (false, _, true) | (true, false, true) => Decision::Emitter,
         _ => Decision::Keep,
     };
-    let (b_min, b_max) = nodes.range[link.emitter as usize];
     match oracle {
         Oracle::Lischinski => {
             let spread = link.f_max - link.f_min;
@@ -142,26 +141,5 @@ pub fn decide_light(link: &LightLink, mesh: &PatchMesh, limits: &Limits) -> Deci
         Decision::Receiver
     } else {
         Decision::Keep
-    }
-}
-
-/// Whether the receiver of `link` takes a shot of radiosity luminance `y` (W·m⁻²) where it
-/// is (hierarchical shooting): the power it brings is certain enough — Lischinski:
-/// `A·(F_max − F_min)·y ≤` the error; BFA: `A·F_max·y <` the BFA threshold — or the
-/// receiver may not be split.
-pub fn accepts_shot(
-    oracle: Oracle,
-    link: &Link,
-    y: f64,
-    mesh: &PatchMesh,
-    limits: &Limits,
-) -> bool {
-    if !splittable(mesh, link.receiver, limits) {
-        return true;
-    }
-    let area = mesh.patch(link.receiver / 2).area;
-    match oracle {
-        Oracle::Lischinski => area * (link.f_max - link.f_min) * y <= limits.error,
-        Oracle::Bfa => area * link.f_max * y < limits.bfa,
     }
 }

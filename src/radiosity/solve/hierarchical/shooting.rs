@@ -2,24 +2,32 @@
 //! light at the level of their quadtree an oracle allows.
 //!
 //! The lights are linked to the roots and their links refined as in hierarchical radiosity;
-//! then, shot by shot, the leaf side with the most unshot power `Y(|B − B_shot|)·A` sends its
-//! unshot radiosity to every root side. A receiver takes the shot at a node when the power it
-//! brings there is certain enough — `A·(F_max − F_min)·Y(ΔB) ≤ ε·Φ` (Lischinski) or
-//! `A·F_max·Y(ΔB) < ε·Φ` (BFA) — or the node is at the minimum area; otherwise the node is
-//! split and its children try. What a node takes is pushed down to its leaves (§5.3.2), where
-//! it becomes radiosity, before the next shooter is chosen. Shooting stops when the unshot
-//! power is at most the tolerance times the source power, or after the most shots allowed.
+//! then, shot by shot, the root side with the most unshot power `Σ Y(|B − B_shot|)·A` over
+//! its leaves sends its unshot radiosity to every root side. Each link of the shot is judged
+//! by the oracle of hierarchical radiosity, with the shooter's unshot radiosity in place of
+//! its radiosity: kept, or refined at the receiver or at the shooter's end — so a part of the
+//! shooter that sends unevenly is split, and a receiver takes the shot at the level where
+//! the power it brings is certain enough. What a node takes is pushed down to its leaves
+//! (§5.3.2), where it becomes radiosity, before the next shooter is chosen. Shooting stops
+//! when the unshot power is at most the tolerance times the source power, or after the most
+//! shots allowed.
 //!
-//! Receivers are judged level by level: all links of one level are computed in parallel, in
-//! an order that does not depend on the thread count.
+//! The seed shoots from single elements and refines receivers only. With the many small
+//! elements of a refined mesh each shooting on its own, every shot's error passes the oracle
+//! and the errors add up with one sign: in a furnace the elements along the edges took 20 %
+//! too much light (shots accepted at a coarse receiver spread evenly what mostly lands away
+//! from the edge). Shooting from the root, refined where needed, keeps the shots few and
+//! their links as fine as those of hierarchical radiosity.
+//!
+//! Links are judged level by level: all links of one level are computed in parallel, in an
+//! order that does not depend on the thread count.
 
 use super::nodes::{node, split_node};
-use super::oracle::accepts_shot;
+use super::oracle::{Decision, decide};
 use super::solver::{RoundStats, Solver, children, prepare};
 use super::{HierarchicalSettings, RefinePass};
 use crate::color::Rgb64;
 use crate::progress::{Cancel, ProgressListener};
-use crate::radiosity::element::Side;
 use crate::radiosity::solve::unshot_progress::UnshotProgress;
 use crate::radiosity::solve::{
     PhaseTimes, RadiositySystem, ShootingSettings, Solution, SolveError, SolverKind, SystemOptions,
@@ -53,33 +61,27 @@ pub fn solve_hierarchical_shooting<'w>(
         setup: start.elapsed().as_secs_f64(),
         ..PhaseTimes::default()
     };
-    let mut shot = vec![Rgb64::BLACK; solver.nodes.radiosity.len()];
+    let mut shots = Shots::new(&solver);
     let mut convergence = Vec::new();
     let mut bar = UnshotProgress::start(progress, shooting.tolerance);
     let mut interrupted = false;
     let source = source.max(f64::MIN_POSITIVE);
-    let mut leaves = leaf_sides(&solver);
-    let mut leaves_of = shot.len();
-    let (mut shooter, unshot) = unshot_power(&solver, &leaves, &shot);
+    let (mut shooter, unshot) = shots.unshot_power(&solver);
     let mut fraction = unshot / source;
     while fraction > shooting.tolerance && (convergence.len() as u64) < shooting.max_shots {
         if cancel.is_requested() {
             interrupted = true;
             break;
         }
-        let sent = solver.nodes.radiosity[shooter] - shot[shooter];
-        shot[shooter] = solver.nodes.radiosity[shooter];
         let t = Instant::now();
-        let received = shoot(&mut solver, &mut shot, shooter, sent);
+        shots.take_unshot(&solver, shooter);
+        let received = shots.shoot(&mut solver, shooter);
         times.form_factors += t.elapsed().as_secs_f64();
         let t = Instant::now();
         for (receiver, irradiance) in received {
             push(&mut solver, receiver, irradiance);
         }
-        if shot.len() != leaves_of {
-            (leaves, leaves_of) = (leaf_sides(&solver), shot.len());
-        }
-        let (next, unshot) = unshot_power(&solver, &leaves, &shot);
+        let (next, unshot) = shots.unshot_power(&solver);
         times.iterations += t.elapsed().as_secs_f64();
         (shooter, fraction) = (next, unshot / source);
         convergence.push(fraction);
@@ -102,85 +104,148 @@ pub fn solve_hierarchical_shooting<'w>(
     )
 }
 
-/// Every leaf side as its node and area, root by root.
-fn leaf_sides(solver: &Solver) -> Vec<(usize, f64)> {
-    let mesh = &solver.mesh;
-    mesh.leaves()
-        .into_iter()
-        .flat_map(|l| Side::BOTH.map(|s| (node(l, s), mesh.patch(l).area)))
-        .collect()
+/// The shooting state: what each node has shot, and the unshot radiosity of the current
+/// shooter's nodes.
+struct Shots {
+    /// Radiosity each node had when it (or the root side above it) last shot, W·m⁻²; a
+    /// child starts with its parent's.
+    shot: Vec<Rgb64>,
+    /// The current shooter's unshot radiosity `B − B_shot` (area mean over the leaves
+    /// below), W·m⁻²; other nodes hold what they held when they last shot or were created.
+    unshot: Vec<Rgb64>,
+    /// The luminance range of `unshot` over the leaves below each node, W·m⁻².
+    range: Vec<(f64, f64)>,
 }
 
-/// The leaf side of `leaves` (nodes and areas) with the most unshot power (the first of
-/// equals) and the total unshot power `Σ Y(|B − B_shot|)·A` over them, W.
-fn unshot_power(solver: &Solver, leaves: &[(usize, f64)], shot: &[Rgb64]) -> (usize, f64) {
-    let mut best = (0, f64::NEG_INFINITY);
-    let mut total = 0.0;
-    for &(n, area) in leaves {
-        let power = (solver.nodes.radiosity[n] - shot[n])
-            .map(f64::abs)
-            .luminance()
-            * area;
-        total += power;
-        if power > best.1 {
-            best = (n, power);
+impl Shots {
+    /// Nothing shot yet.
+    fn new(solver: &Solver) -> Self {
+        let n = solver.nodes.radiosity.len();
+        Shots {
+            shot: vec![Rgb64::BLACK; n],
+            unshot: vec![Rgb64::BLACK; n],
+            range: vec![(0.0, 0.0); n],
         }
     }
-    (best.0, total)
-}
 
-/// Sends radiosity `sent` from leaf side `shooter` to every root side, each taking it at the
-/// level the oracle allows (nodes split on the way; their children start with their shot
-/// radiosity). Returns the nodes that took it and the irradiance each took, W·m⁻².
-fn shoot(
-    solver: &mut Solver,
-    shot: &mut Vec<Rgb64>,
-    shooter: usize,
-    sent: Rgb64,
-) -> Vec<(usize, Rgb64)> {
-    let mut received = Vec::new();
-    let y = sent.map(f64::abs).luminance();
-    let mut frontier: Vec<(usize, usize, bool)> = solver
-        .root_nodes()
-        .into_iter()
-        .map(|r| (r, shooter, false))
-        .collect();
-    while !frontier.is_empty() {
-        let links = solver.create_links(&frontier);
-        let mut next = Vec::new();
-        let mut accepted = Vec::new();
-        for link in links {
-            if accepts_shot(
-                solver.settings.oracle,
-                &link,
-                y,
-                &solver.mesh,
-                &solver.limits,
-            ) {
-                accepted.push(link);
-                continue;
-            }
-            for child in children(&mut solver.mesh, link.receiver as usize) {
-                next.push((child, shooter, link.unoccluded));
+    /// The root side with the most unshot power `Σ Y(|B − B_shot|)·A` over its leaves (the
+    /// first of equals), and the total unshot power over all leaves, W.
+    fn unshot_power(&self, solver: &Solver) -> (usize, f64) {
+        let mut best = (0, f64::NEG_INFINITY);
+        let mut total = 0.0;
+        for root in solver.root_nodes() {
+            let power = self.unshot_below(solver, root);
+            total += power;
+            if power > best.1 {
+                best = (root, power);
             }
         }
-        solver.nodes.grow(&solver.world.scene, &solver.mesh);
-        while shot.len() < solver.nodes.radiosity.len() {
-            let (patch, side) = split_node(shot.len());
+        (best.0, total)
+    }
+
+    /// The unshot power of the leaves below node `n`, W.
+    fn unshot_below(&self, solver: &Solver, n: usize) -> f64 {
+        let (patch, side) = split_node(n);
+        let mesh = &solver.mesh;
+        match mesh.patch(patch).children {
+            None => {
+                let b = solver.nodes.radiosity[n];
+                (b - self.shot[n]).map(f64::abs).luminance() * mesh.patch(patch).area
+            }
+            Some(children) => children
+                .iter()
+                .map(|&c| self.unshot_below(solver, node(c, side)))
+                .sum(),
+        }
+    }
+
+    /// Takes the unshot radiosity of every node below `n` (the area mean over its leaves,
+    /// and their range) and marks its leaves as shot.
+    fn take_unshot(&mut self, solver: &Solver, n: usize) {
+        let (patch, side) = split_node(n);
+        let mesh = &solver.mesh;
+        match mesh.patch(patch).children {
+            None => {
+                let b = solver.nodes.radiosity[n];
+                let unshot = b - self.shot[n];
+                let y = unshot.luminance();
+                self.unshot[n] = unshot;
+                self.range[n] = (y, y);
+                self.shot[n] = b;
+            }
+            Some(children) => {
+                let mut sum = Rgb64::BLACK;
+                let mut range = (f64::INFINITY, f64::NEG_INFINITY);
+                for c in children {
+                    let c_node = node(c, side);
+                    self.take_unshot(solver, c_node);
+                    sum += self.unshot[c_node] * mesh.patch(c).area;
+                    let r = self.range[c_node];
+                    range = (range.0.min(r.0), range.1.max(r.1));
+                }
+                self.unshot[n] = sum.map(|v| v / mesh.patch(patch).area);
+                self.range[n] = range;
+            }
+        }
+    }
+
+    /// Gives the nodes created since the last call their parent's state.
+    fn grow(&mut self, solver: &Solver) {
+        while self.shot.len() < solver.nodes.radiosity.len() {
+            let (patch, side) = split_node(self.shot.len());
             let parent = solver.mesh.patch(patch).parent.map(|p| node(p, side));
-            shot.push(parent.map_or(Rgb64::BLACK, |p| shot[p]));
+            let (shot, unshot, range) = match parent {
+                Some(p) => (self.shot[p], self.unshot[p], self.range[p]),
+                None => (Rgb64::BLACK, Rgb64::BLACK, (0.0, 0.0)),
+            };
+            self.shot.push(shot);
+            self.unshot.push(unshot);
+            self.range.push(range);
         }
-        // Taken after the splits of this level, which may have split an accepted receiver
-        // (through its other side).
-        for link in accepted {
-            for (n, irradiance) in link.divide(&solver.mesh, sent * link.coupling) {
-                solver.nodes.gathered[n] += irradiance;
-                received.push((n, irradiance));
-            }
-        }
-        frontier = next;
     }
-    received
+
+    /// Sends the unshot radiosity taken from root side `shooter` to every root side, each
+    /// link refined at either end until the oracle keeps it (nodes split on the way).
+    /// Returns the nodes that took light and the irradiance each took, W·m⁻².
+    fn shoot(&mut self, solver: &mut Solver, shooter: usize) -> Vec<(usize, Rgb64)> {
+        let mut received = Vec::new();
+        let mut frontier: Vec<(usize, usize, bool)> = solver
+            .root_nodes()
+            .into_iter()
+            .map(|r| (r, shooter, false))
+            .collect();
+        while !frontier.is_empty() {
+            let links = solver.create_links(&frontier);
+            let (oracle, limits) = (solver.settings.oracle, solver.limits);
+            let mut next = Vec::new();
+            let mut kept = Vec::new();
+            for link in links {
+                let (r, e) = (link.receiver as usize, link.emitter as usize);
+                match decide(oracle, &link, self.range[e], &solver.mesh, &limits) {
+                    Decision::Keep => kept.push(link),
+                    Decision::Receiver => {
+                        next.extend(children(&mut solver.mesh, r).map(|c| (c, e, link.unoccluded)))
+                    }
+                    Decision::Emitter => {
+                        next.extend(children(&mut solver.mesh, e).map(|c| (r, c, link.unoccluded)))
+                    }
+                }
+            }
+            solver.nodes.grow(&solver.world.scene, &solver.mesh);
+            self.grow(solver);
+            // Taken after the splits of this level, which may have split a kept link's
+            // receiver (through its other side) or emitter.
+            for link in kept {
+                let sent = link.emitter_radiosity(&solver.mesh, &self.unshot) * link.coupling;
+                for (n, irradiance) in link.divide(&solver.mesh, sent) {
+                    solver.nodes.gathered[n] += irradiance;
+                    received.push((n, irradiance));
+                }
+            }
+            frontier = next;
+        }
+        received
+    }
 }
 
 /// The push (§5.3.2): irradiance `h` taken at node `n` reaches every leaf below it, where it

@@ -394,7 +394,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             let decisions: Vec<Decision> = self
                 .links
                 .par_iter()
-                .map(|l| decide(oracle, l, nodes, mesh, &limits))
+                .map(|l| decide(oracle, l, nodes.range[l.emitter as usize], mesh, &limits))
                 .collect();
             let light_decisions: Vec<Decision> = self
                 .light_links
