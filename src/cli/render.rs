@@ -285,7 +285,8 @@ fn render_final_gather(
             &system,
             solution.reflected_radiosity(&system),
             args.radiosity.shading,
-        ),
+        )
+        .with_texture_detail(solution.display_irradiance(), false),
         light_samples: args.light_samples,
         gather_rays: args.gather_rays,
     };

@@ -1,36 +1,76 @@
 //! What one side of a patch does with light: the radiosity it emits and the share it
-//! reflects, from its material with textures averaged over the patch.
+//! reflects, from its material with textures averaged over the patch (for the solvers) or
+//! taken at a point (for the display, which shows the texture at full resolution).
 
 use super::element::Side;
 use super::mesh::Patch;
 use crate::color::Rgb64;
-use crate::scene::{Scene, Texture};
-use glam::Vec2;
+use crate::scene::{MaterialId, Scene, TextureId};
+use glam::DVec2;
 use std::f64::consts::PI;
 
-/// Texture samples per axis when averaging a texture over a patch.
-const TEXTURE_SAMPLES: u32 = 4;
+/// How a texture enters a surface term: its mean over a patch, or its value at a point.
+#[derive(Clone, Copy, Debug)]
+pub enum TextureAt<'p> {
+    /// The exact mean over the patch's UV polygon ([`crate::scene::Texture::polygon_mean`]).
+    Patch(&'p Patch),
+    /// The filtered value at this texture coordinate ([`crate::scene::Texture::color`]).
+    Point(DVec2),
+}
 
-/// Emitted radiosity `E = π·L` (W·m⁻²) of side `side` of `patch`, the emission texture
-/// averaged over the patch: the front emits, the back only for a `two_sided` material.
-pub fn emission(scene: &Scene, patch: &Patch, side: Side) -> Rgb64 {
-    let m = &scene.materials[patch.material as usize];
+impl TextureAt<'_> {
+    /// The texture's colour here; `[1, 1, 1]` without a texture.
+    fn colour(self, scene: &Scene, texture: Option<TextureId>) -> Rgb64 {
+        let Some(texture) = texture.and_then(|t| scene.textures.get(t as usize)) else {
+            return Rgb64::WHITE;
+        };
+        match self {
+            TextureAt::Patch(patch) => {
+                let [r, g, b, _] = texture.polygon_mean(patch.uvs());
+                Rgb64::new(r, g, b)
+            }
+            TextureAt::Point(uv) => texture.color(uv.as_vec2()).to_f64(),
+        }
+    }
+}
+
+/// Emitted radiosity `E = π·L` (W·m⁻²) of side `side` of a patch of `scene` with material
+/// `material`, the emission texture taken `at` the patch or a point: the front emits, the
+/// back only for a `two_sided` material.
+pub fn emission_of(scene: &Scene, material: MaterialId, side: Side, at: TextureAt) -> Rgb64 {
+    let m = &scene.materials[material as usize];
     if m.emission.is_black() || !(side == Side::Front || m.two_sided) {
         return Rgb64::BLACK;
     }
-    PI * m.emission.to_f64() * texture_mean(texture(scene, m.emission_texture), patch)
+    PI * m.emission.to_f64() * at.colour(scene, m.emission_texture)
 }
 
-/// Diffuse reflectance in `[0, 1]` of side `side` of `patch`, the diffuse texture averaged over
-/// the patch; 0 on the back of a `one_sided` material. Specular, mirror and transmission
-/// parts are ignored.
-pub fn reflectance(scene: &Scene, patch: &Patch, side: Side) -> Rgb64 {
-    let m = &scene.materials[patch.material as usize];
+/// Diffuse reflectance in `[0, 1]` of side `side` of a patch of `scene` with material
+/// `material`, the diffuse texture taken `at` the patch or a point; 0 on the back of a
+/// `one_sided` material. Specular, mirror and transmission parts are ignored.
+pub fn reflectance_of(scene: &Scene, material: MaterialId, side: Side, at: TextureAt) -> Rgb64 {
+    let m = &scene.materials[material as usize];
     if m.one_sided && side == Side::Back {
         return Rgb64::BLACK;
     }
-    let tex = texture_mean(texture(scene, m.diffuse_texture), patch);
-    (m.diffuse.to_f64() * tex).map(|v| v.clamp(0.0, 1.0))
+    (m.diffuse.to_f64() * at.colour(scene, m.diffuse_texture)).map(|v| v.clamp(0.0, 1.0))
+}
+
+/// [`emission_of`] side `side` of `patch`, its texture averaged over the patch, W·m⁻².
+pub fn emission(scene: &Scene, patch: &Patch, side: Side) -> Rgb64 {
+    emission_of(scene, patch.material, side, TextureAt::Patch(patch))
+}
+
+/// [`reflectance_of`] side `side` of `patch`, its texture averaged over the patch.
+pub fn reflectance(scene: &Scene, patch: &Patch, side: Side) -> Rgb64 {
+    reflectance_of(scene, patch.material, side, TextureAt::Patch(patch))
+}
+
+/// Whether `material` of `scene` has a diffuse or emission texture (its surface terms vary
+/// across a patch).
+pub fn is_textured(scene: &Scene, material: MaterialId) -> bool {
+    let m = &scene.materials[material as usize];
+    m.diffuse_texture.is_some() || (m.emission_texture.is_some() && !m.emission.is_black())
 }
 
 /// The names of the materials of `scene`'s objects that reflect or pass light other than
@@ -47,27 +87,4 @@ pub fn non_diffuse_materials(scene: &Scene) -> Vec<&str> {
         }
     }
     names
-}
-
-fn texture(scene: &Scene, id: Option<u32>) -> Option<&Texture> {
-    id.and_then(|t| scene.textures.get(t as usize))
-}
-
-/// Mean colour of `texture` over `patch` (its UV polygon sampled on a `4 × 4` grid of the
-/// patch's parameter domain, equal weights: area-weighted for triangles and parallelograms);
-/// `[1, 1, 1]` without a texture.
-fn texture_mean(texture: Option<&Texture>, patch: &Patch) -> Rgb64 {
-    let Some(texture) = texture else {
-        return Rgb64::WHITE;
-    };
-    let n = TEXTURE_SAMPLES;
-    let mut sum = Rgb64::BLACK;
-    for a in 0..n {
-        for b in 0..n {
-            let (s, t) = ((a as f64 + 0.5) / n as f64, (b as f64 + 0.5) / n as f64);
-            let uv = patch.uv_at(s, t);
-            sum += texture.color(Vec2::new(uv.x as f32, uv.y as f32)).to_f64();
-        }
-    }
-    sum.map(|v| v / (n * n) as f64)
 }

@@ -2,7 +2,8 @@
 //! patches (as triangles, under a BVH) and show the radiance `B/π` of a Lambertian surface,
 //! flat per leaf or smooth from the interpolated corner values ([`RadiosityLookup`]), with
 //! the patch edges optionally drawn as black lines one pixel wide. Each side of a patch shows
-//! its own radiosity. Surfaces that are not in the mesh (infinite planes) are not shown.
+//! its own radiosity; a textured surface shows its texture at full resolution, lit by the
+//! irradiance on the mesh. Surfaces that are not in the mesh (infinite planes) are not shown.
 
 use super::lookup::{RadiosityLookup, Shading};
 use super::solution::{LinkSegment, Solution};
@@ -74,7 +75,8 @@ pub fn render_solution(
     let rays = camera
         .with_resolution(settings.width, settings.height)
         .rays()?;
-    let lookup = RadiosityLookup::new(system, solution.display_radiosity(system), settings.shading);
+    let lookup = RadiosityLookup::new(system, solution.display_radiosity(system), settings.shading)
+        .with_texture_detail(solution.display_irradiance(), true);
     let view = Viewer {
         lookup: &lookup,
         wireframe: settings.wireframe,

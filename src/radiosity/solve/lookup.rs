@@ -9,6 +9,7 @@ use crate::color::{Rgb, Rgb64};
 use crate::geometry::{Aabb, Ray, Triangle};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::Patch;
+use crate::radiosity::surface::{TextureAt, emission_of, is_textured, reflectance_of};
 use std::f64::consts::PI;
 
 /// How radiosity is shown across a patch (`--shading`).
@@ -87,22 +88,16 @@ pub struct LeafHit<'a> {
     pub radiance: Rgb,
 }
 
-/// A value per element of a solved system (a radiosity, W·m⁻²), found along rays.
-pub struct RadiosityLookup<'s> {
-    system: &'s RadiositySystem<'s>,
-    triangles: LeafTriangles,
-    accel: Box<dyn Accelerator<LeafTriangles>>,
+/// A value per element, flat or with smooth corner values.
+struct ElementValues {
     /// Per element.
     flat: Vec<Rgb64>,
     /// Smooth corner values per side, per leaf (empty when flat).
     corners: [Vec<CornerValues>; 2],
-    shading: Shading,
 }
 
-impl<'s> RadiosityLookup<'s> {
-    /// The lookup of `values` (one per element of `system`, in element order) shown by
-    /// `shading`.
-    pub fn new(system: &'s RadiositySystem<'s>, values: Vec<Rgb64>, shading: Shading) -> Self {
+impl ElementValues {
+    fn new(system: &RadiositySystem, values: Vec<Rgb64>, shading: Shading) -> Self {
         let corners = Side::BOTH.map(|side| match shading {
             Shading::Smooth => {
                 let per_leaf: Vec<Rgb64> = (0..system.leaves.len())
@@ -112,16 +107,72 @@ impl<'s> RadiosityLookup<'s> {
             }
             Shading::Flat => Vec::new(),
         });
+        ElementValues {
+            flat: values,
+            corners,
+        }
+    }
+
+    /// The value on side `side` of leaf `leaf` at barycentric `(b1, b2)` of the leaf's
+    /// triangle with corners `corner_ids`.
+    fn at(&self, leaf: usize, side: Side, corner_ids: [u8; 3], [b1, b2]: [f64; 2]) -> Rgb64 {
+        let corners = &self.corners[side.index()];
+        if corners.is_empty() {
+            return self.flat[RadiositySystem::element(leaf, side)];
+        }
+        let c = &corners[leaf];
+        let w = [1.0 - b1 - b2, b1, b2];
+        Rgb64::from(std::array::from_fn(|ch| {
+            (0..3).map(|v| w[v] * c[corner_ids[v] as usize][ch]).sum()
+        }))
+    }
+}
+
+/// Irradiance per element, so that a textured surface shows its texture at full resolution
+/// (seed 000 §7.5 without the second, coarse texture): where a ray meets a patch whose
+/// material has a texture, the value shown is `E(uv)·[emitted] + ρ(uv)·H`, the texture taken
+/// at the point hit and `H` looked up as the values are.
+struct TextureDetail {
+    irradiance: ElementValues,
+    /// Whether the value includes the surface's own emission.
+    emitted: bool,
+}
+
+/// A value per element of a solved system (a radiosity, W·m⁻²), found along rays.
+pub struct RadiosityLookup<'s> {
+    system: &'s RadiositySystem<'s>,
+    triangles: LeafTriangles,
+    accel: Box<dyn Accelerator<LeafTriangles>>,
+    values: ElementValues,
+    detail: Option<TextureDetail>,
+    shading: Shading,
+}
+
+impl<'s> RadiosityLookup<'s> {
+    /// The lookup of `values` (one per element of `system`, in element order) shown by
+    /// `shading`.
+    pub fn new(system: &'s RadiositySystem<'s>, values: Vec<Rgb64>, shading: Shading) -> Self {
         let triangles = LeafTriangles::new(system);
         let accel = AccelKind::Bvh.build(&triangles);
         RadiosityLookup {
             system,
             triangles,
             accel,
-            flat: values,
-            corners,
+            values: ElementValues::new(system, values, shading),
+            detail: None,
             shading,
         }
+    }
+
+    /// This lookup showing textured surfaces at full resolution: there the value is
+    /// `E(uv) + ρ(uv)·H` (or `ρ(uv)·H` when not `emitted`), from `irradiance` (one per
+    /// element, W·m⁻²) and the textures at the point hit, instead of the element's value.
+    pub fn with_texture_detail(mut self, irradiance: Vec<Rgb64>, emitted: bool) -> Self {
+        self.detail = Some(TextureDetail {
+            irradiance: ElementValues::new(self.system, irradiance, self.shading),
+            emitted,
+        });
+        self
     }
 
     /// The first leaf `ray` meets, and the radiance of the value there.
@@ -133,16 +184,22 @@ impl<'s> RadiosityLookup<'s> {
         let leaf = leaf as usize;
         let patch = self.system.mesh.patch(self.system.leaves[leaf]);
         let side = Side::hit_by(patch, ray.dir.as_dvec3());
-        let [b1, b2] = hit.local.map(f64::from);
-        let value: Rgb64 = match self.shading {
-            Shading::Flat => self.flat[RadiositySystem::element(leaf, side)],
-            Shading::Smooth => {
-                let c = &self.corners[side.index()][leaf];
-                let w = [1.0 - b1 - b2, b1, b2];
-                Rgb64::from(std::array::from_fn(|ch| {
-                    (0..3).map(|v| w[v] * c[corner_ids[v] as usize][ch]).sum()
-                }))
+        let local = hit.local.map(f64::from);
+        let scene = &self.system.world().scene;
+        let value = match &self.detail {
+            Some(detail) if is_textured(scene, patch.material) => {
+                let [b1, b2] = local;
+                let uvs = corner_ids.map(|c| patch.uvs()[c as usize]);
+                let at = TextureAt::Point(uvs[0] * (1.0 - b1 - b2) + uvs[1] * b1 + uvs[2] * b2);
+                let h = detail.irradiance.at(leaf, side, corner_ids, local);
+                let e = if detail.emitted {
+                    emission_of(scene, patch.material, side, at)
+                } else {
+                    Rgb64::BLACK
+                };
+                e + reflectance_of(scene, patch.material, side, at) * h
             }
+            _ => self.values.at(leaf, side, corner_ids, local),
         };
         let point = self.triangles.triangles[hit.prim as usize]
             .point(hit.local[0], hit.local[1])

@@ -133,6 +133,12 @@ impl Solution {
             .collect()
     }
 
+    /// The irradiance each element shows, W·m⁻²: its irradiance plus the ambient term
+    /// (what [`Self::display_radiosity`] reflects).
+    pub fn display_irradiance(&self) -> Vec<Rgb64> {
+        self.irradiance.iter().map(|&h| h + self.ambient).collect()
+    }
+
     /// The radiosity each element reflects, W·m⁻²: its display radiosity without its own
     /// emission (the light a final gather reads where its rays land).
     pub fn reflected_radiosity(&self, system: &RadiositySystem) -> Vec<Rgb64> {

@@ -4,6 +4,8 @@ use crate::color::{Rgb, srgb_to_linear};
 use glam::Vec2;
 use std::path::Path;
 
+mod average;
+
 /// Index of a texture in [`super::Scene::textures`].
 pub type TextureId = u32;
 
