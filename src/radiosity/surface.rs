@@ -9,27 +9,38 @@ use crate::scene::{MaterialId, Scene, TextureId};
 use glam::DVec2;
 use std::f64::consts::PI;
 
-/// How a texture enters a surface term: its mean over a patch, or its value at a point.
+/// How a texture enters a surface term: its mean over a patch, its value at a point, or how
+/// much it varies over a patch.
 #[derive(Clone, Copy, Debug)]
 pub enum TextureAt<'p> {
-    /// The exact mean over the patch's UV polygon ([`crate::scene::Texture::polygon_mean`]).
+    /// The exact mean over the patch's UV polygon ([`crate::scene::Texture::polygon_stats`]).
     Patch(&'p Patch),
     /// The filtered value at this texture coordinate ([`crate::scene::Texture::color`]).
     Point(DVec2),
+    /// The largest less the smallest texel under the patch's UV polygon: the term becomes
+    /// how much it varies across the patch.
+    Spread(&'p Patch),
 }
 
 impl TextureAt<'_> {
-    /// The texture's colour here; `[1, 1, 1]` without a texture.
+    /// The texture's colour here; without a texture `[1, 1, 1]` (`[0, 0, 0]` for a spread).
     fn colour(self, scene: &Scene, texture: Option<TextureId>) -> Rgb64 {
         let Some(texture) = texture.and_then(|t| scene.textures.get(t as usize)) else {
-            return Rgb64::WHITE;
+            return match self {
+                TextureAt::Spread(_) => Rgb64::BLACK,
+                _ => Rgb64::WHITE,
+            };
         };
+        let rgb = |c: [f64; 4]| Rgb64::new(c[0], c[1], c[2]);
         match self {
-            TextureAt::Patch(patch) => {
-                let [r, g, b, _] = texture.polygon_mean(patch.uvs());
-                Rgb64::new(r, g, b)
-            }
+            TextureAt::Patch(patch) => rgb(texture.polygon_stats(patch.uvs()).mean),
             TextureAt::Point(uv) => texture.color(uv.as_vec2()).to_f64(),
+            TextureAt::Spread(patch) => {
+                let stats = texture.polygon_stats(patch.uvs());
+                rgb(std::array::from_fn(|c| {
+                    f64::from(stats.max[c] - stats.min[c])
+                }))
+            }
         }
     }
 }

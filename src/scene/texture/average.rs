@@ -11,13 +11,31 @@
 use super::Texture;
 use glam::DVec2;
 
+/// What a texture holds over a polygon of texture space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TexelStats {
+    /// Mean RGBA, each texel weighted by the area of it covered.
+    pub mean: [f64; 4],
+    /// Smallest value per channel of the texels it touches.
+    pub min: [f32; 4],
+    /// Largest value per channel of the texels it touches.
+    pub max: [f32; 4],
+}
+
 impl Texture {
-    /// The mean RGBA of the texture over the polygon with texture coordinates `uv` (any
-    /// simple polygon, either orientation; coordinates outside `[0, 1]²` follow the
-    /// texture's wrap mode): `Σ texel · covered area / polygon area`, exact up to rounding.
-    /// A polygon of no area (a point or a segment in texture space) takes the texel under its
-    /// first corner.
+    /// The mean RGBA of the texture over the polygon with texture coordinates `uv`, as
+    /// [`Self::polygon_stats`] finds it.
     pub fn polygon_mean(&self, uv: &[DVec2]) -> [f64; 4] {
+        self.polygon_stats(uv).mean
+    }
+
+    /// The mean, smallest and largest RGBA of the texture over the polygon with texture
+    /// coordinates `uv` (any simple polygon, either orientation; the texture repeats outside
+    /// `[0, 1]²`). The mean is `Σ texel · covered area / polygon area`, exact up to
+    /// rounding; the smallest and largest are over the texels it covers, partly or whole. A
+    /// polygon of no area (a point or a segment in texture space) takes the texel under its
+    /// first corner.
+    pub fn polygon_stats(&self, uv: &[DVec2]) -> TexelStats {
         let (w, h) = (self.width as f64, self.height as f64);
         let points: Vec<DVec2> = uv
             .iter()
@@ -26,17 +44,23 @@ impl Texture {
         let total = signed_area(&points);
         let texel_at = |p: DVec2| self.texel(p.x.floor() as i64, p.y.floor() as i64);
         if points.is_empty() || !total.is_finite() || total.abs() <= 1e-12 * (w * h).max(1.0) {
-            return points
-                .first()
-                .map_or([0.0; 4], |&p| texel_at(p).map(f64::from));
+            let t = points.first().map_or([0.0; 4], |&p| texel_at(p));
+            return TexelStats {
+                mean: t.map(f64::from),
+                min: t,
+                max: t,
+            };
         }
         let convex = is_convex(&points);
         let (y_min, y_max) = span(&points, |p| p.y);
         let mut sum = [0.0; 4];
+        let (mut min, mut max) = ([f32::INFINITY; 4], [f32::NEG_INFINITY; 4]);
         let mut add = |x: i64, y: i64, weight: f64| {
             let t = self.texel(x, y);
             for c in 0..4 {
                 sum[c] += weight * f64::from(t[c]);
+                min[c] = min[c].min(t[c]);
+                max[c] = max[c].max(t[c]);
             }
         };
         for row in y_min.floor() as i64..y_max.ceil() as i64 {
@@ -68,7 +92,11 @@ impl Texture {
                 }
             }
         }
-        sum.map(|s| s / total)
+        TexelStats {
+            mean: sum.map(|s| s / total),
+            min,
+            max,
+        }
     }
 }
 

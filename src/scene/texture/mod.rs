@@ -6,6 +6,8 @@ use std::path::Path;
 
 mod average;
 
+pub use average::TexelStats;
+
 /// Index of a texture in [`super::Scene::textures`].
 pub type TextureId = u32;
 

@@ -17,8 +17,11 @@
 //!    large an error is replaced by links to the four children of its receiver or its
 //!    emitter. `--refine-pass original` judges the links that existed when the pass began and
 //!    then gathers again (the seed's faster variant); `all` also judges the links a pass
-//!    creates, until none is refined, before gathering.
-//! 4. Steps 2 and 3 repeat until no link is refined.
+//!    creates, until none is refined, before gathering. A leaf whose texture makes the light
+//!    it sends vary by more than the error (`A·Y(ΔE + Δρ·H)`, seed ch. 7) is split too: a
+//!    node's emission and reflectance are the exact means of its textures, so its children
+//!    resolve the texture in the light they pass on.
+//! 4. Steps 2 and 3 repeat until nothing is refined.
 //!
 //! Link creation, the oracle and the gather run on all threads of the current rayon pool, in
 //! an order that does not depend on the thread count.

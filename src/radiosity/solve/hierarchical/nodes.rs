@@ -49,6 +49,10 @@ pub struct Nodes {
     /// Smallest and largest radiosity luminance of the leaves below (the node's own at a
     /// leaf), W·m⁻².
     pub range: Vec<(f64, f64)>,
+    /// How much the textures make the emitted radiosity (W·m⁻²) and the reflectance vary
+    /// across the node: the luminance of each term at the largest less at the smallest texel
+    /// under it; zero without textures.
+    pub spread: Vec<(f64, f64)>,
 }
 
 impl Nodes {
@@ -65,15 +69,19 @@ impl Nodes {
     }
 
     /// Adds the nodes of patches `mesh` gained since the last call (children of split
-    /// nodes); their radiosity starts as their parent's.
+    /// nodes); their radiosity and irradiance start as their parent's.
     pub fn grow(&mut self, scene: &Scene, mesh: &PatchMesh) {
         for id in (self.emission.len() / 2) as PatchId..mesh.len() as PatchId {
             let patch = mesh.patch(id);
             for side in Side::BOTH {
-                let start = match patch.parent {
-                    Some(parent) => self.radiosity[node(parent, side)],
+                let parent = patch.parent.map(|p| node(p, side));
+                let start = match parent {
+                    Some(p) => self.radiosity[p],
                     None => surface::emission(scene, patch, side),
                 };
+                let (h, h_lit) = parent.map_or((Rgb64::BLACK, Rgb64::BLACK), |p| {
+                    (self.irradiance[p], self.lit_total[p])
+                });
                 let y = start.luminance();
                 self.emission.push(surface::emission(scene, patch, side));
                 self.reflectance
@@ -81,9 +89,19 @@ impl Nodes {
                 self.radiosity.push(start);
                 self.gathered.push(Rgb64::BLACK);
                 self.lit.push(Rgb64::BLACK);
-                self.irradiance.push(Rgb64::BLACK);
-                self.lit_total.push(Rgb64::BLACK);
+                self.irradiance.push(h);
+                self.lit_total.push(h_lit);
                 self.range.push((y, y));
+                self.spread
+                    .push(if surface::is_textured(scene, patch.material) {
+                        let at = surface::TextureAt::Spread(patch);
+                        (
+                            surface::emission_of(scene, patch.material, side, at).luminance(),
+                            surface::reflectance_of(scene, patch.material, side, at).luminance(),
+                        )
+                    } else {
+                        (0.0, 0.0)
+                    });
             }
         }
     }

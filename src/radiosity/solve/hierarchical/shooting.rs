@@ -8,7 +8,8 @@
 //! its radiosity: kept, or refined at the receiver or at the shooter's end — so a part of the
 //! shooter that sends unevenly is split, and a receiver takes the shot at the level where
 //! the power it brings is certain enough. What a node takes is pushed down to its leaves
-//! (§5.3.2), where it becomes radiosity, before the next shooter is chosen. Shooting stops
+//! (§5.3.2), where it becomes radiosity, and leaves whose texture makes the light they send
+//! vary too much are split, before the next shooter is chosen. Shooting stops
 //! when the unshot power is at most the tolerance times the source power, or after the most
 //! shots allowed.
 //!
@@ -81,6 +82,8 @@ pub fn solve_hierarchical_shooting<'w>(
         for (receiver, irradiance) in received {
             push(&mut solver, receiver, irradiance);
         }
+        solver.refine_textures();
+        shots.grow(&solver);
         let (next, unshot) = shots.unshot_power(&solver);
         times.iterations += t.elapsed().as_secs_f64();
         (shooter, fraction) = (next, unshot / source);

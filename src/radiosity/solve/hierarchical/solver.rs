@@ -14,6 +14,7 @@ use crate::radiosity::mesh::{PatchId, PatchMesh};
 use crate::radiosity::solve::{
     LinkSegment, PhaseTimes, RadiositySystem, Solution, SolveError, SolverKind, SystemOptions,
 };
+use crate::radiosity::surface::is_textured;
 use crate::radiosity::visibility::Visibility;
 use crate::world::World;
 use rayon::prelude::*;
@@ -404,6 +405,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             round.seconds_refine += t.elapsed().as_secs_f64();
             let t = Instant::now();
             let (created, refined) = self.apply(&decisions, &light_decisions);
+            let refined = refined + self.refine_textures();
             let (created_clusters, refined_clusters) = self.refine_clusters(cancel);
             let (created, refined) = (created + created_clusters, refined + refined_clusters);
             round.seconds_linking += t.elapsed().as_secs_f64();
@@ -417,6 +419,49 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 return refined_any;
             }
         }
+    }
+
+    /// Splits every leaf whose textures make the light it sends vary across it by more than
+    /// the error threshold, `A·Y(ΔE + Δρ·H) > error` for either side (`ΔE`, `Δρ` the
+    /// spreads of [`Nodes::spread`], `H` the leaf's irradiance), down to the minimum area.
+    /// The children are judged at once with the irradiance they take from their parent,
+    /// which makes their radiosity `E + ρ·H` until the next gather or shot. Returns the
+    /// leaves split.
+    pub(super) fn refine_textures(&mut self) -> u64 {
+        let scene = &self.world.scene;
+        let mut pending: Vec<PatchId> = self
+            .mesh
+            .leaves()
+            .into_iter()
+            .filter(|&l| is_textured(scene, self.mesh.patch(l).material))
+            .collect();
+        let mut split = 0;
+        while let Some(leaf) = pending.pop() {
+            let patch = self.mesh.patch(leaf);
+            let varies = Side::BOTH.into_iter().any(|side| {
+                let n = node(leaf, side);
+                let (de, dr) = self.nodes.spread[n];
+                patch.area * (de + dr * self.nodes.irradiance[n].luminance()) > self.limits.error
+            });
+            if !varies || patch.area <= self.limits.min_area {
+                continue;
+            }
+            let children = self.mesh.subdivide(leaf);
+            self.nodes.grow(scene, &self.mesh);
+            let nodes = &mut self.nodes;
+            for (c, side) in children
+                .into_iter()
+                .flat_map(|c| Side::BOTH.map(|s| (c, s)))
+            {
+                let n = node(c, side);
+                let b = nodes.emission[n] + nodes.reflectance[n] * nodes.irradiance[n];
+                nodes.radiosity[n] = b;
+                nodes.range[n] = (b.luminance(), b.luminance());
+            }
+            pending.extend(children);
+            split += 1;
+        }
+        split
     }
 
     /// Replaces every link with a refining decision by links to the children of its receiver
