@@ -3,7 +3,7 @@
 use glam::{Vec2, Vec3};
 use std::path::{Path, PathBuf};
 use strahl::color::Rgb;
-use strahl::scene::{self, LightKind, Scene, SceneError, Shape};
+use strahl::scene::{self, LightKind, Scene, SceneError, Shape, Wrap};
 
 /// Tolerance for coordinates computed in f32 from exact inputs.
 const EPS: f32 = 1e-5;
@@ -75,6 +75,12 @@ fn documented_example_is_in_the_docs_and_loads_with_expected_counts() {
         material(&s, "screen").emission_texture
     );
     assert!(checker.one_sided);
+    let poster = &s.textures[material(&s, "poster").diffuse_texture.unwrap() as usize];
+    assert_eq!(poster.wrap, Wrap::Clamp);
+    assert_eq!(
+        s.textures[checker.diffuse_texture.unwrap() as usize].wrap,
+        Wrap::Repeat
+    );
     assert!(material(&s, "light").two_sided);
     assert_eq!(material(&s, "white").diffuse, Rgb::splat(0.75));
     assert_eq!(material(&s, "glass").ior, 1.5);

@@ -4,9 +4,9 @@ use super::error::SceneError;
 use super::fields::Table;
 use super::format::MaterialEntry;
 use super::textures::TextureCache;
-use super::value::{ColorSpaceName, TextureEntry};
+use super::value::{ColorSpaceName, TextureEntry, WrapName};
 use crate::color::Rgb;
-use crate::scene::{ColorSpace, Material, Scene, TextureId};
+use crate::scene::{ColorSpace, Material, Scene, TextureId, Wrap};
 use std::path::Path;
 use toml::Spanned;
 
@@ -113,8 +113,12 @@ fn texture_id(
         None if alpha => ColorSpace::Linear,
         None => ColorSpace::default_for(&path),
     };
+    let wrap = match entry.get_ref().wrap {
+        WrapName::Repeat => Wrap::Repeat,
+        WrapName::Clamp => Wrap::Clamp,
+    };
     textures
         .cache
-        .file(scene, &path, space, alpha)
+        .file(scene, &path, space, alpha, wrap)
         .map_err(|m| t.error(entry.span(), field, m))
 }

@@ -7,7 +7,7 @@
 
 use super::textures::TextureCache;
 use crate::scene::import::{self, ImportedMaterial, ImportedMesh, TextureSource};
-use crate::scene::{Material, MaterialId, PolygonMesh, Scene, TextureId};
+use crate::scene::{Material, MaterialId, PolygonMesh, Scene, TextureId, Wrap};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -141,7 +141,7 @@ fn add_material(
                 color_space,
                 alpha_from_grey,
             }) => textures
-                .file(scene, path, *color_space, *alpha_from_grey)
+                .file(scene, path, *color_space, *alpha_from_grey, Wrap::Repeat)
                 .map(Some),
             Some(TextureSource::Embedded(i)) => {
                 let t = data

@@ -1,37 +1,39 @@
 //! Loading textures into a scene once per file (and per decoding).
 
-use crate::scene::{ColorSpace, Scene, Texture, TextureId};
+use crate::scene::{ColorSpace, Scene, Texture, TextureId, Wrap};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// Textures already added to the scene being built, so each image is loaded once.
 #[derive(Debug, Default)]
 pub(super) struct TextureCache {
-    /// (canonical path, sRGB?, alpha from grey?) → texture.
-    files: HashMap<(PathBuf, bool, bool), TextureId>,
+    /// (canonical path, sRGB?, alpha from grey?, wrap) → texture.
+    files: HashMap<(PathBuf, bool, bool, Wrap), TextureId>,
     /// (canonical mesh path, embedded image index) → texture.
     embedded: HashMap<(PathBuf, usize), TextureId>,
 }
 
 impl TextureCache {
-    /// The id of image file `path` decoded with `space`, loading it on first use. With
-    /// `alpha_from_grey`, an image whose alpha is 1 everywhere takes its alpha from its grey
-    /// level (mean of the channels). The error message names the path.
+    /// The id of image file `path` decoded with `space` and wrapped by `wrap`, loading it on
+    /// first use. With `alpha_from_grey`, an image whose alpha is 1 everywhere takes its
+    /// alpha from its grey level (mean of the channels). The error message names the path.
     pub fn file(
         &mut self,
         scene: &mut Scene,
         path: &Path,
         space: ColorSpace,
         alpha_from_grey: bool,
+        wrap: Wrap,
     ) -> Result<TextureId, String> {
         let canonical = path
             .canonicalize()
             .map_err(|e| format!("cannot read texture \"{}\": {e}", path.display()))?;
-        let key = (canonical, space == ColorSpace::Srgb, alpha_from_grey);
+        let key = (canonical, space == ColorSpace::Srgb, alpha_from_grey, wrap);
         if let Some(&id) = self.files.get(&key) {
             return Ok(id);
         }
         let mut texture = Texture::load(path, space).map_err(|e| e.to_string())?;
+        texture.wrap = wrap;
         if alpha_from_grey && texture.texels.iter().all(|t| t[3] == 1.0) {
             for t in &mut texture.texels {
                 t[3] = (t[0] + t[1] + t[2]) / 3.0;
@@ -72,6 +74,7 @@ mod tests {
                 Path::new("no/such/file.ppm"),
                 ColorSpace::Linear,
                 false,
+                Wrap::Repeat,
             )
             .unwrap_err();
         assert!(err.contains("no/such/file.ppm"), "{err}");

@@ -113,13 +113,27 @@ pub(super) enum ColorSpaceName {
     Srgb,
 }
 
-/// A texture reference: `"path"` or `{ file = "path", colorspace = "linear" | "srgb" }`.
+/// What a texture shows outside `[0, 1]²`, as written in a scene file.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum WrapName {
+    /// The image repeats.
+    #[default]
+    Repeat,
+    /// The edge texels extend outwards.
+    Clamp,
+}
+
+/// A texture reference: `"path"` or
+/// `{ file = "path", colorspace = "linear" | "srgb", wrap = "repeat" | "clamp" }`.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct TextureEntry {
     /// Image path, relative to the scene file.
     pub file: String,
     /// Explicit colour space; `None` means the default for the file type.
     pub colorspace: Option<ColorSpaceName>,
+    /// Wrap mode.
+    pub wrap: WrapName,
 }
 
 /// The table spelling of [`TextureEntry`].
@@ -128,6 +142,8 @@ pub(super) struct TextureEntry {
 struct TextureTable {
     file: String,
     colorspace: Option<ColorSpaceName>,
+    #[serde(default)]
+    wrap: WrapName,
 }
 
 impl<'de> Deserialize<'de> for TextureEntry {
@@ -142,13 +158,17 @@ impl<'de> Visitor<'de> for TextureVisitor {
     type Value = TextureEntry;
 
     fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str("a file path or a table { file = \"...\", colorspace = \"linear\" | \"srgb\" }")
+        f.write_str(
+            "a file path or a table { file = \"...\", colorspace = \"linear\" | \"srgb\", \
+             wrap = \"repeat\" | \"clamp\" }",
+        )
     }
 
     fn visit_str<E: de::Error>(self, v: &str) -> Result<TextureEntry, E> {
         Ok(TextureEntry {
             file: v.to_string(),
             colorspace: None,
+            wrap: WrapName::Repeat,
         })
     }
 
@@ -157,6 +177,7 @@ impl<'de> Visitor<'de> for TextureVisitor {
         Ok(TextureEntry {
             file: t.file,
             colorspace: t.colorspace,
+            wrap: t.wrap,
         })
     }
 }
@@ -176,7 +197,8 @@ mod tests {
     #[test]
     fn both_spellings_parse() {
         let doc: Doc = toml::from_str(
-            "a = 2\nb = [0.1, 0.2, 3]\nt = \"x.png\"\nu = { file = \"y.ppm\", colorspace = \"srgb\" }",
+            "a = 2\nb = [0.1, 0.2, 3]\nt = \"x.png\"\n\
+             u = { file = \"y.ppm\", colorspace = \"srgb\", wrap = \"clamp\" }",
         )
         .unwrap();
         assert_eq!(doc.a, Triple([2.0; 3]));
@@ -184,6 +206,10 @@ mod tests {
         assert_eq!(doc.t.file, "x.png");
         assert_eq!(doc.t.colorspace, None);
         assert_eq!(doc.u.colorspace, Some(ColorSpaceName::Srgb));
+        assert_eq!(
+            (doc.t.wrap, doc.u.wrap),
+            (WrapName::Repeat, WrapName::Clamp)
+        );
     }
 
     #[test]

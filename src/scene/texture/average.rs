@@ -30,8 +30,8 @@ impl Texture {
     }
 
     /// The mean, smallest and largest RGBA of the texture over the polygon with texture
-    /// coordinates `uv` (any simple polygon, either orientation; the texture repeats outside
-    /// `[0, 1]²`). The mean is `Σ texel · covered area / polygon area`, exact up to
+    /// coordinates `uv` (any simple polygon, either orientation; outside `[0, 1]²` the wrap
+    /// mode applies). The mean is `Σ texel · covered area / polygon area`, exact up to
     /// rounding; the smallest and largest are over the texels it covers, partly or whole. A
     /// polygon of no area (a point or a segment in texture space) takes the texel under its
     /// first corner.
@@ -169,6 +169,7 @@ fn chord(polygon: &[DVec2], y: f64) -> Option<(f64, f64)> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::Wrap;
     use super::*;
     use rand::{RngExt, SeedableRng};
     use rand_pcg::Pcg64Mcg;
@@ -354,6 +355,27 @@ mod tests {
                 "channel {k}: {} vs {parts}",
                 a[k]
             );
+        }
+    }
+
+    #[test]
+    fn a_clamped_texture_extends_its_edge_outwards() {
+        let texture = Texture {
+            wrap: Wrap::Clamp,
+            ..odd_texture()
+        };
+        // [1, 3] × [0.2, 0.4] lies right of the image, in row 3 (y = (1 − v)·5 ∈ [3, 4]):
+        // it sees the last texel of that row only.
+        let p = |u: f64, v: f64| DVec2::new(u, v);
+        let mean = texture.polygon_mean(&[p(1.0, 0.2), p(3.0, 0.2), p(3.0, 0.4), p(1.0, 0.4)]);
+        let t = texture.texel(6, 3).map(f64::from);
+        for c in 0..4 {
+            assert!((mean[c] - t[c]).abs() < 1e-12, "{mean:?} vs {t:?}");
+        }
+        let slow = mean_by_texel_squares(&texture, &[p(-0.5, -0.3), p(0.4, -0.2), p(0.2, 0.6)]);
+        let fast = texture.polygon_mean(&[p(-0.5, -0.3), p(0.4, -0.2), p(0.2, 0.6)]);
+        for c in 0..4 {
+            assert!((fast[c] - slow[c]).abs() < 1e-9, "{fast:?} vs {slow:?}");
         }
     }
 

@@ -35,9 +35,19 @@ impl ColorSpace {
     }
 }
 
+/// What a texture shows outside `[0, 1]²`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Wrap {
+    /// The image repeats.
+    #[default]
+    Repeat,
+    /// The edge texels extend outwards.
+    Clamp,
+}
+
 /// A texture: linear RGBA texels, row 0 at the top of the image. Texture coordinate
-/// `(0, 0)` is the bottom-left corner and `(1, 1)` the top-right (the OBJ convention); lookups
-/// repeat outside `[0, 1]²`.
+/// `(0, 0)` is the bottom-left corner and `(1, 1)` the top-right (the OBJ convention);
+/// lookups outside `[0, 1]²` follow the wrap mode.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Texture {
     /// Name (file path or a generated name).
@@ -48,6 +58,8 @@ pub struct Texture {
     pub height: u32,
     /// Row-major texels, `[r, g, b, a]`, linear.
     pub texels: Vec<[f32; 4]>,
+    /// What lookups outside `[0, 1]²` see.
+    pub wrap: Wrap,
 }
 
 /// Error while reading a texture file.
@@ -61,7 +73,7 @@ pub struct TextureError {
 }
 
 impl Texture {
-    /// A texture computed per texel by `f(x, y) -> [r, g, b, a]` (row 0 on top).
+    /// A repeating texture computed per texel by `f(x, y) -> [r, g, b, a]` (row 0 on top).
     pub fn from_fn(name: &str, width: u32, height: u32, f: impl Fn(u32, u32) -> [f32; 4]) -> Self {
         let texels = (0..height)
             .flat_map(|y| (0..width).map(move |x| (x, y)))
@@ -72,11 +84,12 @@ impl Texture {
             width,
             height,
             texels,
+            wrap: Wrap::Repeat,
         }
     }
 
-    /// Reads an image file (PNG, JPEG, PPM, PGM, PAM) into linear RGBA. Grey images fill all
-    /// three colour channels; images without alpha get alpha 1.
+    /// Reads an image file (PNG, JPEG, PPM, PGM, PAM) into linear RGBA, repeating. Grey images
+    /// fill all three colour channels; images without alpha get alpha 1.
     pub fn load(path: &Path, space: ColorSpace) -> Result<Texture, TextureError> {
         let err = |reason: String| TextureError {
             path: path.display().to_string(),
@@ -105,14 +118,18 @@ impl Texture {
             width: img.width(),
             height: img.height(),
             texels,
+            wrap: Wrap::Repeat,
         })
     }
 
-    /// The texel at column `x`, row `y` (row 0 on top), wrapped into range.
+    /// The texel at column `x`, row `y` (row 0 on top), brought into range by the wrap mode.
     pub fn texel(&self, x: i64, y: i64) -> [f32; 4] {
-        let xi = x.rem_euclid(self.width as i64) as usize;
-        let yi = y.rem_euclid(self.height as i64) as usize;
-        self.texels[yi * self.width as usize + xi]
+        let (w, h) = (self.width as i64, self.height as i64);
+        let (xi, yi) = match self.wrap {
+            Wrap::Repeat => (x.rem_euclid(w), y.rem_euclid(h)),
+            Wrap::Clamp => (x.clamp(0, w - 1), y.clamp(0, h - 1)),
+        };
+        self.texels[(yi * w + xi) as usize]
     }
 
     /// Bilinearly filtered RGBA at texture coordinate `uv`.
@@ -172,6 +189,18 @@ mod tests {
                 [1.0, 1.0, 1.0, 1.0]
             }
         })
+    }
+
+    #[test]
+    fn clamping_extends_the_edge_texels() {
+        let t = Texture {
+            wrap: Wrap::Clamp,
+            ..two_by_one()
+        };
+        assert_eq!(t.color(Vec2::new(1.75, 0.5)).r, 1.0);
+        assert_eq!(t.color(Vec2::new(-0.75, 0.5)).r, 0.0);
+        assert_eq!(t.texel(-5, 3), [0.0; 4]);
+        assert_eq!(t.texel(9, -1), [1.0; 4]);
     }
 
     #[test]
