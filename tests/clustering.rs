@@ -40,12 +40,7 @@ fn solve_at(world: &World, clustering: bool, error: f64) -> (HashMap<String, f64
     };
     let (system, solution) =
         solve_hierarchical(world, options, &settings, &NoProgress, &Cancel::new()).unwrap();
-    let report = Report::new(
-        &world.scene.name,
-        solution.solver.name(),
-        &solution.surface_power(&system),
-        solution.stats(&system),
-    );
+    let report = Report::of_radiosity(&world.scene.name, &system, &solution);
     (absorbed(&report), solution.links)
 }
 

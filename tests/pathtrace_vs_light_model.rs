@@ -66,12 +66,7 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
     let system = RadiositySystem::new(&world, options).unwrap();
     let cancel = Cancel::new();
     let solution = solve_matrix(&system, &MatrixSettings::default(), &NoProgress, &cancel).unwrap();
-    let radiosity_report = Report::new(
-        "cornell",
-        solution.solver.name(),
-        &solution.surface_power(&system),
-        solution.stats(&system),
-    );
+    let radiosity_report = Report::of_radiosity("cornell", &system, &solution);
     let display = DisplaySettings {
         links: LinkDisplay::None,
         width: w,

@@ -37,12 +37,7 @@ fn incident(report: &Report) -> HashMap<String, f64> {
 
 /// Incident power (green channel) per object name of a radiosity solution.
 fn incident_of(system: &RadiositySystem, solution: &Solution) -> HashMap<String, f64> {
-    incident(&Report::new(
-        "cornell",
-        solution.solver.name(),
-        &solution.surface_power(system),
-        solution.stats(system),
-    ))
+    incident(&Report::of_radiosity("cornell", system, solution))
 }
 
 fn radiosity_at(world: &World, levels: u32) -> HashMap<String, f64> {

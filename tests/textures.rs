@@ -94,12 +94,7 @@ fn solve(world: &World, error: f64) -> Vec<(RadiositySystem<'_>, Solution)> {
 }
 
 fn report(system: &RadiositySystem, solution: &Solution) -> Report {
-    Report::new(
-        "checker",
-        solution.solver.name(),
-        &solution.surface_power(system),
-        solution.stats(system),
-    )
+    Report::of_radiosity("checker", system, solution)
 }
 
 #[test]

@@ -117,12 +117,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
             if args.verbose {
                 print_convergence(&solution);
             }
-            Report::new(
-                &name,
-                solution.solver.name(),
-                &solution.surface_power(&system),
-                solution.stats(&system),
-            )
+            Report::of_radiosity(&name, &system, &solution)
         }
     };
     if let Some((entry, field)) = report.first_non_finite() {

@@ -21,6 +21,7 @@
 
 use crate::color::{LUMINOUS_EFFICACY, Rgb64};
 use crate::measure::{PowerBalance, Stats, SurfacePower, Totals};
+use crate::radiosity::solve::{RadiositySystem, Solution};
 use serde::{Deserialize, Serialize};
 
 /// A complete report.
@@ -113,6 +114,17 @@ impl ObjectReport {
 }
 
 impl Report {
+    /// The report of scene `scene` from radiosity `solution` on `system` (see
+    /// [`Report::new`]).
+    pub fn of_radiosity(scene: &str, system: &RadiositySystem, solution: &Solution) -> Self {
+        Report::new(
+            scene,
+            solution.solver.name(),
+            &solution.surface_power(system),
+            solution.stats(system),
+        )
+    }
+
     /// The report of scene `scene` solved by `solver`, from the power it measured per
     /// surface and its statistics, in metres and watts.
     pub fn new(scene: &str, solver: &str, power: &SurfacePower, stats: Stats) -> Self {
