@@ -6,7 +6,7 @@
 
 use std::collections::HashMap;
 use strahl::accel::AccelKind;
-use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::{Cancel, NoProgress};
 use strahl::radiosity::mesh::{MeshOptions, MeshSize};
 use strahl::radiosity::solve::SystemOptions;
@@ -40,7 +40,7 @@ fn solve_at(world: &World, clustering: bool, error: f64) -> (HashMap<String, f64
     };
     let (system, solution) =
         solve_hierarchical(world, options, &settings, &NoProgress, &Cancel::new()).unwrap();
-    let report = Report::of_radiosity(&world.scene.name, &system, &solution);
+    let report = Report::new(&world.scene.name, &solution.measurement(&system));
     (absorbed(&report), solution.links)
 }
 
@@ -98,12 +98,7 @@ fn clustered_light_on_many_cubes_agrees_with_the_light_model() {
         max_bounces: 1000,
     };
     let out = trace_light(&blocks, &settings, &NoProgress, &Cancel::new()).unwrap();
-    let reference = absorbed(&Report::new(
-        "blocks",
-        LightTraceOutput::SOLVER,
-        &out.power,
-        out.stats(),
-    ));
+    let reference = absorbed(&Report::new("blocks", &out.measurement()));
     let cubes = |m: &HashMap<String, f64>| -> f64 {
         m.iter()
             .filter(|(name, _)| name.starts_with("block-"))

@@ -9,7 +9,7 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::color::{Rgb, Rgb64};
-use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::report::{ObjectReport, Report};
@@ -27,7 +27,7 @@ fn solve(scene: Scene, photons: u64, seed: u64) -> Report {
     };
     let out = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
     assert!(out.complete());
-    Report::new(&name, LightTraceOutput::SOLVER, &out.power, out.stats())
+    Report::new(&name, &out.measurement())
 }
 
 fn object<'a>(r: &'a Report, name: &str) -> &'a ObjectReport {
@@ -510,7 +510,7 @@ fn cancelled_run_keeps_its_photons_scaled_to_the_full_count() {
     assert!(!out.complete());
     // One batch of N/200 photons.
     assert_eq!(out.photons_traced, 5_000);
-    let report = Report::new("furnace", LightTraceOutput::SOLVER, &out.power, out.stats());
+    let report = Report::new("furnace", &out.measurement());
     assert_eq!(report.stats.extra["complete"], false);
     // The radical-inverse source order keeps the prefix stratified: the van der Corput
     // star discrepancy bound n·D* ≤ log₂(n)/3 + 1 ≈ 5.1 at n = 5000 puts each face's count

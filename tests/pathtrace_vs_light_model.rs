@@ -11,7 +11,7 @@
 use std::collections::HashMap;
 use std::f64::consts::PI;
 use strahl::accel::AccelKind;
-use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::mesh::{MeshOptions, MeshSize};
@@ -66,7 +66,7 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
     let system = RadiositySystem::new(&world, options).unwrap();
     let cancel = Cancel::new();
     let solution = solve_matrix(&system, &MatrixSettings::default(), &NoProgress, &cancel).unwrap();
-    let radiosity_report = Report::of_radiosity("cornell", &system, &solution);
+    let radiosity_report = Report::new("cornell", &solution.measurement(&system));
     let display = DisplaySettings {
         links: LinkDisplay::None,
         width: w,
@@ -121,7 +121,7 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
         max_bounces: 1000,
     };
     let out = trace_light(&world, &photons, &NoProgress, &Cancel::new()).unwrap();
-    let report = Report::new("cornell", LightTraceOutput::SOLVER, &out.power, out.stats());
+    let report = Report::new("cornell", &out.measurement());
     // Objects the camera sees whole (the floor and the back wall are partly hidden by the
     // blocks, whose radiosity differs from the area they hide).
     for name in ["ceiling", "red_wall", "green_wall"] {

@@ -5,7 +5,7 @@ use glam::Vec3;
 use strahl::accel::AccelKind;
 use strahl::color::{Rgb, Rgb64};
 use strahl::image::{ToneMap, ToneMapping};
-use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::light_links::solid_angle;
@@ -119,7 +119,7 @@ fn furnace_report_balances_emission_and_absorption() {
     let world = furnace();
     let system = RadiositySystem::new(&world, options(1)).unwrap();
     let solution = matrix(&system, Iteration::GaussSeidel, 1e-9);
-    let report = Report::of_radiosity("furnace", &system, &solution);
+    let report = Report::new("furnace", &solution.measurement(&system));
     assert_eq!(report.objects.len(), 6);
     // Each face: area 1, H = B (closed box), incident = B, absorbed = (1 − ρ)·B = E.
     let b = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
@@ -149,8 +149,8 @@ fn cornell_matrix_and_progressive_agree_per_object() {
     let system = RadiositySystem::new(&world, options(2)).unwrap();
     let m = matrix(&system, Iteration::GaussSeidel, 1e-6);
     let p = progressive(&system, false, 1e-6);
-    let rm = Report::of_radiosity("cornell", &system, &m);
-    let rp = Report::of_radiosity("cornell", &system, &p);
+    let rm = Report::new("cornell", &m.measurement(&system));
+    let rp = Report::new("cornell", &p.measurement(&system));
     for (a, b) in rm.objects.iter().zip(&rp.objects) {
         let (x, y) = (a.incident_power.luminance(), b.incident_power.luminance());
         assert!(x > 0.0, "{} receives light", a.name);
@@ -158,7 +158,7 @@ fn cornell_matrix_and_progressive_agree_per_object() {
     }
     // Overshooting converges to the same solution.
     let o = progressive(&system, true, 1e-6);
-    let ro = Report::of_radiosity("cornell", &system, &o);
+    let ro = Report::new("cornell", &o.measurement(&system));
     for (a, b) in rm.objects.iter().zip(&ro.objects) {
         let (x, y) = (a.incident_power.luminance(), b.incident_power.luminance());
         assert!((x - y).abs() / x < 0.005, "{}: {x} vs {y}", a.name);
@@ -243,7 +243,7 @@ fn point_light_link_gives_the_exact_mean_irradiance_and_the_lights_full_power() 
         assert!((solution.radiosity[0][0] - 0.5 * h).abs() < 1e-12);
         // The back of the floor sees nothing.
         assert_eq!(solution.radiosity[1], Rgb64::BLACK);
-        let report = Report::of_radiosity("lamp", &system, &solution);
+        let report = Report::new("lamp", &solution.measurement(&system));
         let floor = &report.objects[0];
         assert!((floor.irradiance.unwrap()[2] - h).abs() < 1e-12);
         assert!((floor.absorbed_power[1] - 0.5 * h).abs() < 1e-12);
@@ -562,7 +562,7 @@ fn hierarchical_furnace_gives_e_over_one_minus_rho() {
             // BFA does not bound that variation: element by element it is far off (links kept
             // at coarse receivers mix levels), but no light is created or lost.
             Oracle::Bfa => {
-                let report = Report::of_radiosity("furnace", &system, &solution);
+                let report = Report::new("furnace", &solution.measurement(&system));
                 let t = &report.totals;
                 let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
                 assert!((a / e - 1.0).abs() < 0.01, "absorbed {a} of {e}");
@@ -603,7 +603,7 @@ fn hierarchical_shooting_furnace_gives_e_over_one_minus_rho() {
             Oracle::Bfa => 0.04,
         };
         assert_furnace(&system, &solution, tolerance);
-        let report = Report::of_radiosity("furnace", &system, &solution);
+        let report = Report::new("furnace", &solution.measurement(&system));
         let per_face = report.totals.emitted_power.luminance() / 6.0;
         for face in &report.objects {
             let a = face.absorbed_power.luminance();
@@ -693,7 +693,7 @@ fn hierarchical_closed_box_absorbs_what_it_emits() {
     for lamp in [false, true] {
         let world = closed_box(lamp);
         let (system, solution) = hierarchical(&world, &HierarchicalSettings::default());
-        let report = Report::of_radiosity("box", &system, &solution);
+        let report = Report::new("box", &solution.measurement(&system));
         let t = &report.totals;
         let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
         // Measured at the default error: 0.12 % and 0.78 % (light lost in the millimetre gap
@@ -880,16 +880,11 @@ fn light_model_report(world: &World, photons: u64, seed: u64) -> Report {
         max_bounces: 1000,
     };
     let out = trace_light(world, &settings, &NoProgress, &Cancel::new()).unwrap();
-    Report::new(
-        &world.scene.name,
-        LightTraceOutput::SOLVER,
-        &out.power,
-        out.stats(),
-    )
+    Report::new(&world.scene.name, &out.measurement())
 }
 
 fn report_of(system: &RadiositySystem, solution: &Solution) -> Report {
-    Report::of_radiosity("ball-on-quad", system, solution)
+    Report::new("ball-on-quad", &solution.measurement(system))
 }
 
 #[test]

@@ -8,7 +8,7 @@
 use std::collections::HashMap;
 use std::sync::OnceLock;
 use strahl::accel::AccelKind;
-use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::mesh::{MeshOptions, MeshSize};
@@ -37,7 +37,7 @@ fn incident(report: &Report) -> HashMap<String, f64> {
 
 /// Incident power (green channel) per object name of a radiosity solution.
 fn incident_of(system: &RadiositySystem, solution: &Solution) -> HashMap<String, f64> {
-    incident(&Report::of_radiosity("cornell", system, solution))
+    incident(&Report::new("cornell", &solution.measurement(system)))
 }
 
 fn radiosity_at(world: &World, levels: u32) -> HashMap<String, f64> {
@@ -68,12 +68,7 @@ fn light_model_reference() -> &'static HashMap<String, f64> {
             max_bounces: 1000,
         };
         let out = trace_light(&cornell(), &settings, &NoProgress, &Cancel::new()).unwrap();
-        incident(&Report::new(
-            "cornell",
-            LightTraceOutput::SOLVER,
-            &out.power,
-            out.stats(),
-        ))
+        incident(&Report::new("cornell", &out.measurement()))
     })
 }
 

@@ -94,7 +94,7 @@ fn solve(world: &World, error: f64) -> Vec<(RadiositySystem<'_>, Solution)> {
 }
 
 fn report(system: &RadiositySystem, solution: &Solution) -> Report {
-    Report::of_radiosity("checker", system, solution)
+    Report::new("checker", &solution.measurement(system))
 }
 
 #[test]

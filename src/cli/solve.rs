@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
 use strahl::accel::AccelKind;
-use strahl::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
+use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::report::{ExportFormat, ObjectReport, Report, ReportFormat, write_report};
 use strahl::world::World;
 
@@ -101,7 +101,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
                     }
                 );
             }
-            Report::new(&name, LightTraceOutput::SOLVER, &out.power, out.stats())
+            Report::new(&name, &out.measurement())
         }
         Solver::Matrix
         | Solver::Progressive
@@ -117,7 +117,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
             if args.verbose {
                 print_convergence(&solution);
             }
-            Report::of_radiosity(&name, &system, &solution)
+            Report::new(&name, &solution.measurement(&system))
         }
     };
     if let Some((entry, field)) = report.first_non_finite() {

@@ -6,7 +6,7 @@ use super::sources::PhotonSources;
 use super::tally::{Fixed, FixedBalance, Tally, add_fixed};
 use crate::color::{Rgb, Rgb64};
 use crate::geometry::spawn_ray;
-use crate::measure::{Stats, SurfacePower, SurfaceTable};
+use crate::measure::{Measurement, Stats, SurfacePower, SurfaceTable};
 use crate::progress::{Cancel, ProgressListener};
 use crate::sampling::{Sampler, SequenceKind};
 use crate::world::World;
@@ -88,6 +88,15 @@ impl LightTraceOutput {
     /// True when every photon asked for was traced.
     pub fn complete(&self) -> bool {
         self.photons_traced == self.photons
+    }
+
+    /// What this run measured: the power per reported surface and [`Self::stats`].
+    pub fn measurement(&self) -> Measurement {
+        Measurement {
+            solver: Self::SOLVER,
+            power: self.power.clone(),
+            stats: self.stats(),
+        }
     }
 
     /// The statistics of this run: time, rays, photons and sources.

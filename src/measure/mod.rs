@@ -1,10 +1,12 @@
 //! What the algorithms measure, in plain containers that they fill and that `report` and
 //! `image` turn into files: the [`Film`] (radiance per pixel), the [`SurfacePower`] (power
 //! per reported surface, over the [`SurfaceTable`] of a scene), the [`LitMesh`] (radiosity
-//! per polygon corner) and the run's [`Stats`], with the process's peak memory.
+//! per polygon corner) and the run's [`Stats`], with the process's peak memory; a solver's
+//! [`Measurement`] holds its surface power and statistics together.
 
 mod film;
 mod lit_mesh;
+mod measurement;
 mod memory;
 mod stats;
 mod surface_power;
@@ -12,6 +14,7 @@ mod surfaces;
 
 pub use film::Film;
 pub use lit_mesh::LitMesh;
+pub use measurement::Measurement;
 pub use memory::peak_resident_bytes;
 pub use stats::Stats;
 pub use surface_power::{PowerBalance, SurfacePower, Totals};

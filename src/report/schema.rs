@@ -1,5 +1,5 @@
 //! The per-object light report: one schema for every solver (the light model and every
-//! radiosity solver), built from the [`SurfacePower`] a solver measured and serialised as
+//! radiosity solver), built from the [`Measurement`] of a solver and serialised as
 //! JSON (and flattened to CSV by [`super::write`]).
 //!
 //! Definitions (per channel, linear Rec.709 RGB):
@@ -20,8 +20,7 @@
 //! are then `null`.
 
 use crate::color::{LUMINOUS_EFFICACY, Rgb64};
-use crate::measure::{PowerBalance, Stats, SurfacePower, Totals};
-use crate::radiosity::solve::{RadiositySystem, Solution};
+use crate::measure::{Measurement, PowerBalance, Stats, Totals};
 use serde::{Deserialize, Serialize};
 
 /// A complete report.
@@ -114,20 +113,9 @@ impl ObjectReport {
 }
 
 impl Report {
-    /// The report of scene `scene` from radiosity `solution` on `system` (see
-    /// [`Report::new`]).
-    pub fn of_radiosity(scene: &str, system: &RadiositySystem, solution: &Solution) -> Self {
-        Report::new(
-            scene,
-            solution.solver.name(),
-            &solution.surface_power(system),
-            solution.stats(system),
-        )
-    }
-
-    /// The report of scene `scene` solved by `solver`, from the power it measured per
-    /// surface and its statistics, in metres and watts.
-    pub fn new(scene: &str, solver: &str, power: &SurfacePower, stats: Stats) -> Self {
+    /// The report of scene `scene` from what a solver measured on it, in metres and watts.
+    pub fn new(scene: &str, measured: &Measurement) -> Self {
+        let power = &measured.power;
         let objects = power
             .table()
             .surfaces()
@@ -137,9 +125,9 @@ impl Report {
             .collect();
         Report {
             scene: scene.to_string(),
-            solver: solver.to_string(),
+            solver: measured.solver.to_string(),
             units: Units::default(),
-            stats,
+            stats: measured.stats.clone(),
             objects,
             totals: power.totals(),
         }

@@ -15,7 +15,7 @@ use super::interpolate::vertex_radiosity;
 use super::matrix::Iteration;
 use super::system::RadiositySystem;
 use crate::color::Rgb64;
-use crate::measure::{LitMesh, Stats, SurfacePower, SurfaceTable};
+use crate::measure::{LitMesh, Measurement, Stats, SurfacePower, SurfaceTable};
 use crate::radiosity::element::Side;
 use glam::DVec3;
 use glam::Vec3;
@@ -149,8 +149,18 @@ impl Solution {
             .collect()
     }
 
+    /// What the solution measured on `system`'s scene: its power per reported surface and
+    /// its statistics, under the solver's name.
+    pub fn measurement(&self, system: &RadiositySystem) -> Measurement {
+        Measurement {
+            solver: self.solver.name(),
+            power: self.surface_power(system),
+            stats: self.stats(system),
+        }
+    }
+
     /// The power per reported surface of `system`'s scene, W, as the module describes.
-    pub fn surface_power(&self, system: &RadiositySystem) -> SurfacePower {
+    fn surface_power(&self, system: &RadiositySystem) -> SurfacePower {
         let world = system.world();
         let mut power = SurfacePower::new(SurfaceTable::new(&world.scene, &world.geometry));
         for k in 0..system.len() {
@@ -184,7 +194,7 @@ impl Solution {
     /// sides), form factors, iterations
     /// and the convergence history (at most [`CONVERGENCE_ROWS`] rows of `[iteration,
     /// value]`, spread evenly in the logarithm of the iteration number).
-    pub fn stats(&self, system: &RadiositySystem) -> Stats {
+    fn stats(&self, system: &RadiositySystem) -> Stats {
         let s = &self.seconds;
         let mut stats = Stats {
             seconds: s.setup + s.form_factors + s.iterations,
