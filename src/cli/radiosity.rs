@@ -323,12 +323,14 @@ fn print_summary(system: &RadiositySystem, solution: &Solution) {
 pub fn print_convergence(solution: &Solution) {
     if !solution.rounds.is_empty() {
         eprintln!(
-            "{:>5} {:>9} {:>9} {:>9} {:>9} {:>8} {:>10} {:>7} {:>10} {:>8} {:>8} {:>8} {:>8}",
+            "{:>5} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8} {:>8} {:>10} {:>7} {:>10} {:>8} {:>8} {:>8} {:>8}",
             "round",
             "created",
             "refined",
+            "looked",
             "links",
             "clusters",
+            "blocked",
             "leaves",
             "rays",
             "gathers",
@@ -340,12 +342,14 @@ pub fn print_convergence(solution: &Solution) {
         );
         for (k, r) in solution.rounds.iter().enumerate() {
             eprintln!(
-                "{:>5} {:>9} {:>9} {:>9} {:>9} {:>8} {:>10} {:>7} {:>10.3e} {:>8.3} {:>8.3} {:>8.3} {:>8}",
+                "{:>5} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8} {:>8} {:>10} {:>7} {:>10.3e} {:>8.3} {:>8.3} {:>8.3} {:>8}",
                 k + 1,
                 r.links_created,
                 r.links_refined,
+                r.links_looked,
                 r.links,
                 r.cluster_links,
+                r.blocked_links,
                 r.leaves,
                 r.rays,
                 r.gathers,

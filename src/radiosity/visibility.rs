@@ -40,8 +40,12 @@ use std::str::FromStr;
 
 /// Rays per axis for each unit of `√A_max / d` in adaptive mode.
 const ADAPTIVE_RAYS_PER_RATIO: f64 = 4.0;
+/// Smallest adaptive grid per axis where the pair may be occluded (16 rays).
+const ADAPTIVE_MIN_PER_AXIS: u32 = 4;
 /// Largest adaptive grid per axis (64 rays).
 const ADAPTIVE_MAX_PER_AXIS: u32 = 8;
+/// Mixed into a pair's generator seed with the grid size of a [`Visibility::look`].
+const LOOK_KEY: u64 = 0xD6E8_FEB8_6659_FD93;
 /// Where the squared distances from a point to a patch's corners differ by more than this
 /// factor, [`Visibility::from_points`] spreads its rays by solid angle rather than by area.
 const SKEW: f64 = 4.0;
@@ -77,14 +81,50 @@ struct RaySums {
     seen: f64,
 }
 
+/// What the rays of one grid between two patches found ([`Visibility::estimate`],
+/// [`Visibility::look`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct GridRays {
+    /// Rays cast.
+    cast: u64,
+    /// Rays that arrived unblocked.
+    arrived: u64,
+    /// Sum over the rays of the point-to-point kernel `|cos θ·cos θ'|/d²` times both ends'
+    /// area elements.
+    kernel: f64,
+    /// The same sum over the rays that arrived.
+    kernel_arrived: f64,
+}
+
+impl GridRays {
+    /// The share of the rays that arrived (0 when none was cast).
+    fn share(&self) -> f64 {
+        if self.cast == 0 {
+            0.0
+        } else {
+            self.arrived as f64 / self.cast as f64
+        }
+    }
+
+    /// The share of the form factor the rays that arrived stand for (the share of the rays
+    /// where every ray stands for nothing).
+    fn weighted_share(&self) -> f64 {
+        if self.kernel > 0.0 {
+            self.kernel_arrived / self.kernel
+        } else {
+            self.share()
+        }
+    }
+}
+
 /// How many visibility rays per patch pair (`--vis-rays N|adaptive`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VisRays {
     /// At least `N` rays: an `m × m` grid with `m = ⌈√N⌉`.
     Fixed(u32),
-    /// `m = clamp(⌈4·√A_max / d⌉, 2, 8)` per axis, where `A_max` is the larger patch area
+    /// `m = clamp(⌈4·√A_max / d⌉, 4, 8)` per axis, where `A_max` is the larger patch area
     /// and `d` the centroid distance (unchanged when the scene is scaled uniformly), for
-    /// pairs that may be occluded; 8 × 8 where the first rays disagree.
+    /// pairs that may be occluded; 8 × 8 where the first rays disagree or none arrives.
     Adaptive,
 }
 
@@ -131,6 +171,15 @@ pub struct VisibilityEstimate {
     /// True when nothing can block the pair (no candidate occluder): `visible` is exactly 1,
     /// and so it is for any parts of the two patches.
     pub unoccluded: bool,
+}
+
+impl VisibilityEstimate {
+    /// A pair nothing can block: wholly visible, no rays cast.
+    pub const UNOCCLUDED: VisibilityEstimate = VisibilityEstimate {
+        visible: 1.0,
+        rays: 0,
+        unoccluded: true,
+    };
 }
 
 /// Settings of the visibility test.
@@ -239,7 +288,7 @@ impl<'w> Visibility<'w> {
         &self.options
     }
 
-    /// Rays per axis for the pair (`m`; `m²` rays are cast).
+    /// Rays per axis for the pair's first estimate (`m`; `m²` rays are cast).
     pub fn rays_per_axis(&self, a: &Patch, b: &Patch) -> u32 {
         match self.options.rays {
             VisRays::Fixed(n) => (n as f64).sqrt().ceil().max(1.0) as u32,
@@ -250,7 +299,7 @@ impl<'w> Visibility<'w> {
                     return ADAPTIVE_MAX_PER_AXIS;
                 }
                 let m = (ADAPTIVE_RAYS_PER_RATIO * size / d).ceil();
-                m.clamp(1.0, ADAPTIVE_MAX_PER_AXIS as f64) as u32
+                m.clamp(ADAPTIVE_MIN_PER_AXIS as f64, ADAPTIVE_MAX_PER_AXIS as f64) as u32
             }
         }
     }
@@ -263,10 +312,11 @@ impl<'w> Visibility<'w> {
     }
 
     /// [`Self::between`] with the number of rays it cast. Pairs with no possible occluder cast
-    /// none. In adaptive mode a pair that may be occluded casts at least 2 × 2 rays, and when
-    /// not all of them arrive (a shadow edge crosses the pair, or it may be wholly occluded)
-    /// it is estimated again with the largest grid: rays go where the visibility changes, not
-    /// merely where patches are close.
+    /// none. In adaptive mode a pair that may be occluded casts at least 4 × 4 rays (2 × 2
+    /// missed too many partial occluders: +1.25 % on a wall seen past a box at 0.25 m
+    /// patches, 0.20 % with 4 × 4), and when not all of them arrive (a shadow edge crosses
+    /// the pair, or it may be wholly occluded) it is estimated again with the largest grid:
+    /// rays go where the visibility changes, not merely where patches are close.
     pub fn estimate(&self, mesh: &PatchMesh, a: PatchId, b: PatchId) -> VisibilityEstimate {
         let (lo, hi) = (a.min(b), a.max(b));
         let (p, q) = (mesh.patch(lo), mesh.patch(hi));
@@ -278,43 +328,107 @@ impl<'w> Visibility<'w> {
             self.occluders(p, q)
         };
         if matches!(occluders, Occluders::None) {
-            return VisibilityEstimate {
-                visible: 1.0,
-                rays: 0,
-                unoccluded: true,
-            };
-        }
-        if adaptive {
-            m = m.max(2);
+            return VisibilityEstimate::UNOCCLUDED;
         }
         let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, lo, hi));
         let mut rays = 0;
         loop {
-            let from = jittered_points(p, m, &mut rng);
-            let mut to = jittered_points(q, m, &mut rng);
-            for i in (1..to.len()).rev() {
-                let j = rng.random_range(0..=i);
-                to.swap(i, j);
-            }
-            let arrived = from
-                .iter()
-                .zip(&to)
-                .filter(|&(&(x, _), &(y, _))| !self.blocked(x, p.normal, y, q.normal, &occluders))
-                .count();
-            rays += from.len() as u64;
+            let grid = self.grid_rays(p, q, m, None, &occluders, &mut rng);
+            rays += grid.cast;
             // Mixed answers (a shadow edge crosses the pair) or none arriving (the pair would
             // not be linked at all) are settled with the largest grid.
-            let settle = arrived < from.len();
+            let settle = grid.arrived < grid.cast;
             if adaptive && settle && m < ADAPTIVE_MAX_PER_AXIS {
                 m = ADAPTIVE_MAX_PER_AXIS;
                 continue;
             }
             return VisibilityEstimate {
-                visible: arrived as f64 / from.len() as f64,
+                visible: grid.share(),
                 rays,
                 unoccluded: false,
             };
         }
+    }
+
+    /// The visible share of the form factor between the sides of patches `a` and `b` whose
+    /// unit normals are `normal_a` and `normal_b`, from at least `rays` rays between
+    /// stratified, jittered points spread over both (an `m × m` grid on each, paired at
+    /// random; each ray weighted by the point-to-point kernel it stands for, and standing
+    /// for nothing unless each end lies in front of the other's side), whatever the
+    /// `--vis-rays` option: 0 exactly when no ray arrived. The rays start anywhere on `a`, near its
+    /// edges too: a pair whose Gauss points see nothing of each other may still see itself
+    /// through a gap ([`Visibility::from_points`] looks from the Gauss points only). Looks
+    /// with different ray counts cast different rays; deterministic for a fixed seed.
+    pub fn look(
+        &self,
+        mesh: &PatchMesh,
+        (a, normal_a): (PatchId, DVec3),
+        (b, normal_b): (PatchId, DVec3),
+        rays: u32,
+    ) -> VisibilityEstimate {
+        let (p, q) = (mesh.patch(a), mesh.patch(b));
+        let occluders = self.occluders(p, q);
+        if matches!(occluders, Occluders::None) {
+            return VisibilityEstimate::UNOCCLUDED;
+        }
+        let m = (rays as f64).sqrt().ceil().max(1.0) as u32;
+        let key = pair_key(self.options.seed, a, b) ^ u64::from(m).wrapping_mul(LOOK_KEY);
+        let mut rng = Pcg64Mcg::seed_from_u64(key);
+        let sides = Some((normal_a, normal_b));
+        let grid = self.grid_rays(p, q, m, sides, &occluders, &mut rng);
+        let visible = if grid.arrived > 0 {
+            grid.weighted_share()
+        } else {
+            0.0
+        };
+        VisibilityEstimate {
+            visible,
+            rays: grid.cast,
+            unoccluded: false,
+        }
+    }
+
+    /// Casts one ray per stratum of an `m × m` jittered grid on `p` to one of `q`'s, the
+    /// strata paired by a random permutation. With `sides` (the unit normals of the sides of
+    /// `p` and `q` that see each other), only pairs of points each in front of the other's
+    /// side are joined by a ray; without, every pair is, whichever side it leaves from.
+    fn grid_rays(
+        &self,
+        p: &Patch,
+        q: &Patch,
+        m: u32,
+        sides: Option<(DVec3, DVec3)>,
+        occluders: &Occluders,
+        rng: &mut Pcg64Mcg,
+    ) -> GridRays {
+        let from = jittered_points(p, m, rng);
+        let mut to = jittered_points(q, m, rng);
+        for i in (1..to.len()).rev() {
+            let j = rng.random_range(0..=i);
+            to.swap(i, j);
+        }
+        let mut rays = GridRays::default();
+        for (&(x, ax), &(y, ay)) in from.iter().zip(&to) {
+            let d = y - x;
+            let d2 = d.length_squared();
+            let cosines = match sides {
+                Some((np, nq)) => np.dot(d).max(0.0) * (-nq.dot(d)).max(0.0),
+                None => (p.normal.dot(d) * q.normal.dot(d)).abs(),
+            };
+            if sides.is_some() && cosines <= 0.0 {
+                continue;
+            }
+            let kernel = cosines / (d2 * d2) * ax * ay;
+            // Points that coincide (patches touching there) stand for nothing.
+            let kernel = if kernel.is_finite() { kernel } else { 0.0 };
+            rays.cast += 1;
+            rays.kernel += kernel;
+            if !self.blocked(x, p.normal, y, q.normal, occluders) {
+                rays.arrived += 1;
+                rays.kernel_arrived += kernel;
+            }
+        }
+        rays
     }
 
     /// The visible share of patch `b` seen from each of `points` (points of patch `a` whose
@@ -625,6 +739,29 @@ mod tests {
             let half = visibility_of(pair_scene(Some((-1.0, 0.5)), 1.0), fixed(1024, culling));
             assert!((half - 0.5).abs() < 0.03, "{half}");
         }
+    }
+
+    #[test]
+    fn a_look_weighs_by_the_form_factor_and_keeps_to_the_sides() {
+        let look = |blocker, (na, nb): (DVec3, DVec3), rays| {
+            let scene = pair_scene(blocker, 1.0);
+            let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
+            let world = World::new(scene, AccelKind::Bvh).unwrap();
+            let vis = Visibility::new(&world, fixed(4, true), 16).unwrap();
+            vis.look(&mesh, (0, na), (1, nb), rays)
+        };
+        let facing = (DVec3::Z, DVec3::NEG_Z);
+        assert_eq!(look(None, facing, 64), VisibilityEstimate::UNOCCLUDED);
+        // Half the pairs are blocked, by symmetry also half the form factor.
+        let half = look(Some((-1.0, 0.5)), facing, 1024);
+        assert_eq!(half.rays, 1024);
+        assert!((half.visible - 0.5).abs() < 0.03, "{half:?}");
+        let none = look(Some((-1.0, 2.0)), facing, 64);
+        assert_eq!((none.visible, none.rays), (0.0, 64));
+        // From the back of the lower square nothing of the upper one is in front: no ray
+        // stands for anything, and the share is 0 however the plate lies.
+        let back = look(Some((-1.0, 0.5)), (DVec3::NEG_Z, DVec3::NEG_Z), 64);
+        assert_eq!((back.visible, back.rays), (0.0, 0));
     }
 
     #[test]

@@ -6,10 +6,16 @@
 //! side times the share of it visible from the point ([`Visibility::from_points`]), carried
 //! to the receiver by reciprocity when the emitter is the smaller, together with the
 //! smallest and largest point form factor over the receiver's Gauss points, centroid and
-//! corners (`F_min = 0` when the pair is partly occluded), which the oracles judge. A pair
-//! that cannot see each other (every ray from every Gauss point and from near every corner
-//! and edge midpoint blocked) is never linked; a partly visible pair is linked even when its
-//! estimate is 0, so the oracle can refine it.
+//! corners (`F_min = 0` when the pair is partly occluded), which the oracles judge.
+//!
+//! A pair whose rays from the Gauss points are all blocked is looked at again with rays
+//! between points spread over both patches ([`Visibility::look`]): the Gauss points of a
+//! large node mostly in shadow may miss the gap through which it sees the other. A pair
+//! seen there is linked with the share those rays found, for the oracle to refine; a pair
+//! not seen is linked as *blocked*, carrying nothing, with the number of rays that found
+//! nothing. The oracle looks again with more rays wherever the light such a pair could
+//! bring, times the share those rays could have missed, exceeds the error threshold
+//! ([`super::oracle`]): a blocked pair is never dropped on the word of a few rays.
 //!
 //! Once other links split its ends, a link kept at a coarse level still transports what the
 //! finer level shows: it gathers the emitter's children's radiosities weighted by how much of
@@ -24,7 +30,7 @@ use crate::radiosity::clip::{Facing, facing};
 use crate::radiosity::element::Side;
 use crate::radiosity::form_factor::{gauss_points, point_to_side};
 use crate::radiosity::light_links::{light_irradiance, point_irradiance};
-use crate::radiosity::mesh::{Patch, PatchId, PatchMesh};
+use crate::radiosity::mesh::{Patch, PatchMesh};
 use crate::radiosity::visibility::Visibility;
 use crate::scene::LightKind;
 use crate::world::World;
@@ -41,9 +47,21 @@ const RAYS_PER_POINT: u32 = 4;
 /// way), so that a corner on an emitter's edge does not sit in the emitter's plane.
 const CORNER_INSET: f64 = 1e-3;
 
-/// How far the edge probes of a pair that no Gauss point sees are pulled towards the
-/// centroid (a share of the way).
-const EDGE_INSET: f64 = 0.05;
+/// Rays of the first look over both patches at a pair that no Gauss point sees (a 4 × 4
+/// grid on each).
+const FIRST_LOOK_RAYS: u32 = 16;
+
+/// What is known of a pair's visibility before its link is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Prior {
+    /// Nothing: its rays will tell.
+    Unknown,
+    /// It is part of a pair nothing can block: no rays are needed.
+    Unoccluded,
+    /// Its rays were all blocked so far: if the Gauss points see nothing again, look over
+    /// both patches with this many rays.
+    Blocked(u32),
+}
 
 /// A receiver node gathering an emitter node's radiosity.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -63,6 +81,9 @@ pub struct Link {
     pub visible: f64,
     /// True when nothing can block the pair: its children's links need no visibility rays.
     pub unoccluded: bool,
+    /// The rays asked of the last look over both patches, when every ray between the pair
+    /// was blocked (the link is blocked and carries nothing); 0 once any ray arrived.
+    pub blocked_rays: u32,
     /// The share of the transport that leaves each quarter of the emitter (the quarters its
     /// children will cover, in their order): gathering weighs the children's radiosities by
     /// it once the emitter is split.
@@ -74,6 +95,20 @@ pub struct Link {
 }
 
 impl Link {
+    /// What is known of the visibility of its ends' children.
+    pub fn prior_for_children(&self) -> Prior {
+        if self.unoccluded {
+            Prior::Unoccluded
+        } else {
+            Prior::Unknown
+        }
+    }
+
+    /// True when no ray between its ends arrived: it carries nothing.
+    pub fn is_blocked(&self) -> bool {
+        self.blocked_rays > 0
+    }
+
     /// The radiosity the receiver sees, W·m⁻²: the emitter's children's radiosities weighted
     /// by the link's shares once the emitter is split, else the emitter's own.
     pub fn emitter_radiosity(&self, mesh: &PatchMesh, radiosity: &[Rgb64]) -> Rgb64 {
@@ -201,15 +236,15 @@ pub struct Linker<'a> {
 
 impl Linker<'_> {
     /// The link from `emitter` to `receiver` (node indices of `mesh`), `None` when they do
-    /// not face each other, are sides of one patch, or cannot see each other. `unoccluded`
-    /// says that nothing can block the pair (it is part of an unoccluded pair), so no rays
-    /// are needed.
+    /// not face each other or are sides of one patch; a blocked link (see the module
+    /// documentation) when no ray between them arrives. `prior` is what is known of the
+    /// pair's visibility.
     pub fn link(
         &self,
         mesh: &PatchMesh,
         receiver: usize,
         emitter: usize,
-        unoccluded: bool,
+        prior: Prior,
     ) -> Option<Link> {
         let ((rp, rs), (ep, es)) = (split_node(receiver), split_node(emitter));
         if rp == ep {
@@ -274,7 +309,7 @@ impl Linker<'_> {
         if f_max <= 0.0 {
             return None;
         }
-        let seen = if unoccluded {
+        let seen = if prior == Prior::Unoccluded {
             None
         } else {
             self.visibility.from_points(
@@ -292,24 +327,36 @@ impl Linker<'_> {
             s.shares
         });
         let visible_at = |i: usize| seen.as_ref().map_or(1.0, |v| v[i]);
-        // Every ray from every Gauss point blocked: the pair may still see each other near
-        // the smaller patch's edges (a large node mostly in shadow). Dropping such a link
-        // would lose that light for good, so the edges are probed too; a link seen only
-        // from there is kept with no coupling and refined by the oracle.
-        if !any_unblocked && !self.sees_near_edges(mesh, from_patch, from, from_normal, to_patch) {
-            return None;
-        }
-        let coupling: f64 = scale
+        let mut coupling: f64 = scale
             * gauss
                 .iter()
                 .enumerate()
                 .map(|(i, &(_, w))| w * point_factors[i] * visible_at(i))
                 .sum::<f64>();
-        let visible: f64 = gauss
+        let mut visible: f64 = gauss
             .iter()
             .enumerate()
             .map(|(i, &(_, w))| w * visible_at(i))
             .sum();
+        let mut blocked_rays = 0;
+        if !any_unblocked {
+            // No ray from a Gauss point arrived: look over both patches, near their edges
+            // too, before calling the pair blocked.
+            let rays = match prior {
+                Prior::Blocked(rays) => rays,
+                Prior::Unknown | Prior::Unoccluded => FIRST_LOOK_RAYS,
+            };
+            let to_normal = to_side.normal(to);
+            let look =
+                self.visibility
+                    .look(mesh, (from_patch, from_normal), (to_patch, to_normal), rays);
+            self.rays.fetch_add(look.rays, Ordering::Relaxed);
+            if look.visible > 0.0 {
+                (coupling, visible) = (mean * look.visible, look.visible);
+            } else {
+                blocked_rays = rays;
+            }
+        }
         let shares = if scale == 1.0 {
             emitter_shares(e, es, r, rs)
         } else {
@@ -317,7 +364,7 @@ impl Linker<'_> {
         };
         let receiver_visible = |i: usize| if scale == 1.0 { visible_at(i) } else { 1.0 };
         let receiver_weights = quarter_values(r, |i| factors[i] * receiver_visible(i));
-        let partial = (0..gauss.len()).any(|i| visible_at(i) < 1.0);
+        let partial = visible < 1.0 || (0..gauss.len()).any(|i| visible_at(i) < 1.0);
         let f_min = if partial {
             0.0
         } else {
@@ -331,38 +378,10 @@ impl Linker<'_> {
             f_max,
             visible,
             unoccluded: seen.is_none(),
+            blocked_rays,
             shares,
             receiver_weights,
         })
-    }
-
-    /// Whether any ray from points near the corners and edge midpoints of patch `from` (id
-    /// `from_patch`, receiving side normal `normal`) reaches patch `to_patch` unblocked.
-    fn sees_near_edges(
-        &self,
-        mesh: &PatchMesh,
-        from_patch: PatchId,
-        from: &Patch,
-        normal: DVec3,
-        to_patch: PatchId,
-    ) -> bool {
-        let corners = from.corners();
-        let n = corners.len();
-        let points: Vec<DVec3> = (0..n)
-            .flat_map(|i| [corners[i], (corners[i] + corners[(i + 1) % n]) * 0.5])
-            .map(|p| p + (from.centroid - p) * EDGE_INSET)
-            .collect();
-        let seen = self.visibility.from_points(
-            mesh,
-            (from_patch, &points, normal),
-            to_patch,
-            RAYS_PER_POINT,
-        );
-        let Some(seen) = seen else {
-            return true;
-        };
-        self.rays.fetch_add(seen.rays, Ordering::Relaxed);
-        seen.any_unblocked
     }
 
     /// The link from light `light` (an index into the scene's lights) to `receiver`, `None`

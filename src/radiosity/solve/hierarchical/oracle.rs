@@ -23,6 +23,12 @@
 //!   coarse receiver kept next to an edge it shares with a small emitter mixes levels badly
 //!   (measured in the furnace: 25 % too much light).
 //!
+//! A blocked link (no ray between its patches arrived, `links.rs`) could still bring
+//! `A·F_max·B_max` through a gap its `n` rays missed; with `n` rays all blocked the visible
+//! share is below `3/n` with 95 % confidence (the rule of three). So both oracles keep it
+//! while `3/n` of that power is within the threshold, and otherwise look again with enough
+//! rays for the bound to hold (at least twice as many, at most [`MAX_LOOK_RAYS`]).
+//!
 //! Light links are refined at the receiver when the power they bring varies over it by more
 //! than the threshold. Cluster links (`clusters.rs`) are kept only while the largest power
 //! they can bring at all is below it: their point-to-point exchange has no tighter bound. Decisions use luminance (Y), not the RGB mean (§7.3). Nothing smaller
@@ -48,6 +54,10 @@ crate::choice::named_values!(Oracle {
     Oracle::Bfa = "bfa", "The seed's B·F·A criterion (depends on the scene's size)";
 });
 
+/// The most rays a blocked link is looked at with (a 32 × 32 grid on each patch): a pair
+/// still blocked then may hide at most about 0.3 % of what it could bring.
+pub const MAX_LOOK_RAYS: u32 = 1024;
+
 /// What to do with a link.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Decision {
@@ -57,6 +67,8 @@ pub enum Decision {
     Receiver,
     /// Split the emitter and link its children.
     Emitter,
+    /// A blocked link: compute it again, looking over both patches with this many rays.
+    Look(u32),
 }
 
 /// The thresholds a decision compares with.
@@ -85,6 +97,9 @@ pub fn decide(
     mesh: &PatchMesh,
     limits: &Limits,
 ) -> Decision {
+    if link.blocked_rays > 0 {
+        return decide_blocked(link, b_max, mesh, limits);
+    }
     let can_receiver = splittable(mesh, link.receiver, limits);
     let can_emitter = splittable(mesh, link.emitter, limits);
     let prefer = |receiver_first: bool| match (receiver_first, can_receiver, can_emitter) {
@@ -132,6 +147,21 @@ pub fn decide(
     }
 }
 
+/// The decision on a blocked link (see the module documentation): keep it while the power
+/// its rays may have missed, `A·F_max·B_max·3/n`, is within the threshold, else look again
+/// with enough rays.
+fn decide_blocked(link: &Link, b_max: f64, mesh: &PatchMesh, limits: &Limits) -> Decision {
+    let stake = mesh.patch(link.receiver / 2).area * link.f_max * b_max;
+    let rays = link.blocked_rays;
+    if rays >= MAX_LOOK_RAYS || 3.0 * stake <= limits.error * f64::from(rays) {
+        return Decision::Keep;
+    }
+    let needed = (3.0 * stake / limits.error)
+        .ceil()
+        .min(f64::from(MAX_LOOK_RAYS)) as u32;
+    Decision::Look(needed.max(2 * rays).min(MAX_LOOK_RAYS))
+}
+
 /// The decision on a light link: the power it brings is uncertain (its irradiance varies over
 /// the receiver, or a shadow edge crosses it) by more than the error threshold.
 pub fn decide_light(link: &LightLink, mesh: &PatchMesh, limits: &Limits) -> Decision {
@@ -141,5 +171,76 @@ pub fn decide_light(link: &LightLink, mesh: &PatchMesh, limits: &Limits) -> Deci
         Decision::Receiver
     } else {
         Decision::Keep
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::radiosity::mesh::MeshOptions;
+    use crate::scene::{Material, Scene, Shape};
+    use glam::Vec3;
+
+    /// A blocked link between the two sides' fronts of two unit squares.
+    fn blocked(rays: u32) -> (Link, PatchMesh) {
+        let mut scene = Scene::empty("pair");
+        let m = scene.add_material(Material::default());
+        for (name, origin, u, v) in [
+            ("bottom", Vec3::ZERO, Vec3::X, Vec3::Y),
+            ("top", Vec3::Z, Vec3::Y, Vec3::X),
+        ] {
+            let shape = Shape::Parallelogram {
+                origin,
+                edge_u: u,
+                edge_v: v,
+            };
+            scene.add_object(name, shape, m);
+        }
+        let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
+        let link = Link {
+            receiver: 0,
+            emitter: 2,
+            coupling: 0.0,
+            f_min: 0.0,
+            f_max: 0.2,
+            visible: 0.0,
+            unoccluded: false,
+            blocked_rays: rays,
+            shares: [0.25; 4],
+            receiver_weights: [0.0; 4],
+        };
+        (link, mesh)
+    }
+
+    #[test]
+    fn a_blocked_link_is_looked_at_again_while_what_it_may_hide_matters() {
+        let limits = Limits {
+            error: 1e-3,
+            bfa: 1e-3,
+            min_area: 0.0,
+        };
+        for oracle in [Oracle::Lischinski, Oracle::Bfa] {
+            // It could bring A·F_max·B_max = 0.2·B; 16 blocked rays may hide 3/16 of it.
+            let (link, mesh) = blocked(16);
+            let decide_at = |b: f64, link: &Link| decide(oracle, link, (0.0, b), &mesh, &limits);
+            assert_eq!(decide_at(1e-3 * 16.0 / 3.0 / 0.2, &link), Decision::Keep);
+            // Ten times brighter: 3·stake/ε = 160 rays are needed.
+            assert_eq!(
+                decide_at(1e-2 * 16.0 / 3.0 / 0.2, &link),
+                Decision::Look(160)
+            );
+            // Just above the bound: at least twice the rays of the last look.
+            assert_eq!(
+                decide_at(1.01e-3 * 16.0 / 3.0 / 0.2, &link),
+                Decision::Look(32)
+            );
+            // Very bright: as many as allowed; after a look with that many, kept.
+            assert_eq!(decide_at(1e6, &link), Decision::Look(MAX_LOOK_RAYS));
+            let (link, mesh) = blocked(MAX_LOOK_RAYS);
+            assert_eq!(
+                decide(oracle, &link, (0.0, 1e6), &mesh, &limits),
+                Decision::Keep
+            );
+        }
     }
 }

@@ -23,6 +23,7 @@
 //! Links are judged level by level: all links of one level are computed in parallel, in an
 //! order that does not depend on the thread count.
 
+use super::links::Prior;
 use super::nodes::{node, split_node};
 use super::oracle::{Decision, decide};
 use super::solver::{RoundStats, Solver, children, prepare};
@@ -212,10 +213,10 @@ impl Shots {
     /// Returns the nodes that took light and the irradiance each took, W·m⁻².
     fn shoot(&mut self, solver: &mut Solver, shooter: usize) -> Vec<(usize, Rgb64)> {
         let mut received = Vec::new();
-        let mut frontier: Vec<(usize, usize, bool)> = solver
+        let mut frontier: Vec<(usize, usize, Prior)> = solver
             .root_nodes()
             .into_iter()
-            .map(|r| (r, shooter, false))
+            .map(|r| (r, shooter, Prior::Unknown))
             .collect();
         while !frontier.is_empty() {
             let links = solver.create_links(&frontier);
@@ -227,11 +228,14 @@ impl Shots {
                 match decide(oracle, &link, self.range[e], &solver.mesh, &limits) {
                     Decision::Keep => kept.push(link),
                     Decision::Receiver => {
-                        next.extend(children(&mut solver.mesh, r).map(|c| (c, e, link.unoccluded)))
+                        let prior = link.prior_for_children();
+                        next.extend(children(&mut solver.mesh, r).map(|c| (c, e, prior)))
                     }
                     Decision::Emitter => {
-                        next.extend(children(&mut solver.mesh, e).map(|c| (r, c, link.unoccluded)))
+                        let prior = link.prior_for_children();
+                        next.extend(children(&mut solver.mesh, e).map(|c| (r, c, prior)))
                     }
+                    Decision::Look(rays) => next.push((r, e, Prior::Blocked(rays))),
                 }
             }
             solver.nodes.grow(&solver.world.scene, &solver.mesh);

@@ -2,7 +2,7 @@
 //! refinement until no link is refined (the steps of the module documentation).
 
 use super::clusters::{ClusterLink, ClusterTree, End, Split};
-use super::links::{LightLink, Link, Linker};
+use super::links::{LightLink, Link, Linker, Prior};
 use super::nodes::{Nodes, node, split_node};
 use super::oracle::{Decision, Limits, decide, decide_light};
 use super::{HierarchicalSettings, RefinePass};
@@ -31,10 +31,15 @@ pub struct RoundStats {
     pub links_created: u64,
     /// Links refined (replaced by links to children).
     pub links_refined: u64,
+    /// Blocked links looked at again with more rays.
+    pub links_looked: u64,
     /// Links after the round (patch links, cluster links and light links).
     pub links: u64,
     /// Of those, links with a cluster at one end at least.
     pub cluster_links: u64,
+    /// Of those, blocked patch links (no ray between their ends arrived; they carry
+    /// nothing).
+    pub blocked_links: u64,
     /// Leaf patches after the round.
     pub leaves: u64,
     /// Visibility and shadow rays cast so far.
@@ -55,6 +60,17 @@ pub struct RoundStats {
     /// reports it).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_memory_bytes: Option<u64>,
+}
+
+/// What one pass of [`Solver::apply`] did.
+#[derive(Clone, Copy, Debug, Default)]
+struct Applied {
+    /// Links created (not counting those computed anew).
+    created: u64,
+    /// Links refined.
+    refined: u64,
+    /// Blocked links computed anew with more rays.
+    looked: u64,
 }
 
 /// The state of a solve (shared with hierarchical shooting, which uses the nodes, the light
@@ -120,6 +136,7 @@ pub fn solve_hierarchical<'w>(
         solver.gather_to_convergence(&mut round, cancel);
         round.links = solver.link_count() as u64;
         round.cluster_links = solver.cluster_links.len() as u64;
+        round.blocked_links = solver.links.iter().filter(|l| l.is_blocked()).count() as u64;
         round.leaves = solver.mesh.leaves().len() as u64;
         round.rays = solver.linker.rays.load(Ordering::Relaxed);
         round.peak_memory_bytes = peak_resident_bytes();
@@ -216,9 +233,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             return;
         }
         let roots = self.root_nodes();
-        let pairs: Vec<(usize, usize, bool)> = roots
+        let pairs: Vec<(usize, usize, Prior)> = roots
             .iter()
-            .flat_map(|&r| roots.iter().map(move |&e| (r, e, false)))
+            .flat_map(|&r| roots.iter().map(move |&e| (r, e, Prior::Unknown)))
             .collect();
         self.links = self.create_links(&pairs);
     }
@@ -247,7 +264,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 .map(|l| tree.power_bound(mesh, l, b) > error)
                 .collect();
             let mut ends: Vec<(End, End)> = Vec::new();
-            let mut pairs: Vec<(usize, usize, bool)> = Vec::new();
+            let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
             let mut decision = refine.iter();
             self.cluster_links.retain(|link| {
                 if !decision.next().copied().unwrap_or(false) {
@@ -255,11 +272,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 }
                 match tree.split(mesh, link) {
                     Split::Links(new) => ends.extend(new),
-                    Split::Patches(r, e) => pairs.extend(
-                        Side::BOTH
-                            .into_iter()
-                            .flat_map(|rs| Side::BOTH.map(|es| (node(r, rs), node(e, es), false))),
-                    ),
+                    Split::Patches(r, e) => pairs.extend(Side::BOTH.into_iter().flat_map(|rs| {
+                        Side::BOTH.map(|es| (node(r, rs), node(e, es), Prior::Unknown))
+                    })),
                 }
                 false
             });
@@ -297,13 +312,13 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         self.sum_light_links();
     }
 
-    /// The links of `pairs` (receiver, emitter, known to be unoccluded), in order, computed
-    /// in parallel.
-    pub(super) fn create_links(&self, pairs: &[(usize, usize, bool)]) -> Vec<Link> {
+    /// The links of `pairs` (receiver, emitter, what is known of their visibility), in
+    /// order, computed in parallel.
+    pub(super) fn create_links(&self, pairs: &[(usize, usize, Prior)]) -> Vec<Link> {
         let (mesh, linker) = (&self.mesh, &self.linker);
         pairs
             .par_iter()
-            .filter_map(|&(r, e, unoccluded)| linker.link(mesh, r, e, unoccluded))
+            .filter_map(|&(r, e, prior)| linker.link(mesh, r, e, prior))
             .collect()
     }
 
@@ -372,7 +387,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let (b, gathered) = (&self.nodes.radiosity, &mut self.nodes.gathered);
         gathered.clear();
         gathered.resize(b.len(), Rgb64::BLACK);
-        for link in &self.links {
+        for link in self.links.iter().filter(|l| !l.is_blocked()) {
             let h = link.emitter_radiosity(&self.mesh, b) * link.coupling;
             for (n, h) in link.divide(&self.mesh, h) {
                 gathered[n] += h;
@@ -404,15 +419,19 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 .collect();
             round.seconds_refine += t.elapsed().as_secs_f64();
             let t = Instant::now();
-            let (created, refined) = self.apply(&decisions, &light_decisions);
-            let refined = refined + self.refine_textures();
+            let applied = self.apply(&decisions, &light_decisions);
+            let refined = applied.refined + self.refine_textures();
             let (created_clusters, refined_clusters) = self.refine_clusters(cancel);
-            let (created, refined) = (created + created_clusters, refined + refined_clusters);
+            let (created, refined) = (
+                applied.created + created_clusters,
+                refined + refined_clusters,
+            );
             round.seconds_linking += t.elapsed().as_secs_f64();
             round.links_created += created;
             round.links_refined += refined;
-            refined_any |= refined > 0;
-            if refined == 0
+            round.links_looked += applied.looked;
+            refined_any |= refined + applied.looked > 0;
+            if refined + applied.looked == 0
                 || self.settings.refine_pass == RefinePass::Original
                 || cancel.is_requested()
             {
@@ -465,29 +484,35 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     }
 
     /// Replaces every link with a refining decision by links to the children of its receiver
-    /// or emitter (splitting those nodes); returns the links created and refined.
-    fn apply(&mut self, decisions: &[Decision], light_decisions: &[Decision]) -> (u64, u64) {
+    /// or emitter (splitting those nodes), and every blocked link the oracle looks at again
+    /// by its link computed anew; returns the links created, refined and looked at again.
+    fn apply(&mut self, decisions: &[Decision], light_decisions: &[Decision]) -> Applied {
         // Refined links are removed in place (the kept keep their order), so no round copies
         // the whole link list.
-        let mut pairs: Vec<(usize, usize, bool)> = Vec::new();
-        let mut refined = 0;
+        let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
+        let mut applied = Applied::default();
         let mesh = &mut self.mesh;
         let mut decision = decisions.iter();
         self.links.retain(|link| {
             let (r, e) = (link.receiver as usize, link.emitter as usize);
             match decision.next() {
                 Some(Decision::Receiver) => {
-                    refined += 1;
+                    applied.refined += 1;
                     for child in children(mesh, r) {
-                        pairs.push((child, e, link.unoccluded));
+                        pairs.push((child, e, link.prior_for_children()));
                     }
                     false
                 }
                 Some(Decision::Emitter) => {
-                    refined += 1;
+                    applied.refined += 1;
                     for child in children(mesh, e) {
-                        pairs.push((r, child, link.unoccluded));
+                        pairs.push((r, child, link.prior_for_children()));
                     }
+                    false
+                }
+                Some(&Decision::Look(rays)) => {
+                    applied.looked += 1;
+                    pairs.push((r, e, Prior::Blocked(rays)));
                     false
                 }
                 Some(Decision::Keep) | None => true,
@@ -499,7 +524,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             if decision.next().is_none_or(|d| *d == Decision::Keep) {
                 return true;
             }
-            refined += 1;
+            applied.refined += 1;
             for child in children(mesh, link.receiver as usize) {
                 light_pairs.push((child, link.light));
             }
@@ -508,11 +533,12 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         self.nodes.grow(&self.world.scene, &self.mesh);
         let created = self.create_links(&pairs);
         let created_lights = self.create_light_links(&light_pairs);
-        let count = (created.len() + created_lights.len()) as u64;
+        applied.created =
+            ((created.len() + created_lights.len()) as u64).saturating_sub(applied.looked);
         self.links.extend(created);
         self.light_links.extend(created_lights);
         self.sum_light_links();
-        (count, refined)
+        applied
     }
 
     /// The system on the final leaves and the solution on it, by solver `kind`.
@@ -541,6 +567,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let mut link_segments: Vec<LinkSegment> = self
             .links
             .iter()
+            .filter(|l| !l.is_blocked())
             .map(|l| {
                 let r = self.mesh.patch(split_node(l.receiver as usize).0);
                 let e = self.mesh.patch(split_node(l.emitter as usize).0);
