@@ -19,7 +19,9 @@ pub use material::{Material, MaterialId};
 pub use mesh::PolygonMesh;
 pub use object::{AnalyticKind, Object, Shape};
 pub use tessellate::{polygon_area, polygon_normal};
-pub use texture::{ColorSpace, TexelStats, Texture, TextureError, TextureId, Wrap};
+pub use texture::{
+    ALPHA_CUTOFF, ColorSpace, Coverage, TexelStats, Texture, TextureError, TextureId, Wrap,
+};
 
 use glam::Vec3;
 

@@ -10,9 +10,6 @@ use glam::{Vec2, Vec3};
 /// Segments used when an emissive curved shape is turned into triangles for light sampling.
 pub const EMITTER_SEGMENTS: u32 = 64;
 
-/// Alpha below which a texel cuts the surface away.
-const ALPHA_CUTOFF: f32 = 0.5;
-
 /// Per-triangle data needed only after a hit.
 #[derive(Clone, Copy, Debug)]
 struct TriangleAttributes {
@@ -293,7 +290,7 @@ impl SceneGeometry {
         self.any_alpha
             && self.alpha[material as usize]
                 .as_ref()
-                .is_some_and(|t| t.alpha(uv()) < ALPHA_CUTOFF)
+                .is_some_and(|t| !t.is_present(uv()))
     }
 
     fn intersect_shape(

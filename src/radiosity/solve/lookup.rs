@@ -6,7 +6,7 @@ use super::interpolate::{CornerValues, vertex_radiosity};
 use super::system::RadiositySystem;
 use crate::accel::{AccelKind, Accelerator, PrimHit, PrimitiveSet};
 use crate::color::{Rgb, Rgb64};
-use crate::geometry::{Aabb, Ray, Triangle};
+use crate::geometry::{Aabb, Ray, Triangle, spawn_ray};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::Patch;
 use crate::radiosity::surface::{TextureAt, emission_of, is_textured, reflectance_of};
@@ -175,22 +175,37 @@ impl<'s> RadiosityLookup<'s> {
         self
     }
 
-    /// The first leaf `ray` meets, and the radiance of the value there.
+    /// The first leaf `ray` meets where its surface is present (an alpha texture's cut-away
+    /// parts let the ray pass), and the radiance of the value there.
     pub fn hit(&self, ray: &Ray) -> Option<LeafHit<'_>> {
-        let hit = self
-            .accel
-            .closest_hit(&self.triangles, ray, f32::INFINITY)?;
-        let (leaf, corner_ids) = self.triangles.owners[hit.prim as usize];
-        let leaf = leaf as usize;
-        let patch = self.system.mesh.patch(self.system.leaves[leaf]);
+        let scene = &self.system.world().scene;
+        let mut ray = *ray;
+        let mut travelled = 0.0;
+        let (hit, leaf, corner_ids, patch, uv) = loop {
+            let hit = self
+                .accel
+                .closest_hit(&self.triangles, &ray, f32::INFINITY)?;
+            let (leaf, corner_ids) = self.triangles.owners[hit.prim as usize];
+            let patch = self.system.mesh.patch(self.system.leaves[leaf as usize]);
+            let [b1, b2] = hit.local.map(f64::from);
+            let uvs = corner_ids.map(|c| patch.uvs()[c as usize]);
+            let uv = uvs[0] * (1.0 - b1 - b2) + uvs[1] * b1 + uvs[2] * b2;
+            let alpha = scene.materials[patch.material as usize].alpha_texture;
+            match alpha.and_then(|t| scene.textures.get(t as usize)) {
+                Some(t) if !t.is_present(uv.as_vec2()) => {
+                    let triangle = &self.triangles.triangles[hit.prim as usize];
+                    let at = triangle.point(hit.local[0], hit.local[1]);
+                    travelled += hit.t;
+                    ray = spawn_ray(at, triangle.normal_area2().normalize(), ray.dir);
+                }
+                _ => break (hit, leaf as usize, corner_ids, patch, uv),
+            }
+        };
         let side = Side::hit_by(patch, ray.dir.as_dvec3());
         let local = hit.local.map(f64::from);
-        let scene = &self.system.world().scene;
         let value = match &self.detail {
             Some(detail) if is_textured(scene, patch.material) => {
-                let [b1, b2] = local;
-                let uvs = corner_ids.map(|c| patch.uvs()[c as usize]);
-                let at = TextureAt::Point(uvs[0] * (1.0 - b1 - b2) + uvs[1] * b1 + uvs[2] * b2);
+                let at = TextureAt::Point(uv);
                 let h = detail.irradiance.at(leaf, side, corner_ids, local);
                 let e = if detail.emitted {
                     emission_of(scene, patch.material, side, at)
@@ -207,7 +222,7 @@ impl<'s> RadiosityLookup<'s> {
         Some(LeafHit {
             patch,
             point,
-            distance: f64::from(hit.t),
+            distance: f64::from(travelled + hit.t),
             radiance: value.map(|x| x / PI).to_f32(),
         })
     }

@@ -3,9 +3,11 @@
 //! and the time spent per phase; and what it hands on — the power per reported surface, the
 //! run's statistics and the lit mesh.
 //!
-//! Per leaf `i` with area `A_i`, irradiance `H_i`, emitted radiosity `E_i` and reflectance
-//! `ρ_i`, the surface power is: incident `A_i H_i`, absorbed `(1 − ρ_i) A_i H_i`, emitted
-//! `A_i E_i`, reflected `ρ_i A_i H_i`, summed per reported surface. Scene-wide, the point,
+//! Per leaf `i` with area `A_i`, irradiance `H_i`, emitted radiosity `E_i`, reflectance
+//! `ρ_i` and the share `c_i` an alpha texture leaves in place (1 without one), the surface
+//! power is: incident `c_i A_i H_i`, absorbed `(c_i − ρ_i) A_i H_i`, emitted `A_i E_i`,
+//! reflected `ρ_i A_i H_i` (`E_i` and `ρ_i` already include `c_i`), summed per reported
+//! surface. Scene-wide, the point,
 //! spot and directional lights count with the power they send into the mesh
 //! (`Σ A_i H_light,i`), and the escaped power is what is emitted but not absorbed by any
 //! patch (light leaving an open scene, plus the small imbalance of the discretisation).
@@ -166,15 +168,16 @@ impl Solution {
         for k in 0..system.len() {
             let patch = system.patch(k);
             let entry = power.table().entry(patch.object, patch.face);
-            let (a, h, e, r) = (
+            let (a, h, e, r, c) = (
                 system.area[k],
                 self.irradiance[k],
                 system.emission[k],
                 system.reflectance[k],
+                system.coverage[k],
             );
             let balance = power.balance_mut(entry);
-            balance.incident += h * a;
-            balance.absorbed += (Rgb64::WHITE - r) * a * h;
+            balance.incident += h * (c * a);
+            balance.absorbed += (Rgb64::splat(c) - r) * a * h;
             balance.emitted += e * a;
             balance.reflected += r * a * h;
         }

@@ -7,7 +7,9 @@
 //!   side emits, the back only for a `two_sided` material.
 //! - `ρ_i`: diffuse reflectance (the material's diffuse part times its texture averaged over
 //!   the patch); 0 on the back of a `one_sided` material, which absorbs what reaches it.
-//!   Specular, mirror and transmission parts are ignored.
+//!   Specular, mirror and transmission parts are ignored. Where an alpha texture cuts the
+//!   surface, `E_i` and `ρ_i` are scaled by the share `c_i` of the patch left in place, and
+//!   the element intercepts `c_i·A_i·H_i` of the light reaching it (`coverage`).
 //! - `H_light,i`: irradiance from point, spot and directional lights and the sky through
 //!   emitter-only links (seed §9.3.1, [`light_irradiance`]): these lights send and never
 //!   receive.
@@ -90,6 +92,10 @@ pub struct RadiositySystem<'w> {
     pub emission: Vec<Rgb64>,
     /// Diffuse reflectance per element, in `[0, 1]`.
     pub reflectance: Vec<Rgb64>,
+    /// The share of each element's area its material's alpha texture leaves in place, in
+    /// `[0, 1]` (1 without one): `emission` and `reflectance` are per unit of the whole
+    /// area, and the element intercepts its irradiance over this share only.
+    pub coverage: Vec<f64>,
     /// Irradiance from point, spot and directional lights and the sky per element, W·m⁻².
     pub light_irradiance: Vec<Rgb64>,
     /// Wall-clock seconds spent meshing and linking lights.
@@ -151,6 +157,10 @@ impl<'w> RadiositySystem<'w> {
             .iter()
             .map(|e| surface::reflectance(scene, mesh.patch(e.patch), e.side))
             .collect();
+        let coverage = elements
+            .iter()
+            .map(|e| surface::coverage(scene, mesh.patch(e.patch)))
+            .collect();
         let visibility = Visibility::new(world, options.visibility, options.mesh.segments)?;
         let light_irradiance = linked.unwrap_or_else(|| {
             elements
@@ -176,6 +186,7 @@ impl<'w> RadiositySystem<'w> {
             area,
             emission,
             reflectance,
+            coverage,
             light_irradiance,
             setup_seconds: start.elapsed().as_secs_f64(),
             radius,

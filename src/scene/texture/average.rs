@@ -8,7 +8,7 @@
 //! texels covered plus the polygon's perimeter in texels. A polygon that is not convex has
 //! every texel clipped (the area of a clipped simple polygon stays exact).
 
-use super::Texture;
+use super::{ALPHA_CUTOFF, Texture};
 use glam::DVec2;
 
 /// What a texture holds over a polygon of texture space.
@@ -20,6 +20,17 @@ pub struct TexelStats {
     pub min: [f32; 4],
     /// Largest value per channel of the texels it touches.
     pub max: [f32; 4],
+}
+
+/// How much of a polygon an alpha texture leaves in place ([`Texture::coverage`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coverage {
+    /// The share of the polygon's area that is present, in `[0, 1]`.
+    pub mean: f64,
+    /// 0 when any texel it touches is cut away, else 1.
+    pub min: f64,
+    /// 1 when any texel it touches is present, else 0.
+    pub max: f64,
 }
 
 impl Texture {
@@ -36,13 +47,34 @@ impl Texture {
     /// polygon of no area (a point or a segment in texture space) takes the texel under its
     /// first corner.
     pub fn polygon_stats(&self, uv: &[DVec2]) -> TexelStats {
+        self.polygon_stats_of(uv, |t| t)
+    }
+
+    /// How much of the polygon with texture coordinates `uv` the texture's alpha leaves in
+    /// place, as an alpha texture cuts a surface ([`Texture::is_present`]): the share of
+    /// its area on texels whose alpha is at least [`ALPHA_CUTOFF`] (in `[0, 1]`, exact up to
+    /// rounding), and the smallest and largest presence (0 or 1) of the texels it touches.
+    pub fn coverage(&self, uv: &[DVec2]) -> Coverage {
+        let stats = self.polygon_stats_of(uv, |t| {
+            let present = if t[3] >= ALPHA_CUTOFF { 1.0 } else { 0.0 };
+            [present; 4]
+        });
+        Coverage {
+            mean: stats.mean[0].clamp(0.0, 1.0),
+            min: f64::from(stats.min[0]),
+            max: f64::from(stats.max[0]),
+        }
+    }
+
+    /// [`Self::polygon_stats`] of the texel values `value(texel)`.
+    fn polygon_stats_of(&self, uv: &[DVec2], value: impl Fn([f32; 4]) -> [f32; 4]) -> TexelStats {
         let (w, h) = (self.width as f64, self.height as f64);
         let points: Vec<DVec2> = uv
             .iter()
             .map(|p| DVec2::new(p.x * w, (1.0 - p.y) * h))
             .collect();
         let total = signed_area(&points);
-        let texel_at = |p: DVec2| self.texel(p.x.floor() as i64, p.y.floor() as i64);
+        let texel_at = |p: DVec2| value(self.texel(p.x.floor() as i64, p.y.floor() as i64));
         if points.is_empty() || !total.is_finite() || total.abs() <= 1e-12 * (w * h).max(1.0) {
             let t = points.first().map_or([0.0; 4], |&p| texel_at(p));
             return TexelStats {
@@ -56,7 +88,7 @@ impl Texture {
         let mut sum = [0.0; 4];
         let (mut min, mut max) = ([f32::INFINITY; 4], [f32::NEG_INFINITY; 4]);
         let mut add = |x: i64, y: i64, weight: f64| {
-            let t = self.texel(x, y);
+            let t = value(self.texel(x, y));
             for c in 0..4 {
                 sum[c] += weight * f64::from(t[c]);
                 min[c] = min[c].min(t[c]);
@@ -313,6 +345,34 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn coverage_is_the_texel_by_texel_share_of_present_texels() {
+        // The odd texture's alpha is 0, ½, 1, 0, ½ by row: present (≥ ½) on three rows of five.
+        let texture = odd_texture();
+        let mask = Texture::from_fn("mask", 7, 5, |x, y| {
+            let present = if texture.texel(i64::from(x), i64::from(y))[3] >= ALPHA_CUTOFF {
+                1.0
+            } else {
+                0.0
+            };
+            [present; 4]
+        });
+        let mut rng = Pcg64Mcg::seed_from_u64(5);
+        for _ in 0..200 {
+            let polygon = random_convex(&mut rng);
+            let coverage = texture.coverage(&polygon);
+            let expected = mean_by_texel_squares(&mask, &polygon)[0];
+            assert!((coverage.mean - expected).abs() < 1e-9, "{polygon:?}");
+            assert!(coverage.min - 1e-12 <= coverage.mean && coverage.mean <= coverage.max + 1e-12);
+        }
+        let whole = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].map(DVec2::from);
+        assert!((texture.coverage(&whole).mean - 3.0 / 5.0).abs() < 1e-12);
+        assert_eq!(
+            (texture.coverage(&whole).min, texture.coverage(&whole).max),
+            (0.0, 1.0)
+        );
     }
 
     #[test]

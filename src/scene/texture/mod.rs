@@ -6,7 +6,10 @@ use std::path::Path;
 
 mod average;
 
-pub use average::TexelStats;
+pub use average::{Coverage, TexelStats};
+
+/// Where an alpha texture's alpha is below this, the surface it cuts is absent.
+pub const ALPHA_CUTOFF: f32 = 0.5;
 
 /// Index of a texture in [`super::Scene::textures`].
 pub type TextureId = u32;
@@ -165,6 +168,12 @@ impl Texture {
         let x = (uv.x * self.width as f32).floor() as i64;
         let y = ((1.0 - uv.y) * self.height as f32).floor() as i64;
         self.texel(x, y)[3]
+    }
+
+    /// Whether a surface cut by this alpha texture is present at `uv` (its nearest texel's
+    /// alpha is at least [`ALPHA_CUTOFF`]).
+    pub fn is_present(&self, uv: Vec2) -> bool {
+        self.alpha(uv) >= ALPHA_CUTOFF
     }
 
     /// Mean colour over all texels.
