@@ -9,6 +9,16 @@
 //! its other corners must all lie on one side. Of the pieces a face has been cut into so far,
 //! only those the contact edge overlaps are cut again, along the toucher's whole plane: a box
 //! on a floor cuts the floor into its footprint and four pieces around it.
+//!
+//! Nearly touching counts too: a face that hovers parallel to another close to it — a sign
+//! a centimetre in front of a wall, a lamp just under the ceiling, a rug on the floor — cuts
+//! the other along its outline (the planes through its edges along the other's normal), so
+//! the dark footprint behind it is a patch of its own. Without the cut, a node half behind
+//! the sign and half in the open takes light at a coarse level and hands it evenly to its
+//! leaves, the dark ones included, and the sign's back is lit by the leak (`neon`: the sign
+//! absorbed 4.5 % too much). A face hovers when its plane is within [`HOVER_ANGLE_COS`] of
+//! parallel, all its corners lie on one side at most [`HOVER_GAP`] of its longest edge away,
+//! and its outline overlaps the face.
 
 use super::clip::{Plane, SideCounts, split};
 use glam::{DVec2, DVec3};
@@ -76,6 +86,14 @@ impl Face {
     }
 }
 
+/// Largest gap, as a share of the hovering face's longest edge, at which a parallel face
+/// counts as nearly touching ([`hovers`]).
+const HOVER_GAP: f64 = 0.05;
+
+/// Smallest `|cos|` of the angle between the planes of a hovering face and the face it
+/// cuts (about 8°).
+const HOVER_ANGLE_COS: f64 = 0.99;
+
 /// Faces a bounding-box grid cell may hold before the grid gives up on finer cells.
 const MAX_CELLS_PER_FACE: i64 = 4096;
 
@@ -88,28 +106,23 @@ pub fn split_at_contacts(faces: Vec<Face>) -> Vec<Face> {
     let mut out = Vec::with_capacity(faces.len());
     for (index, face) in faces.iter().enumerate() {
         let mut pieces = vec![face.clone()];
-        for toucher in grid.near(&face.bounds()) {
-            if toucher == index {
+        let (lo, hi) = face.bounds();
+        let reach = DVec3::splat(HOVER_GAP * (hi - lo).max_element());
+        for other in grid.near(&(lo - reach, hi + reach)) {
+            if other == index {
                 continue;
             }
-            let Some(plane) = planes[toucher] else {
+            let Some(plane) = planes[other] else {
                 continue;
             };
+            let toucher = &faces[other];
             pieces = pieces
                 .into_iter()
                 .flat_map(|piece| {
-                    if touches(&faces[toucher], &piece, &plane) {
-                        let halves = split(&plane, &piece.corners, &piece.uvs);
-                        [halves.front, halves.back]
-                            .into_iter()
-                            .filter(|p| p.corners.len() >= 3)
-                            .map(|p| Face {
-                                corners: p.corners,
-                                uvs: p.uvs,
-                                cut: true,
-                                ..piece.clone()
-                            })
-                            .collect()
+                    if touches(toucher, &piece, &plane) {
+                        cut(piece, &[plane])
+                    } else if let Some(outline) = hovers(toucher, &piece) {
+                        cut(piece, &outline)
                     } else {
                         vec![piece]
                     }
@@ -119,6 +132,88 @@ pub fn split_at_contacts(faces: Vec<Face>) -> Vec<Face> {
         out.extend(pieces);
     }
     out
+}
+
+/// `piece` cut at each of `planes` in turn (pieces a plane does not cross stay whole).
+fn cut(piece: Face, planes: &[Plane]) -> Vec<Face> {
+    let mut pieces = vec![piece];
+    for plane in planes {
+        pieces = pieces
+            .into_iter()
+            .flat_map(|piece| {
+                if !SideCounts::of(plane, &piece.corners).straddles() {
+                    return vec![piece];
+                }
+                let halves = split(plane, &piece.corners, &piece.uvs);
+                [halves.front, halves.back]
+                    .into_iter()
+                    .filter(|p| p.corners.len() >= 3)
+                    .map(|p| Face {
+                        corners: p.corners,
+                        uvs: p.uvs,
+                        cut: true,
+                        ..piece.clone()
+                    })
+                    .collect()
+            })
+            .collect();
+    }
+    pieces
+}
+
+/// When `hoverer` hovers over `face` (see the module documentation), the planes through its
+/// edges along the face's normal, which cut out its footprint; else `None`.
+fn hovers(hoverer: &Face, face: &Face) -> Option<Vec<Plane>> {
+    let face_plane = face.plane()?;
+    let hover_plane = hoverer.plane()?;
+    if face_plane.normal.dot(hover_plane.normal).abs() < HOVER_ANGLE_COS {
+        return None;
+    }
+    let gap = HOVER_GAP * Face::longest_edge(&hoverer.corners);
+    let tolerance = ROUNDING_EPSILON * extent(&face.corners).max(extent(&hoverer.corners));
+    let distances: Vec<f64> = hoverer
+        .corners
+        .iter()
+        .map(|&p| face_plane.distance(p))
+        .collect();
+    let one_side = distances.iter().all(|&d| d > tolerance && d <= gap)
+        || distances.iter().all(|&d| d < -tolerance && d >= -gap);
+    if !one_side {
+        return None;
+    }
+    // The outline's planes, each facing into the footprint (the hoverer's corners wind
+    // about its own normal, which may face either way).
+    let n = hoverer.corners.len();
+    let centroid = hoverer.corners.iter().sum::<DVec3>() / n as f64;
+    let outline: Vec<Plane> = (0..n)
+        .filter_map(|i| {
+            let (p, q) = (hoverer.corners[i], hoverer.corners[(i + 1) % n]);
+            let normal = face_plane.normal.cross(q - p).try_normalize()?;
+            let normal = if normal.dot(centroid - p) < 0.0 {
+                -normal
+            } else {
+                normal
+            };
+            Some(Plane::new(p, normal))
+        })
+        .collect();
+    // The footprint overlaps the face when no outline plane has the whole face behind it
+    // and the face's edges do not hold the whole footprint outside (both convex).
+    let face_outside = outline.iter().any(|plane| {
+        let s = SideCounts::of(plane, &face.corners);
+        s.front == 0
+    });
+    let footprint: Vec<DVec3> = hoverer
+        .corners
+        .iter()
+        .map(|&p| p - face_plane.normal * face_plane.distance(p))
+        .collect();
+    let footprint_outside = (0..face.corners.len()).any(|i| {
+        let (p, q) = (face.corners[i], face.corners[(i + 1) % face.corners.len()]);
+        let inward = face_plane.normal.cross(q - p);
+        footprint.iter().all(|&f| inward.dot(f - p) <= 0.0)
+    });
+    (!face_outside && !footprint_outside).then_some(outline)
 }
 
 /// True when `toucher` (support plane `toucher_plane`) stands on `face`: an edge of it lies in
@@ -364,5 +459,61 @@ mod tests {
             }
         }
         assert_eq!(split_at_contacts(faces).len(), 5);
+    }
+
+    /// A 4 × 3 wall at z = 0 facing +z and a 1 × 0.5 sign `gap` in front of it, tilted by
+    /// `tilt` (its top edge moved along z).
+    fn wall_and_sign(gap: f64, tilt: f64) -> Vec<Face> {
+        let wall = face(
+            &[
+                [0.0, 0.0, 0.0],
+                [4.0, 0.0, 0.0],
+                [4.0, 3.0, 0.0],
+                [0.0, 3.0, 0.0],
+            ],
+            0,
+        );
+        let sign = face(
+            &[
+                [1.0, 1.0, gap],
+                [2.0, 1.0, gap],
+                [2.0, 1.5, gap + tilt],
+                [1.0, 1.5, gap + tilt],
+            ],
+            1,
+        );
+        vec![wall, sign]
+    }
+
+    #[test]
+    fn a_sign_just_in_front_of_a_wall_cuts_out_its_footprint() {
+        let out = split_at_contacts(wall_and_sign(0.01, 0.0));
+        let wall: Vec<&Face> = out.iter().filter(|f| f.object == 0).collect();
+        // The four outline planes cut the wall into a 3 × 3 grid; the middle is the footprint.
+        assert_eq!(wall.len(), 9, "{wall:?}");
+        let total: f64 = wall.iter().map(|f| area(f)).sum();
+        assert!((total - 12.0).abs() < 1e-12);
+        assert!(wall.iter().any(|f| {
+            (area(f) - 0.5).abs() < 1e-12
+                && f.corners
+                    .iter()
+                    .all(|c| (1.0..=2.0).contains(&c.x) && (1.0..=1.5).contains(&c.y))
+        }));
+        // The wall lies behind the sign, not in front: the sign stays whole.
+        assert_eq!(out.iter().filter(|f| f.object == 1).count(), 1);
+    }
+
+    #[test]
+    fn a_face_far_off_or_tilted_does_not_cut() {
+        // 0.1 from the wall is a tenth of the sign's longest edge: more than the 5 % allowed.
+        assert_eq!(split_at_contacts(wall_and_sign(0.1, 0.0)).len(), 2);
+        // Tilted by 0.2 over its 0.5 height (22°).
+        assert_eq!(split_at_contacts(wall_and_sign(0.01, 0.2)).len(), 2);
+        // Beside the wall rather than in front of it.
+        let mut faces = wall_and_sign(0.01, 0.0);
+        for c in &mut faces[1].corners {
+            c.x += 5.0;
+        }
+        assert_eq!(split_at_contacts(faces).len(), 2);
     }
 }
