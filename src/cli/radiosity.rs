@@ -61,8 +61,9 @@ pub struct RadiosityArgs {
     #[arg(long, default_value_t = 16)]
     pub segments: u32,
     /// Initial linking: `asymmetric` first splits faces at the planes of faces that stand on
-    /// them (a box on the floor), so no patch lies partly under a touching solid and no light
-    /// leaks; `normal` meshes every face as it is.
+    /// them (a box on the floor) and along the outline of faces hovering just in front of them
+    /// (a sign on a wall), so no patch lies partly under a touching solid and no light leaks;
+    /// `normal` meshes every face as it is.
     #[arg(long, value_enum, default_value_t = Linking::Asymmetric)]
     pub linking: Linking,
     /// Form-factor approximation.
