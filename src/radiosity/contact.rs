@@ -16,8 +16,8 @@
 //! the dark footprint behind it is a patch of its own. Without the cut, a node half behind
 //! the sign and half in the open takes light at a coarse level and hands it evenly to its
 //! leaves, the dark ones included, and the sign's back is lit by the leak (`neon`: the sign
-//! absorbed 4.5 % too much). A face hovers when its plane is within [`HOVER_ANGLE_COS`] of
-//! parallel, all its corners lie on one side at most [`HOVER_GAP`] of its longest edge away,
+//! absorbed 4.5 % too much). A face hovers when its plane is within about 8° (cosine 0.99) of
+//! parallel, all its corners lie on one side at most 5 % of its longest edge away,
 //! and its outline overlaps the face.
 
 use super::clip::{Plane, SideCounts, split};
