@@ -42,7 +42,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ),
     // Files made from what was measured.
     ("image", &["choice", "color", "measure"]),
-    ("report", &["color", "image", "measure"]),
+    ("report", &["color", "image", "measure", "scene"]),
 ];
 
 /// What every algorithm may import: everything below the algorithms.

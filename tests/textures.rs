@@ -242,3 +242,107 @@ fn a_room_lit_by_an_emissive_texture_agrees_with_the_light_model() {
         }
     }
 }
+
+#[test]
+fn textured_surfaces_export_their_texture_and_a_lightmap_that_shows_the_solution() {
+    use strahl::image::{ToneMap, ToneMapping};
+    use strahl::radiosity::solve::{RadiosityLookup, Shading};
+    let world = World::new(
+        strahl::scene::builtin::load("cornell-textured")
+            .unwrap()
+            .unwrap(),
+        AccelKind::Bvh,
+    )
+    .unwrap();
+    let (none, cancel) = (NoProgress, Cancel::new());
+    let settings = HierarchicalSettings::default();
+    let (system, solution) =
+        solve_hierarchical(&world, SystemOptions::default(), &settings, &none, &cancel).unwrap();
+    let dir = std::env::temp_dir().join(format!("strahl-lightmap-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("cornell-textured.glb");
+    // Linear tone mapping at exposure 0: the lightmap holds the radiance itself (sRGB-coded).
+    let tone = ToneMapping {
+        operator: ToneMap::Linear,
+        exposure_ev: 0.0,
+    };
+    let textures = &world.scene.textures;
+    strahl::report::export_lit_mesh(&solution.lit_mesh(&system), textures, &tone, &path).unwrap();
+    let (doc, buffers, images) = gltf::import(&path).unwrap();
+    let lookup = RadiosityLookup::new(
+        &system,
+        solution.display_radiosity(&system),
+        Shading::Smooth,
+    )
+    .with_texture_detail(solution.display_irradiance(), true);
+    let mut lightmapped = Vec::new();
+    for primitive in doc.meshes().next().unwrap().primitives() {
+        let material = primitive.material();
+        let Some(emissive) = material.emissive_texture() else {
+            continue;
+        };
+        lightmapped.push(material.name().unwrap().to_string());
+        // The base colour texture on the first texture coordinates, muted; the lightmap on the
+        // second, as emission.
+        let pbr = material.pbr_metallic_roughness();
+        assert_eq!(pbr.base_color_factor(), [0.0, 0.0, 0.0, 1.0]);
+        let base = pbr.base_color_texture().expect("base colour texture");
+        assert_eq!((base.tex_coord(), emissive.tex_coord()), (0, 1));
+        assert_eq!(material.emissive_factor(), [1.0, 1.0, 1.0]);
+        // The base texture is the scene's, texel for texel (sRGB-coded).
+        let scene = &world.scene;
+        let object = (0..scene.objects.len())
+            .find(|&k| scene.object_name(k) == material.name().unwrap())
+            .unwrap();
+        let texture_id = scene.materials[scene.objects[object].material as usize].diffuse_texture;
+        let scene_texture = &textures[texture_id.unwrap() as usize];
+        let base_image = &images[base.texture().source().index()];
+        assert_eq!(
+            (base_image.width, base_image.height),
+            (scene_texture.width, scene_texture.height)
+        );
+        let texel = scene_texture.texel(3, 5)[0];
+        let byte = base_image.pixels[(5 * base_image.width as usize + 3) * 4];
+        assert_eq!(
+            byte,
+            (strahl::color::linear_to_srgb(texel) * 255.0).round() as u8
+        );
+        // At the middle of every triangle, the lightmap shows what the radiosity display
+        // shows there (to a texel's blur across the texture's edges).
+        let lightmap = &images[emissive.texture().source().index()];
+        let reader = primitive.reader(|b| Some(&buffers[b.index()]));
+        let positions: Vec<[f32; 3]> = reader.read_positions().unwrap().collect();
+        let normals: Vec<[f32; 3]> = reader.read_normals().unwrap().collect();
+        let uvs: Vec<[f32; 2]> = reader.read_tex_coords(1).unwrap().into_f32().collect();
+        let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+        let mut errors = Vec::new();
+        for t in indices.chunks(3) {
+            let mean =
+                |f: &dyn Fn(usize) -> Vec3| t.iter().map(|&i| f(i as usize)).sum::<Vec3>() / 3.0;
+            let p = mean(&|i| Vec3::from(positions[i]));
+            let n = Vec3::from(normals[t[0] as usize]);
+            let uv = mean(&|i| Vec3::new(uvs[i][0], uvs[i][1], 0.0));
+            let (w, h) = (lightmap.width as f32, lightmap.height as f32);
+            let (x, y) = ((uv.x * w) as usize, (uv.y * h) as usize);
+            let at = (y * lightmap.width as usize + x) * 4;
+            let rgb: [f32; 3] = std::array::from_fn(|c| {
+                strahl::color::srgb_to_linear(f32::from(lightmap.pixels[at + c]) / 255.0)
+            });
+            let baked = Rgb::new(rgb[0], rgb[1], rgb[2]).luminance();
+            let ray = strahl::geometry::Ray::new(p + n * 1e-4, -n);
+            let shown = lookup.hit(&ray).unwrap().radiance.luminance().min(1.0);
+            if shown > 0.02 {
+                errors.push(((baked - shown) / shown).abs());
+            }
+        }
+        errors.sort_by(f32::total_cmp);
+        let median = errors[errors.len() / 2];
+        assert!(
+            median < 0.03,
+            "{}: median {median}",
+            material.name().unwrap()
+        );
+    }
+    assert_eq!(lightmapped, ["floor", "back_wall"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -286,7 +286,13 @@ pub fn solve<'w>(
         print_summary(&system, &solution);
     }
     if let Some(path) = &args.export {
-        export_lit_mesh(&solution.lit_mesh(&system), run.tone_mapping, path)?;
+        let textures = &system.world().scene.textures;
+        export_lit_mesh(
+            &solution.lit_mesh(&system),
+            textures,
+            run.tone_mapping,
+            path,
+        )?;
         if !run.quiet {
             eprintln!("export: {}", path.display());
         }

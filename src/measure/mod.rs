@@ -13,7 +13,7 @@ mod surface_power;
 mod surfaces;
 
 pub use film::Film;
-pub use lit_mesh::LitMesh;
+pub use lit_mesh::{LightmappedSurface, LitMesh};
 pub use measurement::Measurement;
 pub use memory::peak_resident_bytes;
 pub use stats::Stats;

@@ -7,6 +7,7 @@
 mod display;
 pub mod hierarchical;
 mod interpolate;
+mod lightmap;
 mod lookup;
 mod matrix;
 mod progressive;

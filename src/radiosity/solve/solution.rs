@@ -14,13 +14,14 @@
 
 use super::hierarchical::{Oracle, RoundStats};
 use super::interpolate::vertex_radiosity;
+use super::lightmap;
 use super::matrix::Iteration;
 use super::system::RadiositySystem;
 use crate::color::Rgb64;
 use crate::measure::{LitMesh, Measurement, Stats, SurfacePower, SurfaceTable};
 use crate::radiosity::element::Side;
 use glam::DVec3;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Which solver produced a solution.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -229,10 +230,16 @@ impl Solution {
 
     /// The solution as a lit mesh: both sides of every leaf as polygons (the back with its
     /// corners reversed and its normal turned), with the smooth corner values of
-    /// [`vertex_radiosity`] (display radiosity, ambient term included) of that side.
+    /// [`vertex_radiosity`] (display radiosity, ambient term included) of that side; the
+    /// polygons of textured materials also carry their texture coordinates and their place in
+    /// their surface's lightmap (baked by `radiosity::solve::lightmap`).
     pub fn lit_mesh(&self, system: &RadiositySystem) -> LitMesh {
         let display = self.display_radiosity(system);
-        let mut lit = LitMesh::default();
+        let lightmaps = lightmap::bake(system, self);
+        let mut lit = LitMesh {
+            surfaces: lightmaps.surfaces,
+            ..LitMesh::default()
+        };
         for side in Side::BOTH {
             let values: Vec<Rgb64> = (0..system.leaves.len())
                 .map(|k| display[RadiositySystem::element(k, side)])
@@ -243,11 +250,23 @@ impl Solution {
                 let n = patch.corners().len();
                 let mut points: Vec<Vec3> = patch.corners().iter().map(|c| c.as_vec3()).collect();
                 let mut values = values[..n].to_vec();
+                let mut texcoords: Vec<Vec2> = patch.uvs().iter().map(|uv| uv.as_vec2()).collect();
+                let mapped = &lightmaps.corners[RadiositySystem::element(k, side)];
+                let mut lightmap_texcoords =
+                    mapped.as_ref().map_or(vec![Vec2::ZERO; n], |m| m.1.clone());
                 if side == Side::Back {
                     points.reverse();
                     values.reverse();
+                    texcoords.reverse();
+                    lightmap_texcoords.reverse();
                 }
-                lit.push_polygon(&points, side.normal(patch).as_vec3(), &values);
+                lit.push_mapped_polygon(
+                    &points,
+                    side.normal(patch).as_vec3(),
+                    &values,
+                    (&texcoords, &lightmap_texcoords),
+                    mapped.as_ref().map(|m| m.0),
+                );
             }
         }
         lit
