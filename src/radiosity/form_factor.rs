@@ -14,6 +14,7 @@ use super::element::Side;
 use super::mesh::Patch;
 use crate::geometry::angle::upper_angle;
 use glam::DVec3;
+use smallvec::SmallVec;
 use std::f64::consts::{PI, TAU};
 
 /// Which form-factor approximation to use (`--form-factor`).
@@ -161,22 +162,25 @@ pub fn receiver_points(patch: &Patch, n: u32) -> Vec<(DVec3, f64)> {
     points
 }
 
+/// A patch's Gauss points with their area weights (at most four; kept off the heap).
+pub type GaussPoints = SmallVec<[(DVec3, f64); 4]>;
+
 /// Gauss points of `patch` with their area weights (summing to 1): the 2 × 2 Gauss–Legendre
 /// points of a quad (exact for bicubic functions over a parallelogram), the three-point rule
 /// of a triangle (exact for quadratics). The area average of a smooth function over the patch
 /// is `Σ w·f(p)`.
-pub fn gauss_points(patch: &Patch) -> Vec<(DVec3, f64)> {
+pub fn gauss_points(patch: &Patch) -> GaussPoints {
     let c = patch.corners();
     if patch.is_triangle() {
         let (a, b) = (2.0 / 3.0, 1.0 / 6.0);
-        return vec![
+        return SmallVec::from_slice(&[
             (c[0] * a + c[1] * b + c[2] * b, 1.0 / 3.0),
             (c[0] * b + c[1] * a + c[2] * b, 1.0 / 3.0),
             (c[0] * b + c[1] * b + c[2] * a, 1.0 / 3.0),
-        ];
+        ]);
     }
     let g = 0.5 / 3f64.sqrt();
-    let mut points: Vec<(DVec3, f64)> = [
+    let mut points: GaussPoints = [
         (0.5 - g, 0.5 - g),
         (0.5 + g, 0.5 - g),
         (0.5 + g, 0.5 + g),

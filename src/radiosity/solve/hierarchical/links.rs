@@ -35,6 +35,7 @@ use crate::radiosity::visibility::Visibility;
 use crate::scene::LightKind;
 use crate::world::World;
 use glam::DVec3;
+use smallvec::SmallVec;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Visibility rays per Gauss point of the smaller patch where the pair may be occluded: the
@@ -258,7 +259,7 @@ impl Linker<'_> {
         // The range over the receiver: its Gauss points, centroid and corners (pulled in a
         // little from the edge an emitter may touch).
         let receiver_gauss = gauss_points(r);
-        let range_points: Vec<DVec3> = receiver_gauss
+        let range_points: SmallVec<[DVec3; 9]> = receiver_gauss
             .iter()
             .map(|g| g.0)
             .chain([r.centroid])
@@ -268,7 +269,7 @@ impl Linker<'_> {
                     .map(|&c| c + (r.centroid - c) * CORNER_INSET),
             )
             .collect();
-        let factors: Vec<f64> = range_points
+        let factors: SmallVec<[f64; 9]> = range_points
             .iter()
             .map(|&p| point_to_side(p, normal, e, es))
             .collect();
@@ -287,10 +288,10 @@ impl Linker<'_> {
         } else {
             gauss_points(from)
         };
-        let points: Vec<DVec3> = gauss.iter().map(|g| g.0).collect();
+        let points: SmallVec<[DVec3; 4]> = gauss.iter().map(|g| g.0).collect();
         // The receiver's Gauss points lead its range points: their factors are known.
-        let point_factors: Vec<f64> = if scale == 1.0 {
-            factors[..gauss.len()].to_vec()
+        let point_factors: SmallVec<[f64; 4]> = if scale == 1.0 {
+            SmallVec::from_slice(&factors[..gauss.len()])
         } else {
             points
                 .iter()
