@@ -1,19 +1,14 @@
 //! The `strahl` binary as a user runs it: outputs, exit codes and one-line errors.
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn strahl(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_strahl"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
+mod common;
+
+use common::strahl;
 
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("strahl-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    common::temp("cli", name)
 }
 
 fn stderr(o: &Output) -> String {
@@ -92,7 +87,9 @@ fn bad_input_gives_one_line_error_and_failure() {
             "-o",
             out.to_str().unwrap(),
             "--width",
-            "0",
+            "100000",
+            "--height",
+            "100000",
         ],
         vec!["info", "/nonexistent/scene.toml"],
     ];

@@ -4,6 +4,7 @@
 mod bench;
 mod choice;
 mod info;
+mod limits;
 mod progress;
 mod radiosity;
 mod render;
@@ -53,6 +54,8 @@ pub fn main() -> std::process::ExitCode {
         Command::Bench(args) => bench::run(&args),
     };
     match result {
+        // Stopped by Ctrl-C, the partial image or report written: the shell's code for it.
+        Ok(()) if progress::interrupted() => std::process::ExitCode::from(130),
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");

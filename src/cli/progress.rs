@@ -42,10 +42,18 @@ impl ProgressListener for Bar {
     }
 }
 
+/// The stop request Ctrl-C sets.
+static CANCEL: Cancel = Cancel::new();
+
+/// True when Ctrl-C stopped the work: the process then exits with 130 after writing what it
+/// has.
+pub fn interrupted() -> bool {
+    CANCEL.is_requested()
+}
+
 /// The stop request set by Ctrl-C. The first Ctrl-C asks running work to stop and keep what
 /// it has; a second one ends the process at once.
 pub fn cancel_flag() -> &'static Cancel {
-    static CANCEL: Cancel = Cancel::new();
     static HANDLER: OnceLock<()> = OnceLock::new();
     HANDLER.get_or_init(|| {
         let installed = ctrlc::set_handler(|| {

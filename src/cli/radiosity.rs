@@ -2,6 +2,7 @@
 //! `strahl render --method radiosity`, and the radiosity solve and display they drive.
 
 use super::choice::choice;
+use super::limits::{LimitArgs, finite};
 use super::{progress, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
@@ -58,7 +59,7 @@ pub struct RadiosityArgs {
     #[arg(long)]
     pub mesh_size: Option<MeshSize>,
     /// Segments around the axis when curved shapes are meshed.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(3..=1024))]
     pub segments: u32,
     /// Initial linking: `asymmetric` first splits faces at the planes of faces that stand on
     /// them (a box on the floor) and along the outline of faces hovering just in front of them
@@ -71,7 +72,7 @@ pub struct RadiosityArgs {
     pub form_factor: FormFactorMethod,
     /// Points per axis on the smaller patch of a pair for the analytic form factor (1 = the
     /// centroid).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     pub receiver_samples: u32,
     /// Visibility rays per patch pair: a count or `adaptive`.
     #[arg(long, default_value = "adaptive")]
@@ -80,14 +81,14 @@ pub struct RadiosityArgs {
     #[arg(long)]
     pub no_shaft_culling: bool,
     /// Receiver points per axis for the links from point, spot and directional lights.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..))]
     pub link_samples: u32,
     /// matrix: the iteration scheme.
     #[arg(long, value_parser = choice::<Iteration>(), default_value_t = Iteration::GaussSeidel)]
     pub iteration: Iteration,
     /// Stop when the residual (matrix) or the unshot power (progressive) is at most this
     /// fraction of the emitted power.
-    #[arg(long, default_value_t = 1e-4)]
+    #[arg(long, default_value_t = 1e-4, value_parser = finite::<f64>)]
     pub tolerance: f64,
     /// matrix: most sweeps.
     #[arg(long, default_value_t = 1000)]
@@ -102,10 +103,10 @@ pub struct RadiosityArgs {
     #[arg(long, value_parser = choice::<Oracle>(), default_value_t = Oracle::Lischinski)]
     pub oracle: Oracle,
     /// hierarchical: largest uncertainty of the power a link brings, as a share of all power emitted in the scene.
-    #[arg(long, default_value_t = HierarchicalSettings::default().error)]
+    #[arg(long, default_value_t = HierarchicalSettings::default().error, value_parser = finite::<f64>)]
     pub error: f64,
     /// hierarchical: nodes are not split below this fraction of the scene's surface area.
-    #[arg(long, default_value_t = HierarchicalSettings::default().min_area)]
+    #[arg(long, default_value_t = HierarchicalSettings::default().min_area, value_parser = finite::<f64>)]
     pub min_area: f64,
     /// hierarchical: which links a refinement pass judges.
     #[arg(long, value_parser = choice::<RefinePass>(), default_value_t = RefinePass::Original)]
@@ -125,9 +126,9 @@ pub struct RadiosityArgs {
 #[derive(Debug, Args)]
 #[command(next_help_heading = "Radiosity (--method radiosity|final-gather)")]
 pub struct RadiosityDisplayArgs {
-    /// The radiosity solver (hierarchical by default: it refines where the light needs it).
-    #[arg(long, value_enum, default_value_t = Solver::Hierarchical)]
-    pub solver: Solver,
+    /// The radiosity solver [default: hierarchical, it refines where the light needs it].
+    #[arg(long, value_enum)]
+    pub solver: Option<Solver>,
     /// Flat patches or radiosity interpolated to the vertices.
     #[arg(long, value_parser = choice::<Shading>(), default_value_t = Shading::Smooth)]
     pub shading: Shading,
@@ -143,9 +144,24 @@ pub struct RadiosityDisplayArgs {
     pub solve: RadiosityArgs,
 }
 
+impl RadiosityDisplayArgs {
+    /// The solver asked for, hierarchical when none was.
+    pub fn solver(&self) -> Solver {
+        self.solver.unwrap_or(Solver::Hierarchical)
+    }
+}
+
 impl RadiosityArgs {
     /// The system options for `solver`, with visibility jitter seeded by `seed`.
-    pub fn system_options(&self, solver: Solver, seed: u64) -> Result<SystemOptions> {
+    pub fn system_options(
+        &self,
+        solver: Solver,
+        seed: u64,
+        limits: &LimitArgs,
+    ) -> Result<SystemOptions> {
+        let squared = |n: u32| u64::from(n) * u64::from(n);
+        limits.check_samples("--receiver-samples²", squared(self.receiver_samples))?;
+        limits.check_samples("--link-samples²", squared(self.link_samples))?;
         if !(self.tolerance.is_finite() && self.tolerance >= 0.0) {
             bail!(
                 "--tolerance must be a non-negative number (got {})",
@@ -169,6 +185,7 @@ impl RadiosityArgs {
                     _ => MeshSize::Levels(3),
                 }),
                 contact_splits: self.linking == Linking::Asymmetric,
+                max_patches: usize::try_from(limits.max_patches).unwrap_or(usize::MAX),
             },
             form_factor: FormFactorOptions {
                 method: self.form_factor,
@@ -195,6 +212,8 @@ pub struct RunOptions<'a> {
     pub quiet: bool,
     /// Colours of the exported mesh (`--export`).
     pub tone_mapping: &'a ToneMapping,
+    /// Bounds on the mesh and the sample counts.
+    pub limits: &'a LimitArgs,
 }
 
 /// Meshes and solves `world` with the radiosity `solver`, with progress bars unless quiet;
@@ -205,7 +224,7 @@ pub fn solve<'w>(
     solver: Solver,
     run: &RunOptions,
 ) -> Result<(RadiositySystem<'w>, Solution)> {
-    let options = args.system_options(solver, run.seed)?;
+    let options = args.system_options(solver, run.seed, run.limits)?;
     let non_diffuse = strahl::radiosity::surface::non_diffuse_materials(&world.scene);
     if !non_diffuse.is_empty() {
         let names: Vec<String> = non_diffuse.iter().map(|n| format!("'{n}'")).collect();
@@ -397,12 +416,12 @@ pub fn render(
     bar: &progress::Bar,
     cancel: &Cancel,
 ) -> Result<RadiosityImage> {
-    if display.solver == Solver::LightTrace {
+    if display.solver() == Solver::LightTrace {
         bail!("--method radiosity needs --solver matrix, progressive or hierarchical");
     }
     let links = match display.links.as_deref() {
         None => LinkDisplay::None,
-        Some(_) if display.solver != Solver::Hierarchical => {
+        Some(_) if display.solver() != Solver::Hierarchical => {
             bail!("--links needs --solver hierarchical (the other solvers keep no links)")
         }
         Some("") => LinkDisplay::All,
@@ -422,7 +441,7 @@ pub fn render(
             LinkDisplay::Object(index as u32)
         }
     };
-    let (system, solution) = solve(world, &display.solve, display.solver, run)?;
+    let (system, solution) = solve(world, &display.solve, display.solver(), run)?;
     let settings = DisplaySettings {
         links,
         width,

@@ -1,6 +1,7 @@
 //! `strahl render`: render an image of a scene.
 
 use super::choice::choice;
+use super::limits::{LimitArgs, finite};
 use super::radiosity::{self, RadiosityDisplayArgs, RunOptions, Solver};
 use super::tone::ToneArgs;
 use super::{progress, source, with_threads};
@@ -49,14 +50,14 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value_t = Method::Raytrace)]
     pub method: Method,
     /// Image width in pixels (default: the scene camera's).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub width: Option<u32>,
     /// Image height in pixels (default: the scene camera's).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub height: Option<u32>,
     /// Samples per pixel: camera samples for stochastic antialiasing with raytrace (rounded up
     /// to a square; default 4), paths per pixel with pathtrace (default 64).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub spp: Option<u32>,
     /// raytrace: reflection/refraction recursion depth (0 turns them off; default 6).
     /// pathtrace: maximum scattering events per path (1 = direct light only; default
@@ -64,24 +65,24 @@ pub struct RenderArgs {
     #[arg(long)]
     pub depth: Option<u32>,
     /// pathtrace: paths branching from the first hit of each camera ray.
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub first_hit_paths: Option<u32>,
     /// pathtrace: stop after the last pass of samples that fits in this many seconds.
-    #[arg(long)]
+    #[arg(long, value_parser = finite::<f64>)]
     pub time_limit: Option<f64>,
     /// raytrace, final-gather: shadow rays per area light and for the sky at every shading
     /// point.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..))]
     pub light_samples: u32,
     /// final-gather: rays per camera sample that gather the solution's reflected light
     /// (rounded up to a square).
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..))]
     pub gather_rays: u32,
     /// raytrace: antialiasing method (pathtrace always jitters its samples over the pixel).
     #[arg(long, value_parser = choice::<AntialiasMode>(), default_value_t = AntialiasMode::Stochastic)]
     pub aa: AntialiasMode,
     /// Colour difference that makes adaptive antialiasing subdivide.
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = 0.05, value_parser = finite::<f32>)]
     pub aa_threshold: f32,
     /// Write an image of how often adaptive antialiasing subdivided each pixel.
     #[arg(long)]
@@ -107,6 +108,9 @@ pub struct RenderArgs {
     /// Radiosity options.
     #[command(flatten)]
     pub radiosity: RadiosityDisplayArgs,
+    /// Bounds on the work asked for.
+    #[command(flatten)]
+    pub limits: LimitArgs,
 }
 
 /// Runs `strahl render`.
@@ -119,10 +123,39 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
     }
     let scene = source::load(&args.scene)?;
+    if !scene.has_light() && !args.quiet {
+        eprintln!(
+            "warning: '{}' has no light (no light source, no sky, no emitting material): the image will be black",
+            args.scene
+        );
+    }
     let width = args.width.unwrap_or(scene.camera.width);
     let height = args.height.unwrap_or(scene.camera.height);
     if width == 0 || height == 0 {
         bail!("the image size must be at least 1×1 (got {width}×{height})");
+    }
+    args.limits.check_image(width, height)?;
+    if let (Some(solver), Method::Raytrace | Method::Pathtrace) =
+        (args.radiosity.solver, args.method)
+    {
+        bail!(
+            "--solver {} applies to --method radiosity and final-gather only, not {}",
+            solver
+                .to_possible_value()
+                .map_or("?".into(), |v| v.get_name().to_string()),
+            args.method
+                .to_possible_value()
+                .map_or("?".into(), |v| v.get_name().to_string())
+        );
+    }
+    for (flag, count) in [
+        ("--spp", args.spp),
+        ("--first-hit-paths", args.first_hit_paths),
+        ("--light-samples", Some(args.light_samples)),
+        ("--gather-rays", Some(args.gather_rays)),
+    ] {
+        args.limits
+            .check_samples(flag, count.map_or(0, u64::from))?;
     }
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
     if world
@@ -150,6 +183,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                 threads: args.threads,
                 quiet: args.quiet,
                 tone_mapping: &tone_mapping,
+                limits: &args.limits,
             };
             render_final_gather(args, &world, width, height, &run, &bar, cancel)?
         }
@@ -159,6 +193,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
                 threads: args.threads,
                 quiet: args.quiet,
                 tone_mapping: &tone_mapping,
+                limits: &args.limits,
             };
             let spp = args.spp.unwrap_or(4);
             let out = radiosity::render(
@@ -275,11 +310,11 @@ fn render_final_gather(
     if args.gather_rays == 0 {
         bail!("--gather-rays must be at least 1");
     }
-    if args.radiosity.solver == Solver::LightTrace {
+    if args.radiosity.solver() == Solver::LightTrace {
         bail!("--method final-gather needs --solver matrix, progressive or hierarchical");
     }
     let (system, solution) =
-        radiosity::solve(world, &args.radiosity.solve, args.radiosity.solver, run)?;
+        radiosity::solve(world, &args.radiosity.solve, args.radiosity.solver(), run)?;
     let integrator = FinalGather {
         reflected: RadiosityLookup::new(
             &system,

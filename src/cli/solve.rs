@@ -2,10 +2,11 @@
 //! (or per face) as JSON or CSV.
 
 use super::choice::choice;
+use super::limits::LimitArgs;
 use super::radiosity::{RadiosityArgs, RunOptions, Solver, print_convergence};
 use super::tone::ToneArgs;
 use super::{progress, radiosity, source, with_threads};
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::PathBuf;
 use strahl::accel::AccelKind;
@@ -18,7 +19,7 @@ use strahl::world::World;
 #[command(next_help_heading = "Light tracing (--solver light-trace)")]
 pub struct LightTraceArgs {
     /// Photons to trace.
-    #[arg(long, default_value_t = 1_000_000)]
+    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(1..))]
     pub photons: u64,
     /// Scattering events after which a photon is absorbed where it is.
     #[arg(long, default_value_t = 1000)]
@@ -62,6 +63,9 @@ pub struct SolveArgs {
     #[command(flatten)]
     #[command(next_help_heading = "Export colours (--export)")]
     pub tone: ToneArgs,
+    /// Bounds on the work asked for.
+    #[command(flatten)]
+    pub limits: LimitArgs,
 }
 
 /// Runs `strahl solve`.
@@ -73,6 +77,18 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         ExportFormat::from_path(path)?;
     }
     let scene = source::load(&args.scene)?;
+    if !scene.has_light() {
+        bail!(
+            "'{}' has no light (no light source, no sky, no emitting material): there is nothing to solve",
+            args.scene
+        );
+    }
+    if args.solver == Solver::LightTrace && args.radiosity.export.is_some() {
+        bail!(
+            "--export writes a radiosity solution's mesh: it needs --solver matrix, progressive, \
+             hierarchical or hierarchical-shooting"
+        );
+    }
     let name = scene.name.clone();
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
     let cancel = progress::cancel_flag();
@@ -112,6 +128,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
                 threads: args.threads,
                 quiet: args.quiet,
                 tone_mapping: &args.tone.mapping(),
+                limits: &args.limits,
             };
             let (system, solution) = radiosity::solve(&world, &args.radiosity, args.solver, &run)?;
             if args.verbose {

@@ -11,7 +11,7 @@ pub struct ToneArgs {
     #[arg(long, value_parser = choice::<ToneMap>(), default_value_t = ToneMap::Auto)]
     pub tonemap: ToneMap,
     /// Exposure in stops applied before tone mapping.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true, value_parser = super::limits::finite::<f32>)]
     pub exposure: f32,
 }
 

@@ -19,6 +19,9 @@ const FIXED_POINT_TOTAL: f64 = (1u64 << 62) as f64;
 const MIN_BATCH: u64 = 4096;
 /// Number of progress steps of a run (at most).
 const BATCHES: u64 = 200;
+/// Photons per progress step are at most this many, so that a stop request is answered
+/// within a fraction of a second however many photons the run has.
+const MAX_BATCH: u64 = 1 << 18;
 /// Memory budget of the per-worker tallies, bytes.
 const TALLY_BUDGET: usize = 256 << 20;
 
@@ -229,26 +232,51 @@ impl Tracer<'_> {
 }
 
 /// Photons per source for a run of `photons`: how many photon indices fall in each source's
-/// interval of the cumulative power.
+/// interval of the cumulative power (photon `i` goes to the first source whose cumulative
+/// power exceeds its radical inverse, the last one if none does), counted without visiting
+/// every photon (see [`photons_below`]).
 fn photons_per_source(cdf: &[f64], photons: u64) -> Vec<u64> {
-    let chunk = 1u64 << 16;
-    (0..photons.div_ceil(chunk))
-        .into_par_iter()
-        .map(|c| {
-            let mut counts = vec![0u64; cdf.len()];
-            for i in c * chunk..((c + 1) * chunk).min(photons) {
-                let u = radical_inverse(i);
-                counts[cdf.partition_point(|&x| x <= u).min(cdf.len() - 1)] += 1;
+    let mut counts = Vec::with_capacity(cdf.len());
+    let mut before = 0;
+    for &c in &cdf[..cdf.len() - 1] {
+        let below = photons_below(c, photons);
+        counts.push(below - before);
+        before = below;
+    }
+    counts.push(photons - before);
+    counts
+}
+
+/// How many of the photons `0..n` have a radical inverse (as [`radical_inverse`] rounds it)
+/// below `c`. The indices split into aligned blocks `a..a + 2ᵐ`, one per set bit of `n`;
+/// within a block the reversed bits are `j·2⁶⁴⁻ᵐ + reverse(a)` for every `j < 2ᵐ`, increasing
+/// with `j`, so the photons below `c` are a prefix of the `j`s, found by bisection. 64 · 64
+/// steps at most, for any `n`.
+fn photons_below(c: f64, n: u64) -> u64 {
+    let mut count = 0;
+    let mut start = 0u64;
+    for m in (0..64).rev() {
+        if (n >> m) & 1 == 0 {
+            continue;
+        }
+        let low = start.reverse_bits();
+        let below = |j: u64| {
+            let bits = if m == 0 { low } else { (j << (64 - m)) | low };
+            bits as f64 * (1.0 / 18_446_744_073_709_551_616.0) < c
+        };
+        let (mut lo, mut hi) = (0u64, 1u64 << m);
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            if below(mid) {
+                lo = mid + 1;
+            } else {
+                hi = mid;
             }
-            counts
-        })
-        .reduce(
-            || vec![0u64; cdf.len()],
-            |mut a, b| {
-                a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
-                a
-            },
-        )
+        }
+        count += lo;
+        start += 1 << m;
+    }
+    count
 }
 
 /// Traces `settings.photons` photons through `world` on the current rayon pool. Progress is
@@ -305,7 +333,10 @@ pub fn trace_light(
     let per_tally = table.len().max(1) * std::mem::size_of::<FixedBalance>();
     let slots = workers.min(TALLY_BUDGET / per_tally).max(1);
     let mut tallies = vec![Tally::new(table.len()); slots];
-    let batch = settings.photons.div_ceil(BATCHES).max(MIN_BATCH);
+    let batch = settings
+        .photons
+        .div_ceil(BATCHES)
+        .clamp(MIN_BATCH, MAX_BATCH);
     progress.start(settings.photons);
     let mut done = 0u64;
     while done < settings.photons && !cancel.is_requested() {
@@ -359,6 +390,29 @@ pub fn trace_light(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn photons_per_source_counts_as_visiting_every_photon_does() {
+        let cdfs: [&[f64]; 4] = [
+            &[1.0],
+            &[0.5, 1.0],
+            &[0.1234567, 0.1234568, 0.75, 1.0],
+            &[1e-9, 0.3333333333333333, 0.9999999999, 1.0],
+        ];
+        for cdf in cdfs {
+            for n in [1u64, 2, 3, 1000, 4096, 65_537, 1_000_003] {
+                let mut brute = vec![0u64; cdf.len()];
+                for i in 0..n {
+                    let u = radical_inverse(i);
+                    brute[cdf.partition_point(|&x| x <= u).min(cdf.len() - 1)] += 1;
+                }
+                assert_eq!(photons_per_source(cdf, n), brute, "{cdf:?} {n}");
+            }
+        }
+        // Any count, at once: a hundred billion photons split by their share.
+        let counts = photons_per_source(&[0.25, 1.0], 100_000_000_000);
+        assert_eq!(counts, vec![25_000_000_000, 75_000_000_000]);
+    }
 
     #[test]
     fn fixed_point_conversions_match_the_wide_ones() {

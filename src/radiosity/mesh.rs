@@ -258,15 +258,19 @@ pub struct MeshOptions {
     /// Split faces that other faces touch at the toucher's plane first
     /// ([`super::contact`]), so no patch lies partly inside a touching solid.
     pub contact_splits: bool,
+    /// Most patches (all quadtree nodes) the mesh may have before any refinement: a finer
+    /// initial mesh is refused with [`MeshError::TooManyPatches`].
+    pub max_patches: usize,
 }
 
 impl Default for MeshOptions {
-    /// 16 segments, no initial subdivision, contact splits.
+    /// 16 segments, no initial subdivision, contact splits, at most 4 million patches.
     fn default() -> Self {
         MeshOptions {
             segments: 16,
             size: MeshSize::default(),
             contact_splits: true,
+            max_patches: 4_000_000,
         }
     }
 }
@@ -281,6 +285,15 @@ pub enum MeshError {
         object: String,
         /// What is wrong.
         reason: String,
+    },
+    /// The initial mesh would exceed [`MeshOptions::max_patches`].
+    #[error(
+        "the mesh would have more than {limit} patches: choose a coarser --mesh-size or fewer \
+         --segments, or raise --max-patches"
+    )]
+    TooManyPatches {
+        /// The bound that was reached.
+        limit: usize,
     },
 }
 
@@ -341,6 +354,12 @@ impl PatchMesh {
                     patch.object = face.object;
                     patch.face = face.face;
                     patch.material = face.material;
+                    let bound = (mesh.len() as u64).saturating_add(uniform_tree_size(&patch, size));
+                    if bound > options.max_patches as u64 {
+                        return Err(MeshError::TooManyPatches {
+                            limit: options.max_patches,
+                        });
+                    }
                     let id = mesh.push(patch);
                     mesh.roots.push(id);
                     mesh.subdivide_uniformly(id, size);
@@ -434,6 +453,24 @@ impl PatchMesh {
             .flat_map(|&r| self.leaves_under(r))
             .collect()
     }
+}
+
+/// The most nodes [`PatchMesh::subdivide_uniformly`] can give the quadtree of `root` (itself
+/// included), known before any is made: `(4ᵈ⁺¹ − 1)/3` for the depth `d` it reaches.
+fn uniform_tree_size(root: &Patch, size: MeshSize) -> u64 {
+    let depth = match size {
+        MeshSize::Levels(n) => n.min(MAX_UNIFORM_DEPTH),
+        MeshSize::MaxEdge(len) => {
+            // Each split halves every edge of a quad or triangle.
+            let ratio = root.longest_edge() / len;
+            if ratio > 1.0 {
+                (ratio.log2().ceil() as u32).min(MAX_UNIFORM_DEPTH)
+            } else {
+                0
+            }
+        }
+    };
+    ((1u64 << (2 * (depth + 1))) - 1) / 3
 }
 
 /// The faces of `polygons` in world space (corners counter-clockwise around the front even

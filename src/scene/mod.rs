@@ -43,6 +43,17 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// True when something in the scene sends light: a point, spot, directional or sky light,
+    /// or an object whose material emits.
+    pub fn has_light(&self) -> bool {
+        !self.lights.is_empty()
+            || self.objects.iter().any(|o| {
+                self.materials
+                    .get(o.material as usize)
+                    .is_some_and(|m| !m.emission.is_black())
+            })
+    }
+
     /// An empty scene with a default camera looking down −z from `(0, 0, 5)`.
     pub fn empty(name: &str) -> Self {
         Scene {

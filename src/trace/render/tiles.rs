@@ -136,6 +136,11 @@ pub fn render(
             let mut cache = AdaptiveCache::new(&shared_cache, ADAPTIVE_STRIP_ROWS);
             for py in tile.y0..tile.y1 {
                 for px in tile.x0..tile.x1 {
+                    // A pixel can take long at high sample counts: a stop request drops the
+                    // unfinished tile rather than waiting for it.
+                    if cancel.is_requested() {
+                        return None;
+                    }
                     let (c, subdivided) = match settings.antialias {
                         AntialiasMode::None => (ctx.centre(px, py, w), 0),
                         AntialiasMode::Stochastic => {
@@ -167,7 +172,7 @@ pub fn render(
         .collect();
     progress.finish();
     let mut film = Film::new(w, h);
-    let mut subdivisions = vec![0u32; (w * h) as usize];
+    let mut subdivisions = vec![0u32; w as usize * h as usize];
     let mut complete = true;
     for (tile, result) in tiles.iter().zip(results) {
         let Some(result) = result else {
@@ -178,7 +183,7 @@ pub fn render(
         for py in tile.y0..tile.y1 {
             for px in tile.x0..tile.x1 {
                 film.set(px, py, result.pixels[i]);
-                subdivisions[(py * w + px) as usize] = result.subdivisions[i];
+                subdivisions[py as usize * w as usize + px as usize] = result.subdivisions[i];
                 i += 1;
             }
         }

@@ -1,0 +1,102 @@
+//! What the command line refuses before any work starts: numbers that are not finite, counts
+//! that must be at least one, and the bounds on image size, samples and mesh size that keep
+//! a typing slip (`--width 100000 --height 100000`, `--spp 4294967295`) from running for
+//! ever or failing to allocate. Each bound names the flag that raises it.
+
+use anyhow::{Result, bail};
+use clap::Args;
+
+/// The bounds on how much work one command may ask for.
+#[derive(Clone, Copy, Debug, Args)]
+#[command(next_help_heading = "Limits")]
+pub struct LimitArgs {
+    /// Largest image, in pixels (width × height).
+    #[arg(long, default_value_t = 1 << 26, value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_pixels: u64,
+    /// Largest sample count per pixel or per point (--spp, --light-samples, --gather-rays,
+    /// --first-hit-paths, --receiver-samples², --link-samples²).
+    #[arg(long, default_value_t = 1 << 16, value_parser = clap::value_parser!(u32).range(1..))]
+    pub max_samples: u32,
+    /// Radiosity: most patches the initial mesh may have.
+    #[arg(long, default_value_t = 4_000_000, value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_patches: u64,
+}
+
+impl LimitArgs {
+    /// Refuses an image of `width × height` pixels beyond `--max-pixels`.
+    pub fn check_image(&self, width: u32, height: u32) -> Result<()> {
+        let pixels = u64::from(width) * u64::from(height);
+        if pixels > self.max_pixels {
+            bail!(
+                "a {width}×{height} image has {pixels} pixels, more than --max-pixels {} \
+                 (raise --max-pixels to render it)",
+                self.max_pixels
+            );
+        }
+        Ok(())
+    }
+
+    /// Refuses `count` samples given by `flag` beyond `--max-samples`.
+    pub fn check_samples(&self, flag: &str, count: u64) -> Result<()> {
+        if count > u64::from(self.max_samples) {
+            bail!(
+                "{flag} {count} is more than --max-samples {} (raise --max-samples to allow it)",
+                self.max_samples
+            );
+        }
+        Ok(())
+    }
+}
+
+/// A finite number (clap value parser for `f32` and `f64`): NaN and infinities are refused
+/// with the value shown.
+pub fn finite<T>(text: &str) -> Result<T, String>
+where
+    T: std::str::FromStr + Copy + Into<f64>,
+    T::Err: std::fmt::Display,
+{
+    let x: T = text.parse().map_err(|e| format!("{e}"))?;
+    if x.into().is_finite() {
+        Ok(x)
+    } else {
+        Err(format!("must be a finite number, got {text}"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn limits() -> LimitArgs {
+        LimitArgs {
+            max_pixels: 100,
+            max_samples: 8,
+            max_patches: 10,
+        }
+    }
+
+    #[test]
+    fn bounds_name_the_flag_that_raises_them() {
+        let l = limits();
+        assert!(l.check_image(10, 10).is_ok());
+        let e = l.check_image(100_000, 100_000).unwrap_err().to_string();
+        assert!(
+            e.contains("10000000000 pixels") && e.contains("--max-pixels"),
+            "{e}"
+        );
+        assert!(l.check_samples("--spp", 8).is_ok());
+        let e = l.check_samples("--spp", 9).unwrap_err().to_string();
+        assert!(
+            e.contains("--spp 9") && e.contains("--max-samples 8"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn floats_must_be_finite() {
+        assert_eq!(finite::<f32>("1.5"), Ok(1.5));
+        assert!(finite::<f32>("nan").unwrap_err().contains("finite"));
+        assert!(finite::<f64>("inf").unwrap_err().contains("finite"));
+        assert!(finite::<f64>("x").is_err());
+    }
+}
