@@ -518,3 +518,54 @@ fn missing_scene_file_names_the_path() {
             .starts_with("tests/data/absent.toml: cannot read scene file")
     );
 }
+
+/// `tiny.gltf` changed by `edit`, written to a scratch folder and loaded as a mesh object:
+/// the load error.
+fn broken_gltf(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> String {
+    let text = std::fs::read_to_string(data_dir().join("tiny.gltf")).unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    edit(&mut json);
+    let dir = std::env::temp_dir().join(format!("strahl-gltf-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("broken.gltf"), json.to_string()).unwrap();
+    let scene = "[[objects]]\ntype = \"mesh\"\nfile = \"broken.gltf\"\n";
+    let result = scene::load_str(scene, "scene.toml", &dir);
+    std::fs::remove_dir_all(&dir).unwrap();
+    match result {
+        Ok(_) => panic!("{name}: the broken glTF loaded"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn gltf_accessors_that_would_be_misread_are_refused_with_their_place() {
+    // Once a panic inside the glTF reader: positions 4 bytes apart, each 12 bytes long.
+    let e = broken_gltf("stride", |j| j["bufferViews"][0]["byteStride"] = 4.into());
+    assert!(
+        e.contains("broken.gltf") && e.contains("POSITION (accessor 0)"),
+        "{e}"
+    );
+    assert!(e.contains("byteStride 4"), "{e}");
+    // Once silently dropped triangles: more indices than the view holds.
+    let e = broken_gltf("count", |j| j["accessors"][2]["count"] = 600.into());
+    assert!(
+        e.contains("indices (accessor 2)") && e.contains("600 elements"),
+        "{e}"
+    );
+    let e = broken_gltf("offset", |j| {
+        j["bufferViews"][2]["byteOffset"] = 4000.into()
+    });
+    assert!(e.contains("runs past its buffer"), "{e}");
+    // Once accepted: positions that are not three floats.
+    let e = broken_gltf("vec2", |j| j["accessors"][0]["type"] = "VEC2".into());
+    assert!(
+        e.contains("POSITION") && e.contains("expected Vec3 of F32"),
+        "{e}"
+    );
+    let e = broken_gltf("short", |j| {
+        j["accessors"][0]["componentType"] = 5123.into()
+    });
+    assert!(e.contains("POSITION") && e.contains("U16"), "{e}");
+    let e = broken_gltf("version", |j| j["asset"]["version"] = "3.0".into());
+    assert!(e.contains("\"3.0\"") && e.contains("2.x"), "{e}");
+}

@@ -26,6 +26,13 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
     let bytes = std::fs::read(path).map_err(|e| ImportError::unreadable(path, e))?;
     let ::gltf::Gltf { document, blob } =
         ::gltf::Gltf::from_slice(&bytes).map_err(|e| ImportError::invalid(path, e))?;
+    let version = &document.as_json().asset.version;
+    if !version.starts_with("2.") {
+        return Err(ImportError::invalid(
+            path,
+            format!("asset.version is \"{version}\"; glTF 2.x is read"),
+        ));
+    }
     let folder = path.parent().unwrap_or(Path::new(""));
     let buffers = ::gltf::import_buffers(&document, Some(folder), blob)
         .map_err(|e| ImportError::invalid(path, format!("buffer: {e}")))?;
@@ -117,6 +124,7 @@ impl Importer<'_> {
     /// warning.
     fn primitive(&mut self, primitive: &::gltf::Primitive, to_file: Mat4) -> Result<(), String> {
         let buffers = self.buffers;
+        check_accessors(primitive, buffers)?;
         let reader = primitive.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
         let positions: Vec<Vec3> = reader
             .read_positions()
@@ -308,6 +316,104 @@ fn decode_image(
         };
         [decode(r), decode(g), decode(b), a]
     }))
+}
+
+/// Refuses a primitive whose accessors the reader would misread or read out of bounds: each
+/// attribute strahl uses (positions, normals, first texture coordinates) and the indices must
+/// have the glTF type and component type they are defined with, a stride no shorter than an
+/// element, and every element inside its buffer view and the view inside its buffer.
+fn check_accessors(
+    primitive: &::gltf::Primitive,
+    buffers: &[::gltf::buffer::Data],
+) -> Result<(), String> {
+    use ::gltf::Semantic;
+    use ::gltf::accessor::{DataType, Dimensions};
+    let float = [DataType::F32].as_slice();
+    let texcoord = [DataType::F32, DataType::U8, DataType::U16].as_slice();
+    let index = [DataType::U8, DataType::U16, DataType::U32].as_slice();
+    let checks = [
+        (Semantic::Positions, "POSITION", Dimensions::Vec3, float),
+        (Semantic::Normals, "NORMAL", Dimensions::Vec3, float),
+        (
+            Semantic::TexCoords(0),
+            "TEXCOORD_0",
+            Dimensions::Vec2,
+            texcoord,
+        ),
+    ];
+    for (semantic, name, dimensions, types) in checks {
+        if let Some(accessor) = primitive.get(&semantic) {
+            check_accessor(&accessor, buffers, name, dimensions, types)?;
+        }
+    }
+    if let Some(accessor) = primitive.indices() {
+        check_accessor(&accessor, buffers, "indices", Dimensions::Scalar, index)?;
+    }
+    Ok(())
+}
+
+/// One accessor's checks for [`check_accessors`].
+fn check_accessor(
+    accessor: &::gltf::Accessor,
+    buffers: &[::gltf::buffer::Data],
+    name: &str,
+    dimensions: ::gltf::accessor::Dimensions,
+    types: &[::gltf::accessor::DataType],
+) -> Result<(), String> {
+    let at = format!("{name} (accessor {})", accessor.index());
+    if accessor.dimensions() != dimensions || !types.contains(&accessor.data_type()) {
+        return Err(format!(
+            "{at}: {:?} of {:?}, expected {dimensions:?} of {}",
+            accessor.dimensions(),
+            accessor.data_type(),
+            types
+                .iter()
+                .map(|t| format!("{t:?}"))
+                .collect::<Vec<_>>()
+                .join(" or ")
+        ));
+    }
+    if accessor.sparse().is_some() {
+        return Err(format!("{at}: sparse accessors are not supported"));
+    }
+    let Some(view) = accessor.view() else {
+        return Err(format!("{at}: no buffer view"));
+    };
+    let size = accessor.size();
+    let stride = view.stride().unwrap_or(size);
+    if stride < size {
+        return Err(format!(
+            "{at}: byteStride {stride} is shorter than one element ({size} bytes)"
+        ));
+    }
+    let buffer = buffers
+        .get(view.buffer().index())
+        .map_or(0, |data| data.0.len());
+    let view_end = view.offset().checked_add(view.length());
+    if view_end.is_none_or(|end| end > buffer) {
+        return Err(format!(
+            "{at}: buffer view {} ({} bytes from byte {}) runs past its buffer's {buffer} bytes",
+            view.index(),
+            view.length(),
+            view.offset()
+        ));
+    }
+    let count = accessor.count();
+    let end = (count > 0).then(|| {
+        accessor
+            .offset()
+            .checked_add(stride.checked_mul(count - 1)?)?
+            .checked_add(size)
+    });
+    if end.flatten().is_none_or(|end| end > view.length()) && count > 0 {
+        return Err(format!(
+            "{at}: {count} elements from byte {} do not fit in buffer view {} ({} bytes)",
+            accessor.offset(),
+            view.index(),
+            view.length()
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

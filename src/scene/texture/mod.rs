@@ -48,6 +48,12 @@ pub enum Wrap {
     Clamp,
 }
 
+/// Widest and tallest texture read, texels.
+pub const MAX_TEXTURE_SIDE: u32 = 1 << 15;
+
+/// Most texels a texture read may have (each takes 16 bytes as linear RGBA).
+pub const MAX_TEXELS: u64 = 1 << 26;
+
 /// A texture: linear RGBA texels, row 0 at the top of the image. Texture coordinate
 /// `(0, 0)` is the bottom-left corner and `(1, 1)` the top-right (the OBJ convention);
 /// lookups outside `[0, 1]²` follow the wrap mode.
@@ -98,12 +104,24 @@ impl Texture {
             path: path.display().to_string(),
             reason,
         };
-        let img = image::ImageReader::open(path)
-            .map_err(|e| err(e.to_string()))?
-            .with_guessed_format()
-            .map_err(|e| err(e.to_string()))?
-            .decode()
-            .map_err(|e| err(e.to_string()))?;
+        let open = || {
+            image::ImageReader::open(path)
+                .map_err(|e| err(e.to_string()))?
+                .with_guessed_format()
+                .map_err(|e| err(e.to_string()))
+        };
+        // The header first: a small file may declare a huge image (a decompression bomb).
+        let (width, height) = open()?.into_dimensions().map_err(|e| err(e.to_string()))?;
+        if width > MAX_TEXTURE_SIDE
+            || height > MAX_TEXTURE_SIDE
+            || u64::from(width) * u64::from(height) > MAX_TEXELS
+        {
+            return Err(err(format!(
+                "the image is {width}×{height} texels; textures of at most {MAX_TEXTURE_SIDE} \
+                 texels a side and {MAX_TEXELS} texels in all (1 GiB as linear RGBA) are read"
+            )));
+        }
+        let img = open()?.decode().map_err(|e| err(e.to_string()))?;
         if img.width() == 0 || img.height() == 0 {
             return Err(err("image is empty".into()));
         }
@@ -189,6 +207,20 @@ impl Texture {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_image_declaring_a_huge_size_is_refused_before_it_is_decoded() {
+        // A few bytes whose header promises 20,000 × 20,000 texels (6.4 GB as linear RGBA).
+        let dir = std::env::temp_dir().join(format!("strahl-texture-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bomb.ppm");
+        std::fs::write(&path, b"P6\n20000 20000\n255\n\0\0\0").unwrap();
+        let e = Texture::load(&path, ColorSpace::Srgb)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("bomb.ppm") && e.contains("20000×20000"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     fn two_by_one() -> Texture {
         Texture::from_fn("t", 2, 1, |x, _| {
