@@ -569,3 +569,13 @@ fn gltf_accessors_that_would_be_misread_are_refused_with_their_place() {
     let e = broken_gltf("version", |j| j["asset"]["version"] = "3.0".into());
     assert!(e.contains("\"3.0\"") && e.contains("2.x"), "{e}");
 }
+
+#[test]
+fn an_emission_that_would_overflow_is_rejected() {
+    // Once rendered as infinite pixels with exit code 0.
+    let e = error("[materials.sun]\nemission = 1e38\n");
+    assert!(
+        e.starts_with("scene.toml:2:12: materials.sun.emission: colour 1e38 is beyond 1e18"),
+        "{e}"
+    );
+}

@@ -8,6 +8,11 @@ use glam::Vec3;
 use std::ops::Range;
 use toml::Spanned;
 
+/// Largest colour channel a scene file may give (emission, light colours): far beyond any
+/// physical radiance in any units, and far enough below `f32::MAX` that sums of many samples
+/// stay finite (`emission = 1e38` rendered infinite pixels).
+const MAX_COLOUR: f32 = 1e18;
+
 /// One table of the scene file: its path (`objects[2]`) and span.
 #[derive(Clone, Debug)]
 pub(super) struct Table<'a> {
@@ -116,6 +121,16 @@ impl<'a> Table<'a> {
                     Err(self.error(s.span(), name, "colour is not finite"))
                 } else if c.r < 0.0 || c.g < 0.0 || c.b < 0.0 {
                     Err(self.error(s.span(), name, "colour must not be negative"))
+                } else if c.max_channel() > MAX_COLOUR {
+                    Err(self.error(
+                        s.span(),
+                        name,
+                        format!(
+                            "colour {:e} is beyond {MAX_COLOUR:e}, where the renderers' 32-bit sums \
+                             overflow: choose other units",
+                            c.max_channel()
+                        ),
+                    ))
                 } else {
                     Ok(Some(c))
                 }
