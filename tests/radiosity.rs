@@ -373,9 +373,9 @@ fn exports_parse_as_gltf_and_ply() {
         exposure_ev: 0.0,
     };
     let glb = dir.join("furnace.glb");
-    export_lit_mesh(&solution.lit_mesh(&system), &[], &tone, &glb).unwrap();
+    export_lit_mesh(&solution.lit_mesh(&system, true), &[], &tone, &glb).unwrap();
     let gltf_path = dir.join("furnace.gltf");
-    export_lit_mesh(&solution.lit_mesh(&system), &[], &tone, &gltf_path).unwrap();
+    export_lit_mesh(&solution.lit_mesh(&system, true), &[], &tone, &gltf_path).unwrap();
     for path in [&glb, &gltf_path] {
         let (doc, buffers, _) = gltf::import(path).unwrap();
         let primitive = doc.meshes().next().unwrap().primitives().next().unwrap();
@@ -399,7 +399,7 @@ fn exports_parse_as_gltf_and_ply() {
         assert!(outside.iter().all(|c| c[0] == 0.0));
     }
     let ply = dir.join("furnace.ply");
-    export_lit_mesh(&solution.lit_mesh(&system), &[], &tone, &ply).unwrap();
+    export_lit_mesh(&solution.lit_mesh(&system, false), &[], &tone, &ply).unwrap();
     let text = std::fs::read_to_string(&ply).unwrap();
     let (header, body) = text.split_once("end_header\n").unwrap();
     assert!(header.starts_with("ply\nformat ascii 1.0\n"));

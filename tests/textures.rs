@@ -267,7 +267,8 @@ fn textured_surfaces_export_their_texture_and_a_lightmap_that_shows_the_solution
         exposure_ev: 0.0,
     };
     let textures = &world.scene.textures;
-    strahl::report::export_lit_mesh(&solution.lit_mesh(&system), textures, &tone, &path).unwrap();
+    strahl::report::export_lit_mesh(&solution.lit_mesh(&system, true), textures, &tone, &path)
+        .unwrap();
     let (doc, buffers, images) = gltf::import(&path).unwrap();
     let lookup = RadiosityLookup::new(
         &system,

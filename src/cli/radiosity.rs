@@ -20,7 +20,7 @@ use strahl::radiosity::solve::{
 use strahl::radiosity::{
     FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,
 };
-use strahl::report::export_lit_mesh;
+use strahl::report::{ExportFormat, export_lit_mesh};
 use strahl::world::World;
 
 /// The light solvers.
@@ -306,8 +306,9 @@ pub fn solve<'w>(
     }
     if let Some(path) = &args.export {
         let textures = &system.world().scene.textures;
+        let lightmaps = ExportFormat::from_path(path)?.carries_lightmaps();
         export_lit_mesh(
-            &solution.lit_mesh(&system),
+            &solution.lit_mesh(&system, lightmaps),
             textures,
             run.tone_mapping,
             path,

@@ -75,6 +75,12 @@ pub enum ExportError {
 }
 
 impl ExportFormat {
+    /// True for the formats that carry textures, and so the lightmaps of textured surfaces
+    /// (glTF); PLY has vertex colours only.
+    pub fn carries_lightmaps(self) -> bool {
+        matches!(self, ExportFormat::Glb | ExportFormat::Gltf)
+    }
+
     /// The format named by the extension of `path` (any case).
     pub fn from_path(path: &Path) -> Result<Self, ExportError> {
         let ext = path
@@ -267,13 +273,18 @@ fn base_image(base: Option<&Texture>, alpha: Option<&Texture>) -> Option<Image> 
 /// `image` as PNG bytes (empty if the encoder refuses it, which it does only for an image
 /// whose texels do not fill its size: never for the images built here).
 fn png(image: &Image) -> Vec<u8> {
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    let encoded = ::image::RgbaImage::from_raw(image.width, image.height, image.rgba.clone())
-        .map(|img| img.write_to(&mut bytes, ::image::ImageFormat::Png));
-    match encoded {
-        Some(Ok(())) => bytes.into_inner(),
-        _ => Vec::new(),
+    use ::image::ImageEncoder;
+    let mut bytes = Vec::new();
+    let encoded = ::image::codecs::png::PngEncoder::new(&mut bytes).write_image(
+        &image.rgba,
+        image.width,
+        image.height,
+        ::image::ExtendedColorType::Rgba8,
+    );
+    if encoded.is_err() {
+        bytes.clear();
     }
+    bytes
 }
 
 /// The PLY text.

@@ -4,7 +4,7 @@
 //! one atlas per object and material.
 //!
 //! Every side of a root patch is a chart: the patch's plane mapped by an orthonormal basis
-//! (its first edge and the side's normal) over the patch's bounding rectangle, at the
+//! (its longest edge and the side's normal) over the patch's bounding rectangle, at the
 //! texture's own density in scene units (so the lightmap is as sharp as the texture), at
 //! least [`MIN_CHART`] and at most [`MAX_CHART`] texels on a side. Charts are packed in rows
 //! with a gutter of [`GUTTER`] texels; texels outside the patch take the value at the
@@ -36,7 +36,8 @@ const GUTTER: u32 = 1;
 struct Chart {
     root: PatchId,
     side: Side,
-    /// The plane's origin (the patch's first corner) and orthonormal axes.
+    /// The plane's origin (the first corner of the patch's longest edge) and orthonormal
+    /// axes.
     origin: DVec3,
     axes: [DVec3; 2],
     /// The patch's extent along the axes: lowest coordinates and size, scene units.
@@ -52,8 +53,16 @@ impl Chart {
     /// The chart of side `side` of `root`, `density` texels per scene unit.
     fn new(mesh: &PatchMesh, root: PatchId, side: Side, density: f64) -> Chart {
         let patch = mesh.patch(root);
-        let origin = patch.corners()[0];
-        let first = (patch.corners()[1] - origin).normalize();
+        // The longest edge sets the first axis (a quad may repeat a corner).
+        let c = patch.corners();
+        let k = (0..c.len())
+            .max_by(|&i, &j| {
+                let edge = |i: usize| c[i].distance_squared(c[(i + 1) % c.len()]);
+                edge(i).total_cmp(&edge(j))
+            })
+            .unwrap_or(0);
+        let origin = c[k];
+        let first = (c[(k + 1) % c.len()] - origin).normalize();
         let axes = [first, side.normal(patch).cross(first)];
         let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
         for &c in patch.corners() {
@@ -112,6 +121,16 @@ pub(super) struct Lightmaps {
     pub surfaces: Vec<LightmappedSurface>,
     /// Per leaf and side (`2k + s`): the surface index and the corners' lightmap coordinates.
     pub corners: Vec<Option<(u32, Vec<Vec2>)>>,
+}
+
+impl Lightmaps {
+    /// No lightmaps: every leaf side shown by its corners' radiosity.
+    pub fn none(system: &RadiositySystem) -> Lightmaps {
+        Lightmaps {
+            surfaces: Vec::new(),
+            corners: vec![None; 2 * system.leaves.len()],
+        }
+    }
 }
 
 /// Bakes the lightmaps of `system`'s textured surfaces from `solution`.

@@ -232,10 +232,15 @@ impl Solution {
     /// corners reversed and its normal turned), with the smooth corner values of
     /// [`vertex_radiosity`] (display radiosity, ambient term included) of that side; the
     /// polygons of textured materials also carry their texture coordinates and their place in
-    /// their surface's lightmap (baked by `radiosity::solve::lightmap`).
-    pub fn lit_mesh(&self, system: &RadiositySystem) -> LitMesh {
+    /// their surface's lightmap (baked by `radiosity::solve::lightmap`) when `lightmaps`
+    /// asks for them (a format that carries textures).
+    pub fn lit_mesh(&self, system: &RadiositySystem, lightmaps: bool) -> LitMesh {
         let display = self.display_radiosity(system);
-        let lightmaps = lightmap::bake(system, self);
+        let lightmaps = if lightmaps {
+            lightmap::bake(system, self)
+        } else {
+            lightmap::Lightmaps::none(system)
+        };
         let mut lit = LitMesh {
             surfaces: lightmaps.surfaces,
             ..LitMesh::default()
