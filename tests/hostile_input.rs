@@ -327,3 +327,65 @@ fn ctrl_c_writes_a_partial_image_and_report_and_exits_130() {
     let traced = json["stats"]["photons_traced"].as_u64().unwrap();
     assert!(traced > 0 && traced < 100_000_000_000, "{traced}");
 }
+
+#[test]
+fn a_run_over_the_memory_bound_stops_with_a_message_naming_the_flag() {
+    let image = temp("memory.png");
+    for args in [
+        vec![
+            "solve",
+            "cornell",
+            "--solver",
+            "hierarchical",
+            "-q",
+            "--max-memory",
+            "1",
+        ],
+        vec![
+            "render",
+            "cornell",
+            "--method",
+            "pathtrace",
+            "-q",
+            "--max-memory",
+            "1",
+            "-o",
+            image.to_str().unwrap(),
+        ],
+    ] {
+        let o = strahl(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(
+            err.contains("MiB of memory") && err.contains("--max-memory"),
+            "{args:?}: {err}"
+        );
+    }
+}
+
+#[test]
+fn textures_beyond_max_texels_are_refused_naming_the_flag() {
+    // example.toml's checker.ppm has 2 × 2 texels.
+    assert_refused(
+        &[
+            "solve",
+            "tests/data/example.toml",
+            "-q",
+            "--max-texels",
+            "3",
+        ],
+        &["checker.ppm", "4 texels", "--max-texels"],
+    );
+    let o = strahl(&[
+        "solve",
+        "tests/data/example.toml",
+        "-q",
+        "--photons",
+        "1000",
+        "--max-texels",
+        "4",
+        "--report",
+        temp("texels.json").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

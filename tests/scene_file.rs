@@ -467,14 +467,23 @@ fn negative_radius_is_rejected() {
 }
 
 #[test]
-fn non_planar_polygon_is_rejected() {
-    let e = error(
-        "[[objects]]\ntype = \"polygon\"\nvertices = [[0, 0, 0], [1, 0, 0], [1, 1, 0.1], [0, 1, 0]]\n",
-    );
-    assert!(
-        e.starts_with("scene.toml:3:12: objects[0].vertices: polygon is not planar"),
-        "{e}"
-    );
+fn non_planar_and_concave_polygons_are_split_into_triangles() {
+    for vertices in [
+        // 0.1 out of plane over a size of 1.4: split (with a warning).
+        "[[0, 0, 0], [1, 0, 0], [1, 1, 0.1], [0, 1, 0]]",
+        // An L: concave.
+        "[[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]]",
+    ] {
+        let scene = ok(&format!(
+            "[[objects]]\ntype = \"polygon\"\nvertices = {vertices}\n"
+        ));
+        let Shape::Mesh(mesh) = &scene.objects[0].shape else {
+            panic!("{vertices}: {:?}", scene.objects[0].shape);
+        };
+        assert!(mesh.face_sizes.iter().all(|&n| n == 3), "{vertices}");
+        let corners: usize = vertices.matches('[').count() - 1;
+        assert_eq!(mesh.face_count(), corners - 2, "{vertices}");
+    }
 }
 
 #[test]

@@ -142,7 +142,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     if args.threads == 0 {
         bail!("--threads must be at least 1");
     }
-    let scene = source::load(&args.scene)?;
+    let scene = source::load(&args.scene, &strahl::scene::LoadOptions::default())?;
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
     let rays = ray_set(&world, args.rays)?;
     let (closest, any) = with_threads(args.threads, || {

@@ -21,7 +21,7 @@ pub struct InfoArgs {
 
 /// Runs `strahl info`.
 pub fn run(args: &InfoArgs) -> Result<()> {
-    let scene = source::load(&args.scene)?;
+    let scene = source::load(&args.scene, &strahl::scene::LoadOptions::default())?;
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
     let scene = &world.scene;
     let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();

@@ -1,10 +1,13 @@
 //! What the command line refuses before any work starts: numbers that are not finite, counts
 //! that must be at least one, and the bounds on image size, samples and mesh size that keep
 //! a typing slip (`--width 100000 --height 100000`, `--spp 4294967295`) from running for
-//! ever or failing to allocate. Each bound names the flag that raises it.
+//! ever or failing to allocate; and the memory bound the running work is held to
+//! ([`super::progress::watch_memory`]). Each bound names the flag that raises it.
 
 use anyhow::{Result, bail};
 use clap::Args;
+use strahl::measure::physical_bytes;
+use strahl::scene::LoadOptions;
 
 /// The bounds on how much work one command may ask for.
 #[derive(Clone, Copy, Debug, Args)]
@@ -20,6 +23,14 @@ pub struct LimitArgs {
     /// Radiosity: most patches the initial mesh may have.
     #[arg(long, default_value_t = 4_000_000, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_patches: u64,
+    /// Most texels one texture may have (16 bytes each in memory); larger images are refused
+    /// before they are decoded.
+    #[arg(long, default_value_t = strahl::scene::MAX_TEXELS, value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_texels: u64,
+    /// Most resident memory the run may use, MiB (default: three quarters of the machine's
+    /// memory). Over it, the work stops with a message instead of being killed.
+    #[arg(long, value_name = "MIB", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_memory: Option<u64>,
 }
 
 impl LimitArgs {
@@ -34,6 +45,22 @@ impl LimitArgs {
             );
         }
         Ok(())
+    }
+
+    /// The memory bound, bytes: `--max-memory`, or three quarters of the machine's memory
+    /// (`None` where the system does not say how much it has).
+    pub fn memory_bytes(&self) -> Option<u64> {
+        match self.max_memory {
+            Some(mib) => Some(mib.saturating_mul(1 << 20)),
+            None => physical_bytes().map(|bytes| bytes / 4 * 3),
+        }
+    }
+
+    /// How scene files are to be read under these bounds.
+    pub fn load_options(&self) -> LoadOptions {
+        LoadOptions {
+            max_texels: self.max_texels,
+        }
     }
 
     /// Refuses `count` samples given by `flag` beyond `--max-samples`.
@@ -72,6 +99,8 @@ mod tests {
             max_pixels: 100,
             max_samples: 8,
             max_patches: 10,
+            max_texels: 16,
+            max_memory: Some(3),
         }
     }
 
@@ -90,6 +119,18 @@ mod tests {
             e.contains("--spp 9") && e.contains("--max-samples 8"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn memory_bound_is_the_flag_or_a_share_of_the_machine() {
+        assert_eq!(limits().memory_bytes(), Some(3 << 20));
+        let default = LimitArgs {
+            max_memory: None,
+            ..limits()
+        };
+        if let (Some(bound), Some(machine)) = (default.memory_bytes(), physical_bytes()) {
+            assert!(bound < machine && bound >= machine / 2);
+        }
     }
 
     #[test]

@@ -42,8 +42,14 @@ pub enum Command {
 pub fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Render(args) => render::run(&args),
-        Command::Solve(args) => solve::run(&args),
+        Command::Render(args) => {
+            progress::watch_memory(args.limits.memory_bytes());
+            render::run(&args)
+        }
+        Command::Solve(args) => {
+            progress::watch_memory(args.limits.memory_bytes());
+            solve::run(&args)
+        }
         Command::Scenes => {
             for (name, description) in strahl::scene::builtin::names() {
                 println!("{name:18} {description}");
@@ -53,6 +59,20 @@ pub fn main() -> std::process::ExitCode {
         Command::Info(args) => info::run(&args),
         Command::Bench(args) => bench::run(&args),
     };
+    if let Some(bytes) = progress::over_memory() {
+        eprintln!(
+            "error: stopped at {} MiB of memory, over the bound (--max-memory, default three \
+             quarters of the machine's memory){}: raise --max-memory, or ask for less (a larger \
+             --error or --min-area, a coarser --mesh-size, a smaller image)",
+            bytes >> 20,
+            if result.is_ok() {
+                "; what was done is written, marked partial"
+            } else {
+                ""
+            }
+        );
+        return std::process::ExitCode::FAILURE;
+    }
     match result {
         // Stopped by Ctrl-C, the partial image or report written: the shell's code for it.
         Ok(()) if progress::interrupted() => std::process::ExitCode::from(130),

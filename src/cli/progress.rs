@@ -1,7 +1,10 @@
-//! Progress bars on the terminal and Ctrl-C handling.
+//! Progress bars on the terminal, Ctrl-C handling and the memory watch.
 
 use indicatif::{ProgressBar, ProgressStyle};
 use std::sync::OnceLock;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Duration;
+use strahl::measure::resident_bytes;
 use strahl::progress::{Cancel, ProgressListener};
 
 /// A progress bar on standard error (hidden with `--quiet`).
@@ -45,10 +48,46 @@ impl ProgressListener for Bar {
 /// The stop request Ctrl-C sets.
 static CANCEL: Cancel = Cancel::new();
 
+/// Resident memory seen over the bound by [`watch_memory`], bytes (0 while under it).
+static OVER_MEMORY: AtomicU64 = AtomicU64::new(0);
+
 /// True when Ctrl-C stopped the work: the process then exits with 130 after writing what it
 /// has.
 pub fn interrupted() -> bool {
-    CANCEL.is_requested()
+    CANCEL.is_requested() && over_memory().is_none()
+}
+
+/// The resident memory, bytes, at which [`watch_memory`] stopped the work, if it did.
+pub fn over_memory() -> Option<u64> {
+    Some(OVER_MEMORY.load(Ordering::SeqCst)).filter(|&b| b > 0)
+}
+
+/// Watches the process's resident memory from a background thread (every 20 ms) and stops
+/// the work as Ctrl-C does when it exceeds `bound` bytes, so that the run ends with a
+/// message (see [`over_memory`]) instead of being killed by the system.
+pub fn watch_memory(bound: Option<u64>) {
+    let Some(bound) = bound else {
+        return;
+    };
+    let cancel = cancel_flag();
+    let spawned = std::thread::Builder::new()
+        .name("memory watch".into())
+        .spawn(move || {
+            loop {
+                match resident_bytes() {
+                    Some(bytes) if bytes > bound => {
+                        OVER_MEMORY.store(bytes, Ordering::SeqCst);
+                        cancel.request();
+                        return;
+                    }
+                    Some(_) => std::thread::sleep(Duration::from_millis(20)),
+                    None => return,
+                }
+            }
+        });
+    if let Err(e) = spawned {
+        eprintln!("warning: memory will not be watched: {e}");
+    }
 }
 
 /// The stop request set by Ctrl-C. The first Ctrl-C asks running work to stop and keep what

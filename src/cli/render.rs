@@ -113,16 +113,63 @@ pub struct RenderArgs {
     pub limits: LimitArgs,
 }
 
+impl RenderArgs {
+    /// Checks the arguments that need no scene: output formats, the method's options, the
+    /// sample counts, an explicit image size and the radiosity options against their limits.
+    pub fn check(&self) -> Result<()> {
+        image::FileFormat::from_path(&self.output)?;
+        if let Some(map) = &self.aa_map {
+            image::FileFormat::from_path(map)?;
+            if self.aa != AntialiasMode::Adaptive {
+                bail!("--aa-map needs --aa adaptive");
+            }
+        }
+        if let (Some(solver), Method::Raytrace | Method::Pathtrace) =
+            (self.radiosity.solver, self.method)
+        {
+            bail!(
+                "--solver {} applies to --method radiosity and final-gather only, not {}",
+                solver
+                    .to_possible_value()
+                    .map_or("?".into(), |v| v.get_name().to_string()),
+                self.method
+                    .to_possible_value()
+                    .map_or("?".into(), |v| v.get_name().to_string())
+            );
+        }
+        for (flag, count) in [
+            ("--spp", self.spp),
+            ("--first-hit-paths", self.first_hit_paths),
+            ("--light-samples", Some(self.light_samples)),
+            ("--gather-rays", Some(self.gather_rays)),
+        ] {
+            self.limits
+                .check_samples(flag, count.map_or(0, u64::from))?;
+        }
+        if let (Some(width), Some(height)) = (self.width, self.height) {
+            self.limits.check_image(width, height)?;
+        }
+        if let Method::Radiosity | Method::FinalGather = self.method {
+            self.radiosity.solve.system_options(
+                self.radiosity.solver(),
+                self.seed,
+                &self.limits,
+            )?;
+        }
+        Ok(())
+    }
+}
+
 /// Runs `strahl render`.
 pub fn run(args: &RenderArgs) -> Result<()> {
-    image::FileFormat::from_path(&args.output)?;
-    if let Some(map) = &args.aa_map {
-        image::FileFormat::from_path(map)?;
-        if args.aa != AntialiasMode::Adaptive {
-            bail!("--aa-map needs --aa adaptive");
-        }
+    args.check()?;
+    let scene = source::load(&args.scene, &args.limits.load_options())?;
+    if scene.objects.is_empty() && scene.lights.is_empty() {
+        bail!(
+            "'{}' is empty (no objects, no lights): there is nothing to render",
+            args.scene
+        );
     }
-    let scene = source::load(&args.scene)?;
     if !scene.has_light() && !args.quiet {
         eprintln!(
             "warning: '{}' has no light (no light source, no sky, no emitting material): the image will be black",
@@ -135,29 +182,19 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         bail!("the image size must be at least 1×1 (got {width}×{height})");
     }
     args.limits.check_image(width, height)?;
-    if let (Some(solver), Method::Raytrace | Method::Pathtrace) =
-        (args.radiosity.solver, args.method)
+    let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
+    if let Some(warning) = world.scale_warning().filter(|_| !args.quiet) {
+        eprintln!("warning: {warning}");
+    }
+    if let Some(object) = world.enclosing_object(world.scene.camera.position)
+        && !args.quiet
     {
-        bail!(
-            "--solver {} applies to --method radiosity and final-gather only, not {}",
-            solver
-                .to_possible_value()
-                .map_or("?".into(), |v| v.get_name().to_string()),
-            args.method
-                .to_possible_value()
-                .map_or("?".into(), |v| v.get_name().to_string())
+        eprintln!(
+            "warning: the camera is inside '{}' (every view ray meets its inside): the image \
+             shows it from within",
+            world.scene.object_name(object as usize)
         );
     }
-    for (flag, count) in [
-        ("--spp", args.spp),
-        ("--first-hit-paths", args.first_hit_paths),
-        ("--light-samples", Some(args.light_samples)),
-        ("--gather-rays", Some(args.gather_rays)),
-    ] {
-        args.limits
-            .check_samples(flag, count.map_or(0, u64::from))?;
-    }
-    let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
     if world
         .scene
         .camera

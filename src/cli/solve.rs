@@ -68,29 +68,52 @@ pub struct SolveArgs {
     pub limits: LimitArgs,
 }
 
+impl SolveArgs {
+    /// Checks the arguments that need no scene: the report and export formats, the solver's
+    /// options and their limits.
+    pub fn check(&self) -> Result<()> {
+        if let Some(path) = &self.report {
+            ReportFormat::from_path(path)?;
+        }
+        if let Some(path) = &self.radiosity.export {
+            ExportFormat::from_path(path)?;
+        }
+        if self.solver == Solver::LightTrace {
+            if self.radiosity.export.is_some() {
+                bail!(
+                    "--export writes a radiosity solution's mesh: it needs --solver matrix, \
+                     progressive, hierarchical or hierarchical-shooting"
+                );
+            }
+        } else {
+            self.radiosity
+                .system_options(self.solver, self.seed, &self.limits)?;
+        }
+        Ok(())
+    }
+}
+
 /// Runs `strahl solve`.
 pub fn run(args: &SolveArgs) -> Result<()> {
-    if let Some(path) = &args.report {
-        ReportFormat::from_path(path)?;
+    args.check()?;
+    let scene = source::load(&args.scene, &args.limits.load_options())?;
+    if scene.objects.is_empty() {
+        bail!(
+            "'{}' has no objects: there is nothing to take light",
+            args.scene
+        );
     }
-    if let Some(path) = &args.radiosity.export {
-        ExportFormat::from_path(path)?;
-    }
-    let scene = source::load(&args.scene)?;
     if !scene.has_light() {
         bail!(
             "'{}' has no light (no light source, no sky, no emitting material): there is nothing to solve",
             args.scene
         );
     }
-    if args.solver == Solver::LightTrace && args.radiosity.export.is_some() {
-        bail!(
-            "--export writes a radiosity solution's mesh: it needs --solver matrix, progressive, \
-             hierarchical or hierarchical-shooting"
-        );
-    }
     let name = scene.name.clone();
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
+    if let Some(warning) = world.scale_warning().filter(|_| !args.quiet) {
+        eprintln!("warning: {warning}");
+    }
     let cancel = progress::cancel_flag();
     let report = match args.solver {
         Solver::LightTrace => {
@@ -145,6 +168,14 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         );
     }
     if !args.quiet {
+        for o in report.objects.iter().filter(|o| o.area.is_none()) {
+            eprintln!(
+                "warning: '{}' is unbounded (an infinite plane): the power it receives is \
+                 reported, its area, irradiance, radiosity and illuminance are not (null in \
+                 JSON, empty in CSV)",
+                o.name
+            );
+        }
         let t = &report.totals;
         eprintln!(
             "emitted {:.4} W, absorbed {:.4} W, escaped {:.4} W (luminance-weighted)",
@@ -155,6 +186,15 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     }
     if args.verbose {
         print_table(&report);
+        if let Some(bytes) = strahl::measure::peak_resident_bytes() {
+            eprintln!(
+                "peak memory {:.1} MiB (bound {})",
+                bytes as f64 / f64::from(1 << 20),
+                args.limits
+                    .memory_bytes()
+                    .map_or("none".to_string(), |b| format!("{} MiB", b >> 20))
+            );
+        }
     }
     match &args.report {
         Some(path) => {

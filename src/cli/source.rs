@@ -4,7 +4,7 @@
 use anyhow::{Context, Result, bail};
 use glam::Vec3;
 use std::path::Path;
-use strahl::scene::{self, Scene};
+use strahl::scene::{self, LoadOptions, Scene};
 
 /// True for paths that name a mesh file rather than a scene file.
 pub fn is_mesh_file(spec: &str) -> bool {
@@ -15,8 +15,8 @@ pub fn is_mesh_file(spec: &str) -> bool {
     matches!(ext.as_deref(), Some("obj" | "gltf" | "glb"))
 }
 
-/// Loads the scene named by `spec`.
-pub fn load(spec: &str) -> Result<Scene> {
+/// Loads the scene named by `spec`, reading files with `options`.
+pub fn load(spec: &str, options: &LoadOptions) -> Result<Scene> {
     if let Some(builtin) = scene::builtin::load(spec) {
         return builtin.map_err(|e| anyhow::anyhow!("{spec}: {e}"));
     }
@@ -29,15 +29,15 @@ pub fn load(spec: &str) -> Result<Scene> {
         );
     }
     if is_mesh_file(spec) {
-        return load_bare_mesh(path);
+        return load_bare_mesh(path, options);
     }
-    Ok(scene::load(path)?)
+    Ok(scene::load_with(path, options)?)
 }
 
 /// A scene holding just the mesh in `path` (default grey material), with a 90° camera at the
 /// centre of the mesh bounds looking along +x. This is the standard view for benchmarks of
 /// bare meshes.
-fn load_bare_mesh(path: &Path) -> Result<Scene> {
+fn load_bare_mesh(path: &Path, options: &LoadOptions) -> Result<Scene> {
     let absolute = path
         .canonicalize()
         .with_context(|| format!("cannot open {}", path.display()))?;
@@ -46,7 +46,8 @@ fn load_bare_mesh(path: &Path) -> Result<Scene> {
         "[camera]\nposition = [0, 0, 0]\nlook_at = [1, 0, 0]\nfov = 90\n\n\
          [[objects]]\nname = \"mesh\"\ntype = \"mesh\"\nfile = {file}\n"
     );
-    let mut scene = scene::load_str(&text, &path.display().to_string(), Path::new("."))?;
+    let mut scene =
+        scene::load_str_with(&text, &path.display().to_string(), Path::new("."), options)?;
     let geometry = strahl::world::SceneGeometry::new(&scene)?;
     let bounds = geometry.bounds();
     if bounds.is_empty() {

@@ -3,10 +3,29 @@
 /// The peak resident memory of this process so far, bytes (`VmHWM` of `/proc/self/status`);
 /// `None` where the system does not report it.
 pub fn peak_resident_bytes() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    status_kib("VmHWM:").map(|kib| kib * 1024)
+}
+
+/// The resident memory of this process now, bytes (`VmRSS` of `/proc/self/status`); `None`
+/// where the system does not report it.
+pub fn resident_bytes() -> Option<u64> {
+    status_kib("VmRSS:").map(|kib| kib * 1024)
+}
+
+/// The machine's physical memory, bytes (`MemTotal` of `/proc/meminfo`); `None` where the
+/// system does not report it.
+pub fn physical_bytes() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemTotal:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
+}
+
+/// The value in KiB of the `/proc/self/status` line starting with `key`.
+fn status_kib(key: &str) -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with(key))?;
+    line.split_whitespace().nth(1)?.parse().ok()
 }
 
 #[cfg(test)]
@@ -21,6 +40,8 @@ mod tests {
         let block = vec![1u8; 64 << 20];
         let after = peak_resident_bytes().unwrap();
         assert!(after >= before.max(64 << 20), "{before} then {after}");
+        assert!(resident_bytes().unwrap() >= 64 << 20);
+        assert!(physical_bytes().unwrap() >= 64 << 20);
         assert_eq!(block.iter().map(|&b| u64::from(b)).sum::<u64>(), 64 << 20);
     }
 }

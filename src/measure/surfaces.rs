@@ -1,8 +1,11 @@
 //! The surfaces a report lists: one per object, or one per face for objects with
 //! `per_face = true`, with their areas, and the map from a hit's object and face to its entry.
+//! Objects that share a name are one entry (scenes often split a wall or a plant organ into
+//! parts): their areas and powers add up, so the irradiance is their area-weighted mean.
 
 use crate::scene::Scene;
 use crate::world::SceneGeometry;
+use std::collections::HashMap;
 
 /// Segments of the coarser of the two tessellations that measure curved analytic shapes.
 const AREA_SEGMENTS: u32 = 64;
@@ -12,22 +15,27 @@ const AREA_SEGMENTS: u32 = 64;
 pub struct ReportSurface {
     /// Object name (`object-<index>` when the scene gives none).
     pub name: String,
-    /// Scene object index.
+    /// Index of the entry's first scene object.
     pub object: u32,
     /// Face index for per-face entries, `None` for whole objects.
     pub face: Option<u32>,
-    /// One-sided area in squared scene units; infinite for unbounded shapes (planes).
+    /// One-sided area in squared scene units, summed over the parts; infinite for unbounded
+    /// shapes (planes).
     pub area: f64,
+    /// Number of scene objects (or of their faces, for per-face entries) in the entry.
+    pub parts: u32,
 }
 
 /// The report entries of a scene and the map from (object, face) to entry.
 #[derive(Clone, Debug, Default)]
 pub struct SurfaceTable {
     surfaces: Vec<ReportSurface>,
-    /// Per object: index of its first entry.
+    /// Per object: where its entries start in `slots`.
     first: Vec<u32>,
-    /// Per object: number of entries (faces when per-face, else 1).
+    /// Per object: number of its slots (faces when per-face, else 1).
     count: Vec<u32>,
+    /// The entry of every object's whole or face, objects in scene order.
+    slots: Vec<u32>,
 }
 
 impl SurfaceTable {
@@ -52,37 +60,48 @@ impl SurfaceTable {
             areas[face] += tri.area() as f64;
         }
         let mut table = SurfaceTable::default();
+        let mut by_name: HashMap<(String, Option<u32>), u32> = HashMap::new();
         for (index, object) in scene.objects.iter().enumerate() {
             let name = scene.object_name(index);
             let areas = &face_areas[index];
-            table.first.push(table.surfaces.len() as u32);
+            table.first.push(table.slots.len() as u32);
             let whole_area = if areas.is_empty() {
                 analytic_area(scene, index)
             } else {
                 areas.iter().sum()
             };
-            let mut push = |face: Option<u32>, area: f64| {
-                table.surfaces.push(ReportSurface {
-                    name: name.clone(),
-                    object: index as u32,
-                    face,
-                    area,
-                })
+            let mut add = |face: Option<u32>, area: f64| {
+                let surfaces = &mut table.surfaces;
+                let entry = *by_name.entry((name.clone(), face)).or_insert_with(|| {
+                    surfaces.push(ReportSurface {
+                        name: name.clone(),
+                        object: index as u32,
+                        face,
+                        area: 0.0,
+                        parts: 0,
+                    });
+                    (surfaces.len() - 1) as u32
+                });
+                let surface = &mut surfaces[entry as usize];
+                surface.area += area;
+                surface.parts += 1;
+                table.slots.push(entry);
             };
             if object.per_face && areas.len() > 1 {
                 for (face, &area) in areas.iter().enumerate() {
-                    push(Some(face as u32), area);
+                    add(Some(face as u32), area);
                 }
                 table.count.push(areas.len() as u32);
             } else {
-                push(object.per_face.then_some(0), whole_area);
+                add(object.per_face.then_some(0), whole_area);
                 table.count.push(1);
             }
         }
         table
     }
 
-    /// All entries, in scene order (faces of one object consecutive).
+    /// All entries, in the scene order of their first object (faces of one object
+    /// consecutive).
     pub fn surfaces(&self) -> &[ReportSurface] {
         &self.surfaces
     }
@@ -102,7 +121,7 @@ impl SurfaceTable {
     pub fn entry(&self, object: u32, face: u32) -> usize {
         let o = object as usize;
         let face = face.min(self.count[o] - 1);
-        (self.first[o] + face) as usize
+        self.slots[(self.first[o] + face) as usize] as usize
     }
 }
 
@@ -201,5 +220,29 @@ mod tests {
         assert_eq!(table.entry(0, 2), 2);
         assert_eq!(table.entry(1, 0), 3);
         assert_eq!(table.entry(2, 0), 4);
+    }
+
+    #[test]
+    fn objects_that_share_a_name_are_one_entry() {
+        let mut scene = Scene::empty("t");
+        let m = scene.add_material(Material::default());
+        let quad = |x: f32, width: f32| Shape::Parallelogram {
+            origin: Vec3::new(x, 0.0, 0.0),
+            edge_u: Vec3::X * width,
+            edge_v: Vec3::Y,
+        };
+        scene.add_object("wall", quad(0.0, 1.0), m);
+        scene.add_object("door", quad(5.0, 0.5), m);
+        scene.add_object("wall", quad(1.0, 2.0), m);
+        let geometry = SceneGeometry::new(&scene).unwrap();
+        let table = SurfaceTable::new(&scene, &geometry);
+        let s = table.surfaces();
+        assert_eq!(s.len(), 2);
+        assert_eq!((s[0].name.as_str(), s[0].parts), ("wall", 2));
+        assert!((s[0].area - 3.0).abs() < 1e-6);
+        assert_eq!((s[1].name.as_str(), s[1].parts), ("door", 1));
+        assert_eq!(table.entry(0, 0), 0);
+        assert_eq!(table.entry(1, 0), 1);
+        assert_eq!(table.entry(2, 0), 0);
     }
 }

@@ -34,7 +34,8 @@ pub struct Report {
     pub units: Units,
     /// Run statistics.
     pub stats: Stats,
-    /// One entry per object, or per face of objects with `per_face = true`, in scene order.
+    /// One entry per object name (objects sharing a name are one entry), or per face of
+    /// objects with `per_face = true`, in scene order.
     pub objects: Vec<ObjectReport>,
     /// Scene-wide power balance.
     pub totals: Totals,
@@ -69,6 +70,9 @@ pub struct ObjectReport {
     pub face: Option<u32>,
     /// One-sided surface area, squared length units; `null` when unbounded.
     pub area: Option<f64>,
+    /// How many scene objects (faces, for per-face entries) share this entry's name and are
+    /// reported together: areas and powers summed, densities area-weighted.
+    pub parts: u32,
     /// Power arriving on either side, W.
     pub incident_power: Rgb64,
     /// Power absorbed, W.
@@ -91,7 +95,12 @@ impl ObjectReport {
     /// The entry for a surface called `name` (`face` for per-face entries) of one-sided area
     /// `area` (squared length units; infinite or NaN for unbounded surfaces) with the given
     /// powers in W; the densities and photometric values are derived as the module states.
-    pub fn new(name: String, face: Option<u32>, area: f64, powers: &PowerBalance) -> Self {
+    pub fn new(
+        name: String,
+        face: Option<u32>,
+        (area, parts): (f64, u32),
+        powers: &PowerBalance,
+    ) -> Self {
         let bounded = area.is_finite() && area > 0.0;
         let per_area = |v: Rgb64| bounded.then(|| v.map(|c| c / area));
         let irradiance = per_area(powers.incident);
@@ -100,6 +109,7 @@ impl ObjectReport {
             name,
             face,
             area: (area.is_finite() && area >= 0.0).then_some(area),
+            parts,
             incident_power: powers.incident,
             absorbed_power: powers.absorbed,
             emitted_power: powers.emitted,
@@ -121,7 +131,9 @@ impl Report {
             .surfaces()
             .iter()
             .enumerate()
-            .map(|(e, s)| ObjectReport::new(s.name.clone(), s.face, s.area, power.balance(e)))
+            .map(|(e, s)| {
+                ObjectReport::new(s.name.clone(), s.face, (s.area, s.parts), power.balance(e))
+            })
             .collect();
         Report {
             scene: scene.to_string(),
@@ -181,13 +193,13 @@ mod tests {
             emitted: Rgb64::new(0.5, 0.0, 0.0),
             reflected: Rgb64::new(1.0, 3.0, 5.0),
         };
-        let r = ObjectReport::new("leaf".into(), None, 2.0, &p);
+        let r = ObjectReport::new("leaf".into(), None, (2.0, 1), &p);
         assert_eq!(r.irradiance, Some(Rgb64::new(1.0, 2.0, 3.0)));
         assert_eq!(r.radiosity, Some(Rgb64::new(0.75, 1.5, 2.5)));
         let y = 0.2126 + 0.7152 * 2.0 + 0.0722 * 3.0;
         assert!((r.illuminance_lux.unwrap() - 683.0 * y).abs() < 1e-9);
         assert!((r.luminous_flux_lm - 683.0 * 2.0 * y).abs() < 1e-9);
-        let unbounded = ObjectReport::new("ground".into(), None, f64::INFINITY, &p);
+        let unbounded = ObjectReport::new("ground".into(), None, (f64::INFINITY, 1), &p);
         assert_eq!(unbounded.area, None);
         assert_eq!(unbounded.irradiance, None);
         assert_eq!(unbounded.illuminance_lux, None);
@@ -201,7 +213,7 @@ mod tests {
             solver: "matrix".into(),
             units: Units::default(),
             stats: Stats::default(),
-            objects: vec![ObjectReport::new("a".into(), None, 1.0, &fine)],
+            objects: vec![ObjectReport::new("a".into(), None, (1.0, 1), &fine)],
             totals: Totals::default(),
         };
         assert_eq!(report.first_non_finite(), None);
@@ -216,7 +228,7 @@ mod tests {
         };
         report
             .objects
-            .push(ObjectReport::new("b".into(), None, 1.0, &broken));
+            .push(ObjectReport::new("b".into(), None, (1.0, 1), &broken));
         assert_eq!(
             report.first_non_finite(),
             Some(("b".to_string(), "absorbed_power"))
@@ -239,7 +251,7 @@ mod tests {
             objects: vec![ObjectReport::new(
                 "a".into(),
                 Some(3),
-                1.0,
+                (1.0, 1),
                 &PowerBalance::default(),
             )],
             totals: Totals::default(),

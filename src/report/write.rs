@@ -1,7 +1,7 @@
 //! Writing reports: JSON (the full schema) or CSV, chosen by the file extension.
 //!
 //! CSV has one row per report entry and these columns, arrays flattened per channel:
-//! `name, face, area, incident_power_{r,g,b}, absorbed_power_{r,g,b}, emitted_power_{r,g,b},
+//! `name, face, area, parts, incident_power_{r,g,b}, absorbed_power_{r,g,b}, emitted_power_{r,g,b},
 //! reflected_power_{r,g,b}, irradiance_{r,g,b}, radiosity_{r,g,b}, illuminance_lux,
 //! luminous_flux_lm`. Empty cells stand for absent values (no face; unbounded area). The
 //! scene name, solver, units, statistics and totals are in the JSON form only.
@@ -91,7 +91,12 @@ pub fn write_report(report: &Report, path: &Path) -> Result<(), ReportError> {
 
 /// Column names of the CSV form.
 pub(crate) fn csv_header() -> Vec<String> {
-    let mut h = vec!["name".to_string(), "face".into(), "area".into()];
+    let mut h = vec![
+        "name".to_string(),
+        "face".into(),
+        "area".into(),
+        "parts".into(),
+    ];
     for q in [
         "incident_power",
         "absorbed_power",
@@ -124,6 +129,7 @@ fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
             o.name.clone(),
             o.face.map(|f| f.to_string()).unwrap_or_default(),
             opt(o.area),
+            o.parts.to_string(),
         ];
         for v in [
             o.incident_power,
@@ -160,8 +166,8 @@ mod tests {
             units: Units::default(),
             stats: Stats::default(),
             objects: vec![
-                ObjectReport::new("leaf, big".into(), Some(1), 0.5, &p),
-                ObjectReport::new("ground".into(), None, f64::INFINITY, &p),
+                ObjectReport::new("leaf, big".into(), Some(1), (0.5, 1), &p),
+                ObjectReport::new("ground".into(), None, (f64::INFINITY, 1), &p),
             ],
             totals: Totals::default(),
         }
@@ -175,15 +181,16 @@ mod tests {
         let mut reader = csv::Reader::from_reader(text.as_bytes());
         let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
         assert_eq!(header, csv_header());
-        assert_eq!(header.len(), 23);
+        assert_eq!(header.len(), 24);
         let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
         assert_eq!(rows.len(), 2);
         assert_eq!(&rows[0][0], "leaf, big");
         assert_eq!(&rows[0][1], "1");
         assert_eq!(&rows[0][2], "0.5");
-        assert_eq!(&rows[0][15], "2"); // irradiance_r = 1 / 0.5
+        assert_eq!(&rows[0][3], "1");
+        assert_eq!(&rows[0][16], "2"); // irradiance_r = 1 / 0.5
         assert_eq!(&rows[1][2], "");
-        assert_eq!(&rows[1][15], "");
+        assert_eq!(&rows[1][16], "");
     }
 
     #[test]

@@ -9,18 +9,20 @@ mod light;
 mod material;
 mod mesh;
 mod object;
+pub(crate) mod polygon;
 mod tessellate;
 mod texture;
 
 pub use camera::{Camera, CameraRays};
-pub use file::{SceneError, load, load_str};
+pub use file::{LoadOptions, SceneError, load, load_str, load_str_with, load_with};
 pub use light::{Incidence, Light, LightKind};
 pub use material::{Material, MaterialId};
 pub use mesh::PolygonMesh;
 pub use object::{AnalyticKind, Object, Shape};
 pub use tessellate::{polygon_area, polygon_normal};
 pub use texture::{
-    ALPHA_CUTOFF, ColorSpace, Coverage, TexelStats, Texture, TextureError, TextureId, Wrap,
+    ALPHA_CUTOFF, ColorSpace, Coverage, MAX_TEXELS, MAX_TEXTURE_SIDE, TexelStats, Texture,
+    TextureError, TextureId, Wrap,
 };
 
 use glam::Vec3;

@@ -79,7 +79,7 @@ fn single_face(positions: Vec<Vec3>, uvs: Vec<Vec2>) -> PolygonMesh {
 }
 
 /// Unit square for quads, otherwise the polygon's bounding rectangle in its own plane.
-fn default_polygon_uvs(vertices: &[Vec3]) -> Vec<Vec2> {
+pub(crate) fn default_polygon_uvs(vertices: &[Vec3]) -> Vec<Vec2> {
     if vertices.len() == 4 {
         return unit_square().to_vec();
     }

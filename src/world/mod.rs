@@ -61,6 +61,53 @@ impl World {
         })
     }
 
+    /// A warning when the scene is so small that the fixed part of the ray offset
+    /// ([`crate::geometry::OFFSET_ABSOLUTE`]) is more than 10⁻⁴ of its size, so that rays
+    /// leaving a surface start visibly off it (a room 10⁻⁶ units across loses about 10 % of
+    /// its light in the light model): the scene then wants smaller units.
+    pub fn scale_warning(&self) -> Option<String> {
+        let bounds = self.geometry.bounds();
+        let size = (bounds.max - bounds.min).length();
+        let smallest = 1e4 * crate::geometry::OFFSET_ABSOLUTE;
+        (size > 0.0 && size < smallest).then(|| {
+            format!(
+                "the scene is {size:.1e} units across: below {smallest:.0e} units the ray \
+                 offsets are no longer small against it and results lose accuracy; give \
+                 lengths in smaller units (millimetres instead of metres, say)"
+            )
+        })
+    }
+
+    /// The object whose inside holds point `p`, if any: every one of 14 rays from `p` (along
+    /// the axes and the cube diagonals) meets the back side of that one object. A camera
+    /// there sees only the object's inside (a sphere or box around it, a closed mesh).
+    pub fn enclosing_object(&self, p: Vec3) -> Option<u32> {
+        let mut directions = vec![
+            Vec3::X,
+            Vec3::NEG_X,
+            Vec3::Y,
+            Vec3::NEG_Y,
+            Vec3::Z,
+            Vec3::NEG_Z,
+        ];
+        for x in [-1.0, 1.0] {
+            for y in [-1.0, 1.0] {
+                for z in [-1.0, 1.0] {
+                    directions.push(Vec3::new(x, y, z).normalize());
+                }
+            }
+        }
+        let mut inside = None;
+        for dir in directions {
+            let hit = self.intersect(&Ray::new(p, dir))?;
+            if hit.front_face || inside.is_some_and(|o| o != hit.object) {
+                return None;
+            }
+            inside = Some(hit.object);
+        }
+        inside
+    }
+
     /// This world with every curved analytic shape (sphere, cylinder, cone, frustum) replaced
     /// by its polygon mesh of `segments` segments around the axis, with the same accelerator
     /// kind: the surfaces that methods working on those meshes (radiosity patches) must see,
@@ -141,5 +188,41 @@ impl World {
     /// Wall-clock seconds the accelerator took to build.
     pub fn build_seconds(&self) -> f64 {
         self.build_seconds
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::builtin;
+
+    #[test]
+    fn a_point_inside_a_closed_object_is_found_and_one_outside_is_not() {
+        let mut scene = Scene::empty("ball");
+        let m = scene.add_material(Material::default());
+        scene.add_object(
+            "ball",
+            Shape::Sphere {
+                center: Vec3::ZERO,
+                radius: 2.0,
+            },
+            m,
+        );
+        scene.add_object(
+            "box",
+            Shape::Box {
+                min: Vec3::splat(4.0),
+                max: Vec3::splat(5.0),
+            },
+            m,
+        );
+        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        assert_eq!(world.enclosing_object(Vec3::new(0.5, 0.2, 0.0)), Some(0));
+        assert_eq!(world.enclosing_object(Vec3::splat(4.5)), Some(1));
+        assert_eq!(world.enclosing_object(Vec3::new(0.0, 0.0, 3.0)), None);
+        let cornell = builtin::load("cornell").unwrap().unwrap();
+        let camera = cornell.camera.position;
+        let world = World::new(cornell, AccelKind::Bvh).unwrap();
+        assert_eq!(world.enclosing_object(camera), None);
     }
 }

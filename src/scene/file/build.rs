@@ -1,6 +1,7 @@
 //! Turning a parsed scene file into a [`Scene`]: camera, materials (in file order, then the
 //! implicit `default`, then imported ones), objects and lights.
 
+use super::LoadOptions;
 use super::camera::build_camera;
 use super::error::{SceneError, Source};
 use super::fields::Table;
@@ -19,7 +20,11 @@ use std::path::Path;
 const DEFAULT_MATERIAL: &str = "default";
 
 /// Parses and builds the scene in `src`; relative paths start at `base_dir`.
-pub(super) fn build_scene(src: Source<'_>, base_dir: &Path) -> Result<Scene, SceneError> {
+pub(super) fn build_scene(
+    src: Source<'_>,
+    base_dir: &Path,
+    options: &LoadOptions,
+) -> Result<Scene, SceneError> {
     let file: SceneFile = toml::from_str(src.text).map_err(|e| toml_error(src, &e))?;
     let name = Path::new(src.file).file_stem().map_or_else(
         || src.file.to_string(),
@@ -28,7 +33,7 @@ pub(super) fn build_scene(src: Source<'_>, base_dir: &Path) -> Result<Scene, Sce
     let mut scene = Scene::empty(&name);
     scene.camera = build_camera(src, file.camera.as_ref())?;
 
-    let mut textures = TextureCache::default();
+    let mut textures = TextureCache::new(options.max_texels);
     let mut entries: Vec<_> = file.materials.iter().collect();
     entries.sort_by_key(|(key, _)| key.span().start);
     for (key, entry) in entries {

@@ -8,8 +8,66 @@ use toml::de::{DeTable, DeValue};
 /// The scene error for a `toml` deserialisation error in `src`.
 pub(super) fn toml_error(src: Source<'_>, err: &toml::de::Error) -> SceneError {
     let span = err.span().unwrap_or(0..0);
+    let message = err.message();
+    if message.starts_with("duplicate key") {
+        // The document does not parse, so the key's path is read off the text.
+        let line_start = src.text[..span.start.min(src.text.len())]
+            .rfind('\n')
+            .map_or(0, |i| i + 1);
+        if src.text[line_start..].trim_start().starts_with('[') {
+            let line_end = src.text[line_start..]
+                .find('\n')
+                .map_or(src.text.len(), |i| line_start + i);
+            let table = header(src.text, line_end).unwrap_or_default();
+            return src.error(span, &table, "this table is given twice");
+        }
+        let key = src.text.get(span.clone()).unwrap_or("").trim();
+        let field = match header(src.text, line_start) {
+            Some(t) => format!("{t}.{key}"),
+            None => key.to_string(),
+        };
+        return src.error(span, &field, "this key is given twice in its table");
+    }
     let field = field_path(src.text, span.start).unwrap_or_else(|| "(document)".to_string());
-    src.error(span, &field, polish_message(err.message()))
+    let message = if message.starts_with("wanted exactly 1 element") && field.contains("transform[")
+    {
+        "a transform step is a table of exactly one of translate, rotate, scale or matrix \
+         (write one step per transformation)"
+            .to_string()
+    } else {
+        polish_message(message)
+    };
+    src.error(span, &field, message)
+}
+
+/// The path of the `[table]` or `[[array]]` header on the last header line that starts
+/// before byte `offset` of `text` (`objects[2]` for the third `[[objects]]`).
+fn header(text: &str, offset: usize) -> Option<String> {
+    let headers: Vec<&str> = text
+        .get(..=offset.min(text.len().saturating_sub(1)))?
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with('['))
+        .collect();
+    let last = *headers.last()?;
+    let name = |line: &str| {
+        line.trim_start_matches('[')
+            .split(']')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .to_string()
+    };
+    let table = name(last);
+    if !last.starts_with("[[") {
+        return Some(table);
+    }
+    let index = headers
+        .iter()
+        .filter(|l| l.starts_with("[[") && name(l) == table)
+        .count()
+        - 1;
+    Some(format!("{table}[{index}]"))
 }
 
 /// Dotted path (`objects[2].radius`) of the smallest key or value of `text` whose span

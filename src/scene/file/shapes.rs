@@ -3,9 +3,10 @@
 use super::error::SceneError;
 use super::fields::Table;
 use super::format::{ObjectEntry, ObjectType};
-use super::polygon::check_polygon;
-use crate::scene::Shape;
+use crate::scene::tessellate::default_polygon_uvs;
+use crate::scene::{PolygonMesh, Shape, polygon};
 use glam::{Vec2, Vec3};
+use std::sync::Arc;
 
 /// A triangle or parallelogram spanned by edges `a` and `b` whose sine of the angle between
 /// them is below this counts as degenerate.
@@ -151,7 +152,24 @@ fn planar(t: &Table<'_>, e: &ObjectEntry, kind: ObjectType) -> Result<Shape, Sce
             ),
         ));
     }
-    check_polygon(&vertices).map_err(|m| t.error(span.clone(), "vertices", m))?;
+    let shape = polygon::classify(&vertices).map_err(|m| t.error(span.clone(), "vertices", m))?;
+    if let polygon::Shape::NonPlanar { corner, distance } = shape {
+        let size = polygon_size(&vertices);
+        eprintln!(
+            "warning: {}",
+            t.error(
+                span.clone(),
+                "vertices",
+                format!(
+                    "the {} is not planar (vertex {corner} is {distance:.3e} from its plane, \
+                     {:.1e} of its size; tolerance {:.0e}): split into triangles",
+                    kind.name(),
+                    distance / size,
+                    polygon::PLANARITY_TOLERANCE
+                )
+            )
+        );
+    }
     let uvs: Option<Vec<Vec2>> = match e.uvs.as_ref() {
         Some(u) => {
             let uvs: Vec<Vec2> = u.get_ref().iter().map(|p| Vec2::from(p.0)).collect();
@@ -173,13 +191,35 @@ fn planar(t: &Table<'_>, e: &ObjectEntry, kind: ObjectType) -> Result<Shape, Sce
         }
         None => None,
     };
-    Ok(match kind {
-        ObjectType::Triangle => Shape::Triangle {
+    Ok(match (kind, shape) {
+        (ObjectType::Triangle, _) => Shape::Triangle {
             vertices: [vertices[0], vertices[1], vertices[2]],
             uvs: uvs.map(|u| [u[0], u[1], u[2]]),
         },
-        _ => Shape::Polygon { vertices, uvs },
+        (_, polygon::Shape::Convex) => Shape::Polygon { vertices, uvs },
+        // Concave or bent: the same polygon as triangles.
+        _ => {
+            let triangles = polygon::triangulate(&vertices);
+            let uvs = uvs.unwrap_or_else(|| default_polygon_uvs(&vertices));
+            Shape::Mesh(Arc::new(PolygonMesh {
+                indices: triangles.iter().flatten().map(|&i| i as u32).collect(),
+                face_sizes: vec![3; triangles.len()],
+                positions: vertices,
+                uvs: Some(uvs),
+                ..PolygonMesh::default()
+            }))
+        }
     })
+}
+
+/// The bounding-box diagonal of `vertices`.
+fn polygon_size(vertices: &[Vec3]) -> f64 {
+    let (lo, hi) = vertices
+        .iter()
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    (hi - lo).as_dvec3().length()
 }
 
 #[cfg(test)]

@@ -5,8 +5,10 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// Textures already added to the scene being built, so each image is loaded once.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(super) struct TextureCache {
+    /// The bound on one texture's texels.
+    max_texels: u64,
     /// (canonical path, sRGB?, alpha from grey?, wrap) → texture.
     files: HashMap<(PathBuf, bool, bool, Wrap), TextureId>,
     /// (canonical mesh path, embedded image index) → texture.
@@ -14,6 +16,15 @@ pub(super) struct TextureCache {
 }
 
 impl TextureCache {
+    /// An empty cache reading textures of at most `max_texels` texels.
+    pub fn new(max_texels: u64) -> TextureCache {
+        TextureCache {
+            max_texels,
+            files: HashMap::new(),
+            embedded: HashMap::new(),
+        }
+    }
+
     /// The id of image file `path` decoded with `space` and wrapped by `wrap`, loading it on
     /// first use. With `alpha_from_grey`, an image whose alpha is 1 everywhere takes its
     /// alpha from its grey level (mean of the channels). The error message names the path.
@@ -32,7 +43,7 @@ impl TextureCache {
         if let Some(&id) = self.files.get(&key) {
             return Ok(id);
         }
-        let mut texture = Texture::load(path, space).map_err(|e| e.to_string())?;
+        let mut texture = Texture::load(path, space, self.max_texels).map_err(|e| e.to_string())?;
         texture.wrap = wrap;
         if alpha_from_grey && texture.texels.iter().all(|t| t[3] == 1.0) {
             for t in &mut texture.texels {
@@ -67,7 +78,7 @@ mod tests {
     #[test]
     fn missing_file_names_the_path() {
         let mut scene = Scene::empty("t");
-        let mut cache = TextureCache::default();
+        let mut cache = TextureCache::new(crate::scene::MAX_TEXELS);
         let err = cache
             .file(
                 &mut scene,
@@ -84,7 +95,7 @@ mod tests {
     #[test]
     fn embedded_images_are_added_once() {
         let mut scene = Scene::empty("t");
-        let mut cache = TextureCache::default();
+        let mut cache = TextureCache::new(crate::scene::MAX_TEXELS);
         let tex = Texture::from_fn("e", 1, 1, |_, _| [1.0; 4]);
         let a = cache.embedded(&mut scene, Path::new("/m.glb"), 0, &tex);
         let b = cache.embedded(&mut scene, Path::new("/m.glb"), 0, &tex);

@@ -12,7 +12,7 @@
 use super::{ImportError, ImportedMaterial, ImportedMesh, TextureSource, append_mesh};
 use crate::color::Rgb;
 use crate::color::srgb_to_linear;
-use crate::scene::{ColorSpace, Material, PolygonMesh, Texture};
+use crate::scene::{ColorSpace, MAX_TEXELS, MAX_TEXTURE_SIDE, Material, PolygonMesh, Texture};
 use ::gltf::mesh::Mode;
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use std::collections::HashMap;
@@ -24,6 +24,8 @@ const MAX_NODE_DEPTH: usize = 256;
 /// Reads a glTF or GLB file with its buffers and the images its materials use.
 pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
     let bytes = std::fs::read(path).map_err(|e| ImportError::unreadable(path, e))?;
+    check_glb_header(&bytes).map_err(|e| ImportError::invalid(path, e))?;
+    check_attribute_indices(&bytes).map_err(|e| ImportError::invalid(path, e))?;
     let ::gltf::Gltf { document, blob } =
         ::gltf::Gltf::from_slice(&bytes).map_err(|e| ImportError::invalid(path, e))?;
     let version = &document.as_json().asset.version;
@@ -34,6 +36,21 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
         ));
     }
     let folder = path.parent().unwrap_or(Path::new(""));
+    for buffer in document.buffers() {
+        if let ::gltf::buffer::Source::Uri(uri) = buffer.source()
+            && !uri.starts_with("data:")
+            && !uri.contains('%')
+            && !folder.join(uri).is_file()
+        {
+            return Err(ImportError::invalid(
+                path,
+                format!(
+                    "buffers[{}].uri: cannot read \"{uri}\" next to the glTF file",
+                    buffer.index()
+                ),
+            ));
+        }
+    }
     let buffers = ::gltf::import_buffers(&document, Some(folder), blob)
         .map_err(|e| ImportError::invalid(path, format!("buffer: {e}")))?;
     let mut importer = Importer {
@@ -75,6 +92,73 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
         .validate()
         .map_err(|e| ImportError::invalid(path, e))?;
     Ok(importer.out)
+}
+
+/// Checks that a binary glTF's header declares a length no shorter than the header itself
+/// (the `gltf` crate subtracts the header's size from it unchecked).
+fn check_glb_header(bytes: &[u8]) -> Result<(), String> {
+    const HEADER: usize = 12;
+    if let Some(length) = bytes
+        .strip_prefix(b"glTF")
+        .and_then(|rest| rest.get(4..8))
+        .map(|l| u32::from_le_bytes([l[0], l[1], l[2], l[3]]) as usize)
+        && length < HEADER
+    {
+        return Err(format!(
+            "the binary glTF header declares {length} bytes, fewer than the {HEADER} of the \
+             header itself"
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that every mesh primitive's attributes and morph targets name existing accessors:
+/// the `gltf` crate's validation reads the POSITION accessor before checking its index (an
+/// index past the accessors panicked). Input that is not glTF JSON (or GLB holding it) is
+/// left for the `gltf` crate to refuse.
+fn check_attribute_indices(bytes: &[u8]) -> Result<(), String> {
+    let json = match ::gltf::Glb::from_slice(bytes) {
+        Ok(glb) => glb.json.into_owned(),
+        Err(_) => bytes.to_vec(),
+    };
+    // Lossily: the `gltf` crate reads a key with a stray byte as an unknown key.
+    let Ok(root) = serde_json::from_str::<serde_json::Value>(&String::from_utf8_lossy(&json))
+    else {
+        return Ok(());
+    };
+    let count = |key: &str| root[key].as_array().map_or(0, Vec::len);
+    let accessors = count("accessors");
+    let meshes = root["meshes"].as_array().map(Vec::as_slice).unwrap_or(&[]);
+    for (m, mesh) in meshes.iter().enumerate() {
+        let primitives = mesh["primitives"]
+            .as_array()
+            .map(Vec::as_slice)
+            .unwrap_or(&[]);
+        for (p, primitive) in primitives.iter().enumerate() {
+            let targets = primitive["targets"]
+                .as_array()
+                .map(Vec::as_slice)
+                .unwrap_or(&[]);
+            let tables = std::iter::once(("attributes".to_string(), &primitive["attributes"]))
+                .chain(
+                    targets
+                        .iter()
+                        .enumerate()
+                        .map(|(t, target)| (format!("targets[{t}]"), target)),
+                );
+            for (name, table) in tables {
+                for (semantic, index) in table.as_object().into_iter().flatten() {
+                    if index.as_u64().is_some_and(|i| i >= accessors as u64) {
+                        return Err(format!(
+                            "meshes[{m}].primitives[{p}].{name}.{semantic}: accessor {index} \
+                             does not exist ({accessors} accessors)"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 /// State of one import.
@@ -231,6 +315,8 @@ impl Importer<'_> {
         if let Some(&i) = self.image_ids.get(&key) {
             return Ok(TextureSource::Embedded(i));
         }
+        self.check_image_size(&image)
+            .map_err(|e| format!("image {}: {e}", image.index()))?;
         let data =
             ::gltf::image::Data::from_source(image.source(), Some(self.folder), self.buffers)
                 .map_err(|e| format!("image {}: {e}", image.index()))?;
@@ -240,6 +326,43 @@ impl Importer<'_> {
         let i = self.out.embedded_textures.len() - 1;
         self.image_ids.insert(key, i);
         Ok(TextureSource::Embedded(i))
+    }
+}
+
+impl Importer<'_> {
+    /// Refuses an image whose header declares more than [`MAX_TEXELS`] texels (or over
+    /// [`MAX_TEXTURE_SIDE`] a side) before the `gltf` crate decodes it: a small file may
+    /// declare a huge image. Images in buffer views and in files are checked; data URIs are
+    /// left to the decoder.
+    fn check_image_size(&self, image: &::gltf::Image) -> Result<(), String> {
+        let reader = match image.source() {
+            ::gltf::image::Source::View { view, .. } => {
+                let buffer = &self.buffers[view.buffer().index()];
+                let bytes = buffer
+                    .get(view.offset()..view.offset() + view.length())
+                    .ok_or("its buffer view lies outside its buffer")?;
+                image::ImageReader::new(std::io::Cursor::new(bytes.to_vec()))
+                    .with_guessed_format()
+                    .map_err(|e| e.to_string())?
+                    .into_dimensions()
+            }
+            ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+                image::ImageReader::open(self.folder.join(uri))
+                    .and_then(|r| r.with_guessed_format())
+                    .map_err(|e| format!("\"{uri}\": {e}"))?
+                    .into_dimensions()
+            }
+            ::gltf::image::Source::Uri { .. } => return Ok(()),
+        };
+        let (width, height) = reader.map_err(|e| e.to_string())?;
+        let texels = u64::from(width) * u64::from(height);
+        if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE || texels > MAX_TEXELS {
+            return Err(format!(
+                "the image is {width}×{height} = {texels} texels; embedded textures of at most \
+                 {MAX_TEXTURE_SIDE} texels a side and {MAX_TEXELS} texels in all are read"
+            ));
+        }
+        Ok(())
     }
 }
 

@@ -4,8 +4,10 @@
 //! and units) plus the materials its faces use. Materials and textures are not yet part of a
 //! scene: the scene loader decides which of them to keep and assigns their ids.
 
+mod faces;
 pub mod gltf;
 pub mod obj;
+mod obj_syntax;
 
 use super::{ColorSpace, Material, PolygonMesh, Texture};
 use std::path::{Path, PathBuf};

@@ -8,6 +8,8 @@
 //! alpha map cuts surfaces away. Texture paths are relative to the OBJ file's folder; texture
 //! options before the file name (`-s 1 1 1 file.png`) are skipped.
 
+use super::faces::FaceCheck;
+use super::obj_syntax;
 use super::{ImportError, ImportedMaterial, ImportedMesh, TextureSource, append_mesh};
 use crate::color::Rgb;
 use crate::scene::{ColorSpace, Material, PolygonMesh};
@@ -17,15 +19,32 @@ use std::path::Path;
 /// Reads an OBJ file and the MTL libraries it names. A material library that cannot be
 /// opened is not an error: the faces then carry no material and a warning is recorded.
 pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
-    std::fs::File::open(path).map_err(|e| ImportError::unreadable(path, e))?;
+    let text = read_text(path)?;
+    let face_lines = obj_syntax::check(&text).map_err(|e| ImportError::invalid(path, e))?;
     let options = tobj::LoadOptions {
         triangulate: false,
         single_index: true,
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, mtl) =
-        tobj::load_obj(path, &options).map_err(|e| ImportError::invalid(path, e))?;
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let library_error = std::cell::RefCell::new(None);
+    let (models, mtl) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |library| {
+        let library = folder.join(library);
+        let text = std::fs::read(&library).map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        let text = String::from_utf8_lossy(&text);
+        match obj_syntax::check_mtl(&text) {
+            Ok(text) => tobj::load_mtl_buf(&mut text.as_bytes()),
+            Err(e) => {
+                *library_error.borrow_mut() = Some(format!("{}: {e}", library.display()));
+                Err(tobj::LoadError::MaterialParseError)
+            }
+        }
+    })
+    .map_err(|e| ImportError::invalid(path, e))?;
+    if let Some(e) = library_error.into_inner() {
+        return Err(ImportError::invalid(path, e));
+    }
     let mut warnings = Vec::new();
     let mtl_materials = match mtl {
         Ok(materials) => materials,
@@ -38,7 +57,6 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
         }
         Err(e) => return Err(ImportError::invalid(path, format!("material library: {e}"))),
     };
-    let folder = path.parent().unwrap_or(Path::new(""));
     let materials = mtl_materials
         .iter()
         .map(|m| convert_material(m, folder).map_err(|e| ImportError::invalid(path, e)))
@@ -46,9 +64,13 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
 
     let mut mesh = PolygonMesh::default();
     let mut face_materials = Vec::new();
+    let mut faces = FaceCheck::new(face_lines);
     for model in models {
         let part = convert_mesh(&model.mesh)
             .map_err(|e| ImportError::invalid(path, format!("object \"{}\": {e}", model.name)))?;
+        let part = faces
+            .split(part)
+            .map_err(|e| ImportError::invalid(path, e))?;
         let material = match model.mesh.material_id {
             Some(id) if id < materials.len() => Some(id as u32),
             _ => None,
@@ -57,6 +79,7 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
         append_mesh(&mut mesh, part);
     }
     mesh.validate().map_err(|e| ImportError::invalid(path, e))?;
+    warnings.extend(faces.warning(path));
     let (materials, face_materials) = keep_used(materials, face_materials);
     Ok(ImportedMesh {
         mesh,
@@ -65,6 +88,32 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
         embedded_textures: Vec::new(),
         warnings,
     })
+}
+
+/// The text of the OBJ file at `path`. Bytes that are not UTF-8 (a Latin-1 comment) are
+/// replaced; a folder or a file with control characters outside comments is refused.
+fn read_text(path: &Path) -> Result<String, ImportError> {
+    if path.is_dir() {
+        return Err(ImportError::unreadable(path, "it is a folder, not a file"));
+    }
+    let bytes = std::fs::read(path).map_err(|e| ImportError::unreadable(path, e))?;
+    let text = String::from_utf8_lossy(&bytes).into_owned();
+    for (i, line) in text.lines().enumerate() {
+        let code = line.split('#').next().unwrap_or("");
+        if code
+            .chars()
+            .any(|c| c.is_control() && c != '\t' && c != '\r')
+        {
+            return Err(ImportError::invalid(
+                path,
+                format!(
+                    "line {}: control characters: not an OBJ text file (binary data?)",
+                    i + 1
+                ),
+            ));
+        }
+    }
+    Ok(text)
 }
 
 /// One `tobj` mesh as a polygon mesh.

@@ -49,9 +49,9 @@ pub enum Wrap {
 }
 
 /// Widest and tallest texture read, texels.
-pub const MAX_TEXTURE_SIDE: u32 = 1 << 15;
+pub const MAX_TEXTURE_SIDE: u32 = 1 << 16;
 
-/// Most texels a texture read may have (each takes 16 bytes as linear RGBA).
+/// The default bound on the texels of one texture (each takes 16 bytes as linear RGBA: 1 GiB).
 pub const MAX_TEXELS: u64 = 1 << 26;
 
 /// A texture: linear RGBA texels, row 0 at the top of the image. Texture coordinate
@@ -98,8 +98,10 @@ impl Texture {
     }
 
     /// Reads an image file (PNG, JPEG, PPM, PGM, PAM) into linear RGBA, repeating. Grey images
-    /// fill all three colour channels; images without alpha get alpha 1.
-    pub fn load(path: &Path, space: ColorSpace) -> Result<Texture, TextureError> {
+    /// fill all three colour channels; images without alpha get alpha 1. An image of more
+    /// than `max_texels` texels (or over [`MAX_TEXTURE_SIDE`] a side) is refused from its
+    /// header, before it is decoded.
+    pub fn load(path: &Path, space: ColorSpace, max_texels: u64) -> Result<Texture, TextureError> {
         let err = |reason: String| TextureError {
             path: path.display().to_string(),
             reason,
@@ -112,16 +114,17 @@ impl Texture {
         };
         // The header first: a small file may declare a huge image (a decompression bomb).
         let (width, height) = open()?.into_dimensions().map_err(|e| err(e.to_string()))?;
-        if width > MAX_TEXTURE_SIDE
-            || height > MAX_TEXTURE_SIDE
-            || u64::from(width) * u64::from(height) > MAX_TEXELS
-        {
+        let texels = u64::from(width) * u64::from(height);
+        if width > MAX_TEXTURE_SIDE || height > MAX_TEXTURE_SIDE || texels > max_texels {
             return Err(err(format!(
-                "the image is {width}×{height} texels; textures of at most {MAX_TEXTURE_SIDE} \
-                 texels a side and {MAX_TEXELS} texels in all (1 GiB as linear RGBA) are read"
+                "the image is {width}×{height} = {texels} texels; textures of at most \
+                 {MAX_TEXTURE_SIDE} texels a side and {max_texels} texels in all are read \
+                 (raise the bound with --max-texels)"
             )));
         }
-        let img = open()?.decode().map_err(|e| err(e.to_string()))?;
+        let img = open()?
+            .decode()
+            .map_err(|e| err(format!("{e} (a truncated or corrupt image?)")))?;
         if img.width() == 0 || img.height() == 0 {
             return Err(err("image is empty".into()));
         }
@@ -215,10 +218,11 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("bomb.ppm");
         std::fs::write(&path, b"P6\n20000 20000\n255\n\0\0\0").unwrap();
-        let e = Texture::load(&path, ColorSpace::Srgb)
+        let e = Texture::load(&path, ColorSpace::Srgb, MAX_TEXELS)
             .unwrap_err()
             .to_string();
         assert!(e.contains("bomb.ppm") && e.contains("20000×20000"), "{e}");
+        assert!(e.contains("--max-texels"), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
