@@ -6,7 +6,7 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use strahl::measure::physical_bytes;
+use strahl::measure::usable_memory_bytes;
 use strahl::scene::LoadOptions;
 
 /// The bounds on how much work one command may ask for.
@@ -52,7 +52,7 @@ impl LimitArgs {
     pub fn memory_bytes(&self) -> Option<u64> {
         match self.max_memory {
             Some(mib) => Some(mib.saturating_mul(1 << 20)),
-            None => physical_bytes().map(|bytes| bytes / 4 * 3),
+            None => usable_memory_bytes().map(|bytes| bytes / 4 * 3),
         }
     }
 
@@ -128,7 +128,7 @@ mod tests {
             max_memory: None,
             ..limits()
         };
-        if let (Some(bound), Some(machine)) = (default.memory_bytes(), physical_bytes()) {
+        if let (Some(bound), Some(machine)) = (default.memory_bytes(), usable_memory_bytes()) {
             assert!(bound < machine && bound >= machine / 2);
         }
     }

@@ -15,7 +15,7 @@ mod surfaces;
 pub use film::Film;
 pub use lit_mesh::{LightmappedSurface, LitMesh};
 pub use measurement::Measurement;
-pub use memory::{peak_resident_bytes, physical_bytes, resident_bytes};
+pub use memory::{peak_resident_bytes, resident_bytes, usable_memory_bytes};
 pub use stats::Stats;
 pub use surface_power::{PowerBalance, SurfacePower, Totals};
 pub use surfaces::{ReportSurface, SurfaceTable};

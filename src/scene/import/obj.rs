@@ -90,14 +90,16 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
     })
 }
 
-/// The text of the OBJ file at `path`. Bytes that are not UTF-8 (a Latin-1 comment) are
-/// replaced; a folder or a file with control characters outside comments is refused.
+/// The text of the OBJ file at `path`, without a leading byte-order mark. Bytes that are not
+/// UTF-8 (a Latin-1 comment) are replaced; a folder or a file with control characters
+/// outside comments is refused.
 fn read_text(path: &Path) -> Result<String, ImportError> {
     if path.is_dir() {
         return Err(ImportError::unreadable(path, "it is a folder, not a file"));
     }
     let bytes = std::fs::read(path).map_err(|e| ImportError::unreadable(path, e))?;
-    let text = String::from_utf8_lossy(&bytes).into_owned();
+    let bytes = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(&bytes);
+    let text = String::from_utf8_lossy(bytes).into_owned();
     for (i, line) in text.lines().enumerate() {
         let code = line.split('#').next().unwrap_or("");
         if code
@@ -244,6 +246,21 @@ fn texture_file(spec: &str) -> Option<&str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_byte_order_mark_and_latin_1_comments_are_read_past() {
+        let dir = std::env::temp_dir().join(format!("strahl-obj-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bom.obj");
+        let mut bytes = b"\xef\xbb\xbfv 0 0 0\n# mod\xe9le\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_vec();
+        std::fs::write(&path, &bytes).unwrap();
+        assert_eq!(load(&path).unwrap().mesh.face_count(), 1);
+        bytes.extend_from_slice(b"v 0 0 \x01\n");
+        std::fs::write(&path, &bytes).unwrap();
+        let e = load(&path).unwrap_err().to_string();
+        assert!(e.contains("line 6: control characters"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn texture_options_are_skipped() {
