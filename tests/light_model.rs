@@ -252,6 +252,42 @@ fn rectangle_form_factor(x: f64, z: f64, a: f64, b: f64, h: f64) -> f64 {
 }
 
 #[test]
+fn lambertian_point_source_sends_pi_i0_times_the_form_factor() {
+    // I₀ = 2 W/sr facing down at height 1: a patch receives ∫ I₀·cos θ·cos θ'/d² dA =
+    // π·I₀·F, F the form factor from the light's point to the patch; the light's power π·I₀.
+    let (side, centres) = (0.5f32, [(0.0f32, 0.0f32), (1.0, 0.0), (-1.0, 1.5)]);
+    let mut scene = Scene::empty("downlight");
+    let black = scene.add_material(Material::diffuse("black", Rgb::BLACK));
+    for (k, &(x, z)) in centres.iter().enumerate() {
+        scene.add_object(&format!("patch{k}"), patch(x, 0.0, z, side), black);
+    }
+    scene.lights.push(Light {
+        name: None,
+        kind: LightKind::Lambertian {
+            position: Vec3::Y,
+            direction: Vec3::NEG_Y,
+            intensity: Rgb::splat(2.0),
+        },
+    });
+    let n = 1_000_000u64;
+    let report = solve(scene, n, 3);
+    let phi = PI * 2.0;
+    assert!((sum(report.totals.emitted_power) - 3.0 * phi).abs() < 1e-6 * phi);
+    for (k, &(x, z)) in centres.iter().enumerate() {
+        let half = 0.5 * side as f64;
+        let f = rectangle_form_factor(-x as f64, -z as f64, half, half, 1.0);
+        let expected = phi * f;
+        // Hits are binomial with p = F.
+        let sigma = expected * ((1.0 - f) / (n as f64 * f)).sqrt();
+        let got = object(&report, &format!("patch{k}")).incident_power[1];
+        assert!(
+            (got - expected).abs() < 4.0 * sigma,
+            "patch{k}: {got} vs {expected} ± {sigma}"
+        );
+    }
+}
+
+#[test]
 fn centred_form_factor_formula_matches_quadrature() {
     // F = (2/π)[a/√(1+a²)·atan(b/√(1+a²)) + b/√(1+b²)·atan(a/√(1+b²))], a, b half sides
     // over the distance, against ∫ cos·cos/(π r²) dA over the rectangle.

@@ -256,6 +256,50 @@ fn point_light_link_gives_the_exact_mean_irradiance_and_the_lights_full_power() 
     }
 }
 
+#[test]
+fn lambertian_point_light_link_matches_the_form_factor() {
+    // I₀ = 2 W/sr facing down from (0.5, 1, 0.5) over a unit floor: it receives π·I₀·F, F
+    // the form factor from the light's point to the floor (the centred closed form).
+    let mut scene = Scene::empty("downlight");
+    let m = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
+    scene.add_object(
+        "floor",
+        Shape::Parallelogram {
+            origin: Vec3::ZERO,
+            edge_u: Vec3::Z,
+            edge_v: Vec3::X,
+        },
+        m,
+    );
+    scene.lights.push(Light {
+        name: None,
+        kind: LightKind::Lambertian {
+            position: Vec3::new(0.5, 1.0, 0.5),
+            direction: Vec3::NEG_Y,
+            intensity: Rgb::splat(2.0),
+        },
+    });
+    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let pi = std::f64::consts::PI;
+    let a: f64 = 0.5; // half side over height
+    let f = 2.0 / pi * (a / (1.0 + a * a).sqrt() * (a / (1.0 + a * a).sqrt()).atan()) * 2.0;
+    let expected = pi * 2.0 * f;
+    let settings = HierarchicalSettings {
+        error: 1e-5,
+        ..HierarchicalSettings::default()
+    };
+    let (system, solution) =
+        solve_hierarchical(&world, options(0), &settings, &NoProgress, &Cancel::new()).unwrap();
+    let report = Report::new("downlight", &solution.measurement(&system));
+    let got = report.objects[0].incident_power[0];
+    assert!(
+        (got - expected).abs() < 2e-3 * expected,
+        "{got} vs {expected}"
+    );
+    let power = report.totals.emitted_power[0];
+    assert!((power - pi * 2.0).abs() < 1e-5, "{power}");
+}
+
 /// The display of `solution` through the scene's camera.
 fn display(
     world: &World,

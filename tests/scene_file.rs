@@ -55,7 +55,7 @@ fn documented_example_is_in_the_docs_and_loads_with_expected_counts() {
     assert_eq!((s.camera.width, s.camera.height), (320, 240));
     assert!((s.camera.fov_degrees - 50.0).abs() < EPS);
     assert_eq!(s.objects.len(), 16);
-    assert_eq!(s.lights.len(), 5);
+    assert_eq!(s.lights.len(), 6);
     // 10 defined + implicit default + "lamp" (tiny.mtl) + "glow" (tiny.gltf); tiny.mtl's
     // "checker" is replaced by the scene's own and its unused "unused" is dropped.
     let names: Vec<&str> = s.materials.iter().map(|m| m.name.as_str()).collect();
@@ -109,6 +109,10 @@ fn documented_example_is_in_the_docs_and_loads_with_expected_counts() {
         ref other => panic!("expected a spot light, got {other:?}"),
     }
     match s.lights[3].kind {
+        LightKind::Lambertian { intensity, .. } => assert_eq!(intensity, Rgb::splat(8.0)),
+        ref other => panic!("expected a Lambertian light, got {other:?}"),
+    }
+    match s.lights[4].kind {
         LightKind::Directional { direction, .. } => {
             assert!(close(direction, Vec3::new(-1.0, -2.0, -1.0).normalize()));
         }
@@ -585,6 +589,29 @@ fn an_emission_that_would_overflow_is_rejected() {
     let e = error("[materials.sun]\nemission = 1e38\n");
     assert!(
         e.starts_with("scene.toml:2:12: materials.sun.emission: colour 1e38 is beyond 1e18"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_lambertian_light_is_aimed_by_direction_or_look_at() {
+    let scene = ok("[[lights]]\ntype = \"lambertian\"\nposition = [0, 3, 0]\n\
+                    look_at = [0, 0, 0]\nintensity = 100\n");
+    match scene.lights[0].kind {
+        LightKind::Lambertian {
+            position,
+            direction,
+            intensity,
+        } => {
+            assert!(close(position, Vec3::new(0.0, 3.0, 0.0)));
+            assert!(close(direction, Vec3::NEG_Y));
+            assert_eq!(intensity, Rgb::splat(100.0));
+        }
+        ref other => panic!("{other:?}"),
+    }
+    let e = error("[[lights]]\ntype = \"lambertian\"\nposition = [0, 3, 0]\nintensity = 1\n");
+    assert!(
+        e.contains("lights[0].direction") && e.contains("type lambertian needs direction"),
         "{e}"
     );
 }

@@ -54,6 +54,7 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     for l in &scene.lights {
         let k = match l.kind {
             LightKind::Point { .. } => "point",
+            LightKind::Lambertian { .. } => "lambertian",
             LightKind::Spot { .. } => "spot",
             LightKind::Directional { .. } => "directional",
             LightKind::Sky { .. } => "sky",

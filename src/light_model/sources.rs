@@ -44,6 +44,8 @@ enum SourceKind {
     },
     /// Isotropic point light.
     Point { position: Vec3 },
+    /// Lambertian point light with its axis frame.
+    Lambertian { position: Vec3, frame: Frame },
     /// Spot light with its axis frame and the widest cone cosine that can emit.
     Spot {
         position: Vec3,
@@ -125,6 +127,22 @@ impl PhotonSources {
                     kind: SourceKind::Point { position },
                     power,
                 },
+                LightKind::Lambertian {
+                    position,
+                    direction,
+                    ..
+                } => {
+                    let Some(axis) = direction.try_normalize() else {
+                        continue;
+                    };
+                    PhotonSource {
+                        kind: SourceKind::Lambertian {
+                            position,
+                            frame: Frame::from_normal(axis),
+                        },
+                        power,
+                    }
+                }
                 LightKind::Spot {
                     position,
                     direction,
@@ -203,6 +221,14 @@ impl PhotonSources {
             }
             SourceKind::Point { position } => EmittedPhoton {
                 ray: Ray::new(*position, uniform_sphere(sampler.next_2d())),
+                power: source.power,
+                surface: None,
+            },
+            SourceKind::Lambertian { position, frame } => EmittedPhoton {
+                ray: Ray::new(
+                    *position,
+                    frame.to_world(cosine_hemisphere(sampler.next_2d())),
+                ),
                 power: source.power,
                 surface: None,
             },

@@ -63,6 +63,11 @@ pub fn light_irradiance(
             position,
             intensity,
         }
+        | LightKind::Lambertian {
+            position,
+            intensity,
+            ..
+        }
         | LightKind::Spot {
             position,
             intensity,
@@ -118,10 +123,18 @@ pub fn point_irradiance(world: &World, light: &LightKind, x: DVec3, normal: DVec
     }
 }
 
-/// The share of the intensity that `light` sends toward `x`: the spot falloff, 1 for a point
-/// light.
+/// The share of the intensity that `light` sends toward `x`: the spot falloff, the cosine
+/// for a Lambertian light, 1 for a point light.
 fn falloff(light: &LightKind, x: DVec3) -> f64 {
     match *light {
+        LightKind::Lambertian {
+            position,
+            direction,
+            ..
+        } => {
+            let toward = (x - position.as_dvec3()).normalize_or_zero();
+            toward.dot(direction.as_dvec3()).max(0.0)
+        }
         LightKind::Spot {
             position,
             direction,

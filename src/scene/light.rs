@@ -25,8 +25,20 @@ pub enum LightKind {
         /// Radiant intensity I in W·sr⁻¹; a surface at distance d receives E = I·cosθ/d².
         intensity: Rgb,
     },
+    /// Lambertian (cosine) point source: intensity `I₀·cos θ` at angle θ from `direction`,
+    /// none behind — a small diffuse emitter seen from afar (a downlight). Power π·I₀.
+    Lambertian {
+        /// Position (scene units).
+        position: Vec3,
+        /// Unit direction of the largest intensity (the emitter's normal).
+        direction: Vec3,
+        /// Radiant intensity along `direction`, I₀, W·sr⁻¹; a surface at distance d facing
+        /// it receives E = I₀·cos θ/d².
+        intensity: Rgb,
+    },
     /// Point source limited to a cone, full intensity inside `inner_degrees` of the axis,
-    /// falling smoothly (smoothstep in cos θ) to zero at `outer_degrees`.
+    /// falling to zero at `outer_degrees` as the smoothstep of cos θ between the cones' cosines
+    /// ([`LightKind::spot_falloff`]).
     Spot {
         /// Position (scene units).
         position: Vec3,
@@ -84,6 +96,16 @@ impl LightKind {
                 position,
                 intensity,
             } => from_point(position, intensity),
+            LightKind::Lambertian {
+                position,
+                direction,
+                intensity,
+            } => {
+                let mut inc = from_point(position, intensity)?;
+                let cos = -inc.wi.dot(direction);
+                inc.irradiance *= cos.max(0.0);
+                (cos > 0.0).then_some(inc)
+            }
             LightKind::Spot {
                 position,
                 direction,
@@ -122,11 +144,12 @@ impl LightKind {
     }
 
     /// Power (W) a point, spot or directional light sends into a scene bounded by a sphere of
-    /// `scene_radius`: 4π·I, I times the spot's solid angle, E·πR². `None` for the sky, whose
-    /// power depends on how it is sampled.
+    /// `scene_radius`: 4π·I, π·I₀ for a Lambertian one, I times the spot's solid angle, E·πR².
+    /// `None` for the sky, whose power depends on how it is sampled.
     pub fn power(&self, scene_radius: f32) -> Option<Rgb> {
         match *self {
             LightKind::Point { intensity, .. } => Some(intensity * (4.0 * PI)),
+            LightKind::Lambertian { intensity, .. } => Some(intensity * PI),
             LightKind::Spot {
                 intensity,
                 inner_degrees,
@@ -184,6 +207,29 @@ mod tests {
             .incidence(Vec3::ZERO)
             .is_none()
         );
+    }
+
+    #[test]
+    fn a_lambertian_light_falls_with_the_cosine_and_sends_pi_times_its_intensity() {
+        let light = LightKind::Lambertian {
+            position: Vec3::new(0.0, 2.0, 0.0),
+            direction: Vec3::NEG_Y,
+            intensity: Rgb::splat(8.0),
+        };
+        assert_eq!(
+            light.incidence(Vec3::ZERO).unwrap().irradiance,
+            Rgb::splat(2.0)
+        );
+        // 60° off the axis at distance 4: 8·cos 60°/16.
+        let x = Vec3::new(4.0 * 60f32.to_radians().sin(), 2.0 - 2.0, 0.0);
+        let at = Vec3::new(x.x, 2.0 - 4.0 * 60f32.to_radians().cos(), 0.0);
+        let e = light.incidence(at).unwrap().irradiance.r;
+        assert!((e - 8.0 * 0.5 / 16.0).abs() < 1e-6, "{e}");
+        assert!(
+            light.incidence(Vec3::new(0.0, 3.0, 0.0)).is_none(),
+            "behind"
+        );
+        assert_eq!(light.power(1.0), Some(Rgb::splat(8.0 * PI)));
     }
 
     #[test]

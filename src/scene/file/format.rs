@@ -195,6 +195,7 @@ impl ObjectEntry {
 #[serde(rename_all = "lowercase")]
 pub(super) enum LightType {
     Point,
+    Lambertian,
     Spot,
     Directional,
     Sky,
@@ -205,6 +206,7 @@ impl LightType {
     pub fn name(self) -> &'static str {
         match self {
             LightType::Point => "point",
+            LightType::Lambertian => "lambertian",
             LightType::Spot => "spot",
             LightType::Directional => "directional",
             LightType::Sky => "sky",
@@ -215,6 +217,7 @@ impl LightType {
     pub fn fields(self) -> &'static [&'static str] {
         match self {
             LightType::Point => &["position", "intensity"],
+            LightType::Lambertian => &["position", "direction", "look_at", "intensity"],
             LightType::Spot => &[
                 "position",
                 "direction",

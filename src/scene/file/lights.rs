@@ -1,4 +1,4 @@
-//! `[[lights]]` entries: point, spot, directional and sky lights.
+//! `[[lights]]` entries: point, Lambertian point, spot, directional and sky lights.
 
 use super::error::SceneError;
 use super::fields::Table;
@@ -21,34 +21,17 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
             position: t.required_vec3("position", e.position.as_ref(), why)?,
             intensity: color("intensity", e.intensity.as_ref())?,
         },
+        LightType::Lambertian => {
+            let position = t.required_vec3("position", e.position.as_ref(), why)?;
+            LightKind::Lambertian {
+                position,
+                direction: aim(t, e, position, why)?,
+                intensity: color("intensity", e.intensity.as_ref())?,
+            }
+        }
         LightType::Spot => {
             let position = t.required_vec3("position", e.position.as_ref(), why)?;
-            let direction = match (e.direction.as_ref(), e.look_at.as_ref()) {
-                (Some(_), Some(l)) => {
-                    return Err(t.error(
-                        l.span(),
-                        "look_at",
-                        "give direction or look_at, not both",
-                    ));
-                }
-                (Some(d), None) => unit(
-                    t,
-                    "direction",
-                    d,
-                    t.required_vec3("direction", Some(d), why)?,
-                )?,
-                (None, Some(l)) => {
-                    let target = t.required_vec3("look_at", Some(l), why)?;
-                    unit(t, "look_at", l, target - position)?
-                }
-                (None, None) => {
-                    return Err(t.error(
-                        t.span.clone(),
-                        "direction",
-                        "missing field: a spot light needs direction or look_at",
-                    ));
-                }
-            };
+            let direction = aim(t, e, position, why)?;
             let inner = t.required_number("inner_degrees", e.inner_degrees.as_ref(), why)?;
             let outer = t.required_number("outer_degrees", e.outer_degrees.as_ref(), why)?;
             if !(outer > 0.0 && outer <= 180.0) {
@@ -96,6 +79,30 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
         name: e.name.clone(),
         kind,
     })
+}
+
+/// The unit axis of a light at `position` aimed by `direction` or `look_at` (exactly one).
+fn aim(t: &Table<'_>, e: &LightEntry, position: Vec3, why: &str) -> Result<Vec3, SceneError> {
+    match (e.direction.as_ref(), e.look_at.as_ref()) {
+        (Some(_), Some(l)) => {
+            Err(t.error(l.span(), "look_at", "give direction or look_at, not both"))
+        }
+        (Some(d), None) => unit(
+            t,
+            "direction",
+            d,
+            t.required_vec3("direction", Some(d), why)?,
+        ),
+        (None, Some(l)) => {
+            let target = t.required_vec3("look_at", Some(l), why)?;
+            unit(t, "look_at", l, target - position)
+        }
+        (None, None) => Err(t.error(
+            t.span.clone(),
+            "direction",
+            format!("missing field: {why} needs direction or look_at"),
+        )),
+    }
 }
 
 /// `v` normalised; an error at `field` when it is zero.

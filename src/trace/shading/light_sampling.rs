@@ -4,9 +4,10 @@
 //! Power estimates (luminance, watts) used only to choose lights:
 //! - area light: [`crate::world::AreaLight::power`], π·L·A per emitting side (texture mean
 //!   applied);
-//! - point, spot and directional lights: [`crate::scene::LightKind::power`] — 4π·I, I times
-//!   the spot's exact solid angle ([`crate::scene::LightKind::spot_solid_angle`]), E·πr² with
-//!   r the radius of the bounding sphere of the bounded geometry;
+//! - point, Lambertian, spot and directional lights: [`crate::scene::LightKind::power`] —
+//!   4π·I, π·I₀, I times the spot's exact solid angle
+//!   ([`crate::scene::LightKind::spot_solid_angle`]), E·πr² with r the radius of the bounding
+//!   sphere of the bounded geometry;
 //! - sky: π·L·πr² (the radiance through the scene's cross-section from one hemisphere).
 //!
 //! Area lights are sampled uniformly by area and their density turned into solid angle,
