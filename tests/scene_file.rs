@@ -615,3 +615,78 @@ fn a_lambertian_light_is_aimed_by_direction_or_look_at() {
         "{e}"
     );
 }
+
+#[test]
+fn photometric_amounts_convert_exactly() {
+    let pi = std::f32::consts::PI;
+    let lights = ok(&format!(
+        "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity_cd = 683\n\n\
+         [[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nflux_lm = {}\n\n\
+         [[lights]]\ntype = \"lambertian\"\nposition = [0, 1, 0]\ndirection = [0, -1, 0]\n\
+         flux_lm = {}\n\n\
+         [[lights]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, -1, 0]\n\
+         inner_degrees = 20\nouter_degrees = 30\nflux_lm = {}\n\n\
+         [[lights]]\ntype = \"directional\"\ndirection = [0, -1, 0]\nilluminance_lux = 683\n\
+         color = [1, 0, 0]\n\n\
+         [[lights]]\ntype = \"sky\"\nluminance_cd_m2 = 6830\ncolor = [0.5, 0.5, 0.5]\n\n\
+         [materials.panel]\nluminance_cd_m2 = 1366\nemission_color = [0, 1, 0]\n",
+        683.0 * 4.0 * pi,
+        683.0 * pi,
+        683.0 * LightKind::spot_solid_angle(20.0, 30.0),
+    ));
+    let near = |a: Rgb, b: Rgb| (a.r - b.r).abs() + (a.g - b.g).abs() + (a.b - b.b).abs() < 1e-5;
+    for light in &lights.lights[..4] {
+        let intensity = match light.kind {
+            LightKind::Point { intensity, .. }
+            | LightKind::Lambertian { intensity, .. }
+            | LightKind::Spot { intensity, .. } => intensity,
+            ref other => panic!("{other:?}"),
+        };
+        assert!(near(intensity, Rgb::WHITE), "{light:?}");
+    }
+    let LightKind::Directional { irradiance, .. } = lights.lights[4].kind else {
+        panic!()
+    };
+    // 683 lux of pure red: Y = 0.2126·r = 1 W/m².
+    assert!(
+        near(irradiance, Rgb::new(1.0 / 0.2126, 0.0, 0.0)),
+        "{irradiance:?}"
+    );
+    let LightKind::Sky { radiance } = lights.lights[5].kind else {
+        panic!()
+    };
+    assert!(near(radiance, Rgb::splat(10.0)), "{radiance:?}");
+    let panel = &lights.materials[lights.material_id("panel").unwrap() as usize];
+    assert!(near(panel.emission, Rgb::new(0.0, 2.0 / 0.7152, 0.0)));
+    assert!((panel.emission.luminance() * 683.0 - 1366.0).abs() < 1e-3);
+
+    for (text, says) in [
+        (
+            "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = 1\nflux_lm = 5\n",
+            "lights[0].flux_lm: give one of intensity, intensity_cd, flux_lm, not several",
+        ),
+        (
+            "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity = 1\ncolor = [1, 0, 0]\n",
+            "lights[0].color: color is the colour of a photometric amount",
+        ),
+        (
+            "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity_cd = 5\ncolor = 0\n",
+            "lights[0].color: the colour has no luminance",
+        ),
+        (
+            "[[lights]]\ntype = \"point\"\nposition = [0, 1, 0]\nintensity_cd = -5\n",
+            "lights[0].intensity_cd: must be a finite number ≥ 0",
+        ),
+        (
+            "[[lights]]\ntype = \"sky\"\nilluminance_lux = 5\n",
+            "lights[0].illuminance_lux: field does not apply to type sky",
+        ),
+        (
+            "[materials.m]\nemission = 1\nluminance_cd_m2 = 5\n",
+            "materials.m.luminance_cd_m2: give one of emission, luminance_cd_m2",
+        ),
+    ] {
+        let e = error(text);
+        assert!(e.contains(says), "{text}: {e}");
+    }
+}

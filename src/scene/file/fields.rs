@@ -11,7 +11,7 @@ use toml::Spanned;
 /// Largest colour channel a scene file may give (emission, light colours): far beyond any
 /// physical radiance in any units, and far enough below `f32::MAX` that sums of many samples
 /// stay finite (`emission = 1e38` rendered infinite pixels).
-const MAX_COLOUR: f32 = 1e18;
+pub(super) const MAX_COLOUR: f32 = 1e18;
 
 /// One table of the scene file: its path (`objects[2]`) and span.
 #[derive(Clone, Debug)]

@@ -43,6 +43,8 @@ pub(super) struct MaterialEntry {
     pub diffuse: Option<Spanned<Triple>>,
     pub diffuse_texture: Option<Spanned<TextureEntry>>,
     pub emission: Option<Spanned<Triple>>,
+    pub luminance_cd_m2: Option<Spanned<f32>>,
+    pub emission_color: Option<Spanned<Triple>>,
     pub emission_texture: Option<Spanned<TextureEntry>>,
     pub two_sided: Option<bool>,
     pub specular: Option<Spanned<Triple>>,
@@ -216,18 +218,29 @@ impl LightType {
     /// The fields this type accepts besides `type` and `name`.
     pub fn fields(self) -> &'static [&'static str] {
         match self {
-            LightType::Point => &["position", "intensity"],
-            LightType::Lambertian => &["position", "direction", "look_at", "intensity"],
+            LightType::Point => &["position", "intensity", "intensity_cd", "flux_lm", "color"],
+            LightType::Lambertian => &[
+                "position",
+                "direction",
+                "look_at",
+                "intensity",
+                "intensity_cd",
+                "flux_lm",
+                "color",
+            ],
             LightType::Spot => &[
                 "position",
                 "direction",
                 "look_at",
                 "intensity",
+                "intensity_cd",
+                "flux_lm",
+                "color",
                 "inner_degrees",
                 "outer_degrees",
             ],
-            LightType::Directional => &["direction", "irradiance"],
-            LightType::Sky => &["radiance"],
+            LightType::Directional => &["direction", "irradiance", "illuminance_lux", "color"],
+            LightType::Sky => &["radiance", "luminance_cd_m2", "color"],
         }
     }
 }
@@ -247,6 +260,11 @@ pub(super) struct LightEntry {
     pub outer_degrees: Option<Spanned<f32>>,
     pub irradiance: Option<Spanned<Triple>>,
     pub radiance: Option<Spanned<Triple>>,
+    pub intensity_cd: Option<Spanned<f32>>,
+    pub flux_lm: Option<Spanned<f32>>,
+    pub illuminance_lux: Option<Spanned<f32>>,
+    pub luminance_cd_m2: Option<Spanned<f32>>,
+    pub color: Option<Spanned<Triple>>,
 }
 
 impl LightEntry {
@@ -272,6 +290,20 @@ impl LightEntry {
         );
         add("irradiance", self.irradiance.as_ref().map(Spanned::span));
         add("radiance", self.radiance.as_ref().map(Spanned::span));
+        add(
+            "intensity_cd",
+            self.intensity_cd.as_ref().map(Spanned::span),
+        );
+        add("flux_lm", self.flux_lm.as_ref().map(Spanned::span));
+        add(
+            "illuminance_lux",
+            self.illuminance_lux.as_ref().map(Spanned::span),
+        );
+        add(
+            "luminance_cd_m2",
+            self.luminance_cd_m2.as_ref().map(Spanned::span),
+        );
+        add("color", self.color.as_ref().map(Spanned::span));
         out
     }
 }

@@ -3,8 +3,10 @@
 use super::error::SceneError;
 use super::fields::Table;
 use super::format::{LightEntry, LightType};
+use super::photometry::{self, Photometric};
 use crate::scene::{Light, LightKind};
 use glam::Vec3;
+use std::f32::consts::PI;
 use toml::Spanned;
 
 /// The light described by `e`.
@@ -13,20 +15,34 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
     t.only_fields(&e.kind_fields(), kind.fields(), kind.name())?;
     let why = format!("type {}", kind.name());
     let why = why.as_str();
-    let color = |name: &str, v: Option<&Spanned<super::value::Triple>>| {
-        t.rgb(name, v)?.ok_or_else(|| t.missing(name, why))
+    // The light's amount, radiometric (`name`) or photometric (`photometric`, each with the
+    // solid angle its flux spreads over, or 1), one of them required.
+    let color =
+        |name: &str, v: Option<&Spanned<super::value::Triple>>, photometric: &[Photometric<'_>]| {
+            photometry::amount(t, (name, v), photometric, ("color", e.color.as_ref()))?
+                .ok_or_else(|| t.missing(name, why))
+        };
+    let intensity = |solid_angle: f32| {
+        color(
+            "intensity",
+            e.intensity.as_ref(),
+            &[
+                ("intensity_cd", e.intensity_cd.as_ref(), 1.0),
+                ("flux_lm", e.flux_lm.as_ref(), solid_angle),
+            ],
+        )
     };
     let kind = match kind {
         LightType::Point => LightKind::Point {
             position: t.required_vec3("position", e.position.as_ref(), why)?,
-            intensity: color("intensity", e.intensity.as_ref())?,
+            intensity: intensity(4.0 * PI)?,
         },
         LightType::Lambertian => {
             let position = t.required_vec3("position", e.position.as_ref(), why)?;
             LightKind::Lambertian {
                 position,
                 direction: aim(t, e, position, why)?,
-                intensity: color("intensity", e.intensity.as_ref())?,
+                intensity: intensity(PI)?,
             }
         }
         LightType::Spot => {
@@ -51,7 +67,7 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
             LightKind::Spot {
                 position,
                 direction,
-                intensity: color("intensity", e.intensity.as_ref())?,
+                intensity: intensity(LightKind::spot_solid_angle(inner, outer))?,
                 inner_degrees: inner,
                 outer_degrees: outer,
             }
@@ -68,11 +84,19 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
                     d,
                     t.required_vec3("direction", Some(d), why)?,
                 )?,
-                irradiance: color("irradiance", e.irradiance.as_ref())?,
+                irradiance: color(
+                    "irradiance",
+                    e.irradiance.as_ref(),
+                    &[("illuminance_lux", e.illuminance_lux.as_ref(), 1.0)],
+                )?,
             }
         }
         LightType::Sky => LightKind::Sky {
-            radiance: color("radiance", e.radiance.as_ref())?,
+            radiance: color(
+                "radiance",
+                e.radiance.as_ref(),
+                &[("luminance_cd_m2", e.luminance_cd_m2.as_ref(), 1.0)],
+            )?,
         },
     };
     Ok(Light {

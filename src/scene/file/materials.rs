@@ -3,6 +3,7 @@
 use super::error::SceneError;
 use super::fields::Table;
 use super::format::MaterialEntry;
+use super::photometry;
 use super::textures::TextureCache;
 use super::value::{ColorSpaceName, TextureEntry, WrapName};
 use crate::color::Rgb;
@@ -54,9 +55,13 @@ pub(super) fn build_material(
             sum.max_channel()
         )));
     }
-    let emission = t
-        .rgb("emission", e.emission.as_ref())?
-        .unwrap_or(Rgb::BLACK);
+    let emission = photometry::amount(
+        t,
+        ("emission", e.emission.as_ref()),
+        &[("luminance_cd_m2", e.luminance_cd_m2.as_ref(), 1.0)],
+        ("emission_color", e.emission_color.as_ref()),
+    )?
+    .unwrap_or(Rgb::BLACK);
     let shininess = match t.number("shininess", e.shininess.as_ref())? {
         Some(s) if s < 0.0 => {
             let span = e.shininess.as_ref().map_or(t.span.clone(), Spanned::span);

@@ -10,6 +10,7 @@ mod lights;
 mod locate;
 mod materials;
 mod meshes;
+mod photometry;
 mod shapes;
 mod textures;
 mod transform;
