@@ -38,17 +38,14 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
     let folder = path.parent().unwrap_or(Path::new(""));
     for buffer in document.buffers() {
         if let ::gltf::buffer::Source::Uri(uri) = buffer.source()
-            && !uri.starts_with("data:")
-            && !uri.contains('%')
-            && !folder.join(uri).is_file()
+            && let Some(file) = relative_file(uri)
         {
-            return Err(ImportError::invalid(
-                path,
-                format!(
-                    "buffers[{}].uri: cannot read \"{uri}\" next to the glTF file",
-                    buffer.index()
-                ),
-            ));
+            let at = |e: String| {
+                ImportError::invalid(path, format!("buffers[{}].uri: {e}", buffer.index()))
+            };
+            if !folder.join(file.map_err(at)?).is_file() {
+                return Err(at(format!("cannot read \"{uri}\" next to the glTF file")));
+            }
         }
     }
     let buffers = ::gltf::import_buffers(&document, Some(folder), blob)
@@ -92,6 +89,39 @@ pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
         .validate()
         .map_err(|e| ImportError::invalid(path, e))?;
     Ok(importer.out)
+}
+
+/// The file a URI without a scheme names, percent-decoded (`None` for `data:` and other
+/// schemes); an error when the decoded bytes are not UTF-8 (the `gltf` crate unwrapped the
+/// decoding and panicked).
+fn relative_file(uri: &str) -> Option<Result<String, String>> {
+    if uri.contains(':') {
+        return None;
+    }
+    let bytes = uri.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let hex = bytes
+            .get(i + 1..i + 3)
+            .and_then(|h| std::str::from_utf8(h).ok())
+            .and_then(|h| u8::from_str_radix(h, 16).ok());
+        match (bytes[i], hex) {
+            (b'%', Some(byte)) => {
+                out.push(byte);
+                i += 3;
+            }
+            (b, _) => {
+                out.push(b);
+                i += 1;
+            }
+        }
+    }
+    Some(
+        String::from_utf8(out).map_err(|_| {
+            format!("\"{uri}\" decodes to a name that is not UTF-8 (a stray %-escape?)")
+        }),
+    )
 }
 
 /// Checks that a binary glTF's header declares a length no shorter than the header itself
@@ -332,8 +362,8 @@ impl Importer<'_> {
 impl Importer<'_> {
     /// Refuses an image whose header declares more than [`MAX_TEXELS`] texels (or over
     /// [`MAX_TEXTURE_SIDE`] a side) before the `gltf` crate decodes it: a small file may
-    /// declare a huge image. Images in buffer views and in files are checked; data URIs are
-    /// left to the decoder.
+    /// declare a huge image. Images in buffer views and in files are checked; data URIs and
+    /// other schemes are left to the decoder.
     fn check_image_size(&self, image: &::gltf::Image) -> Result<(), String> {
         let reader = match image.source() {
             ::gltf::image::Source::View { view, .. } => {
@@ -346,13 +376,15 @@ impl Importer<'_> {
                     .map_err(|e| e.to_string())?
                     .into_dimensions()
             }
-            ::gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
-                image::ImageReader::open(self.folder.join(uri))
+            ::gltf::image::Source::Uri { uri, .. } => {
+                let Some(file) = relative_file(uri) else {
+                    return Ok(());
+                };
+                image::ImageReader::open(self.folder.join(file?))
                     .and_then(|r| r.with_guessed_format())
                     .map_err(|e| format!("\"{uri}\": {e}"))?
                     .into_dimensions()
             }
-            ::gltf::image::Source::Uri { .. } => return Ok(()),
         };
         let (width, height) = reader.map_err(|e| e.to_string())?;
         let texels = u64::from(width) * u64::from(height);
