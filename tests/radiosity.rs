@@ -207,8 +207,8 @@ fn gauss_seidel_needs_fewer_sweeps_than_jacobi() {
     );
 }
 
-#[test]
-fn point_light_link_gives_the_exact_mean_irradiance_and_the_lights_full_power() {
+/// A grey unit floor (y = 0, facing up) lit by `light` alone.
+fn floor_under(light: LightKind) -> World {
     let mut scene = Scene::empty("lamp");
     let m = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
     scene.add_object(
@@ -220,15 +220,20 @@ fn point_light_link_gives_the_exact_mean_irradiance_and_the_lights_full_power() 
         },
         m,
     );
-    let at = Vec3::new(2.5, 2.0, 0.5);
     scene.lights.push(Light {
         name: None,
-        kind: LightKind::Point {
-            position: at,
-            intensity: Rgb::splat(8.0),
-        },
+        kind: light,
     });
-    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    World::new(scene, AccelKind::Bvh).unwrap()
+}
+
+#[test]
+fn point_light_link_gives_the_exact_mean_irradiance_and_the_lights_full_power() {
+    let at = Vec3::new(2.5, 2.0, 0.5);
+    let world = floor_under(LightKind::Point {
+        position: at,
+        intensity: Rgb::splat(8.0),
+    });
     let mut opts = options(0);
     opts.link_samples = 1;
     let system = RadiositySystem::new(&world, opts).unwrap();
@@ -260,26 +265,11 @@ fn point_light_link_gives_the_exact_mean_irradiance_and_the_lights_full_power() 
 fn lambertian_point_light_link_matches_the_form_factor() {
     // I₀ = 2 W/sr facing down from (0.5, 1, 0.5) over a unit floor: it receives π·I₀·F, F
     // the form factor from the light's point to the floor (the centred closed form).
-    let mut scene = Scene::empty("downlight");
-    let m = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
-    scene.add_object(
-        "floor",
-        Shape::Parallelogram {
-            origin: Vec3::ZERO,
-            edge_u: Vec3::Z,
-            edge_v: Vec3::X,
-        },
-        m,
-    );
-    scene.lights.push(Light {
-        name: None,
-        kind: LightKind::Lambertian {
-            position: Vec3::new(0.5, 1.0, 0.5),
-            direction: Vec3::NEG_Y,
-            intensity: Rgb::splat(2.0),
-        },
+    let world = floor_under(LightKind::Lambertian {
+        position: Vec3::new(0.5, 1.0, 0.5),
+        direction: Vec3::NEG_Y,
+        intensity: Rgb::splat(2.0),
     });
-    let world = World::new(scene, AccelKind::Bvh).unwrap();
     let pi = std::f64::consts::PI;
     let a: f64 = 0.5; // half side over height
     let f = 2.0 / pi * (a / (1.0 + a * a).sqrt() * (a / (1.0 + a * a).sqrt()).atan()) * 2.0;

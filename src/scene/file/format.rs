@@ -270,40 +270,26 @@ pub(super) struct LightEntry {
 impl LightEntry {
     /// The type-specific fields present, with the span of each value.
     pub fn kind_fields(&self) -> Vec<(&'static str, Range<usize>)> {
-        let mut out = Vec::new();
-        let mut add = |name: &'static str, span: Option<Range<usize>>| {
-            if let Some(span) = span {
-                out.push((name, span));
-            }
-        };
-        add("position", self.position.as_ref().map(Spanned::span));
-        add("direction", self.direction.as_ref().map(Spanned::span));
-        add("look_at", self.look_at.as_ref().map(Spanned::span));
-        add("intensity", self.intensity.as_ref().map(Spanned::span));
-        add(
-            "inner_degrees",
-            self.inner_degrees.as_ref().map(Spanned::span),
-        );
-        add(
-            "outer_degrees",
-            self.outer_degrees.as_ref().map(Spanned::span),
-        );
-        add("irradiance", self.irradiance.as_ref().map(Spanned::span));
-        add("radiance", self.radiance.as_ref().map(Spanned::span));
-        add(
-            "intensity_cd",
-            self.intensity_cd.as_ref().map(Spanned::span),
-        );
-        add("flux_lm", self.flux_lm.as_ref().map(Spanned::span));
-        add(
-            "illuminance_lux",
-            self.illuminance_lux.as_ref().map(Spanned::span),
-        );
-        add(
-            "luminance_cd_m2",
-            self.luminance_cd_m2.as_ref().map(Spanned::span),
-        );
-        add("color", self.color.as_ref().map(Spanned::span));
-        out
+        let triple = |v: &Option<Spanned<Triple>>| v.as_ref().map(Spanned::span);
+        let coords = |v: &Option<Spanned<Coords>>| v.as_ref().map(Spanned::span);
+        let number = |v: &Option<Spanned<f32>>| v.as_ref().map(Spanned::span);
+        [
+            ("position", coords(&self.position)),
+            ("direction", coords(&self.direction)),
+            ("look_at", coords(&self.look_at)),
+            ("intensity", triple(&self.intensity)),
+            ("inner_degrees", number(&self.inner_degrees)),
+            ("outer_degrees", number(&self.outer_degrees)),
+            ("irradiance", triple(&self.irradiance)),
+            ("radiance", triple(&self.radiance)),
+            ("intensity_cd", number(&self.intensity_cd)),
+            ("flux_lm", number(&self.flux_lm)),
+            ("illuminance_lux", number(&self.illuminance_lux)),
+            ("luminance_cd_m2", number(&self.luminance_cd_m2)),
+            ("color", triple(&self.color)),
+        ]
+        .into_iter()
+        .filter_map(|(name, span)| span.map(|span| (name, span)))
+        .collect()
     }
 }
