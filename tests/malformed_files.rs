@@ -55,11 +55,11 @@ fn texture(name: &'static str, file: &'static str, content: &[u8], says: &[&'sta
 
 const SPHERE: &str = "[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\n";
 
-/// `tests/data/tiny.gltf` with its image replaced by the file `bomb.ppm`.
-fn bomb_gltf() -> Vec<u8> {
+/// `tests/data/tiny.gltf` with its image replaced by `image` (JSON).
+fn tiny_gltf_with_image(image: &str) -> Vec<u8> {
     let mut gltf: serde_json::Value =
         serde_json::from_slice(&std::fs::read("tests/data/tiny.gltf").unwrap()).unwrap();
-    gltf["images"][0]["uri"] = "bomb.ppm".into();
+    gltf["images"][0] = serde_json::from_str(image).unwrap();
     serde_json::to_vec(&gltf).unwrap()
 }
 
@@ -140,9 +140,11 @@ fn cases() -> Vec<Case> {
         mesh("gltf buffer", "buffer.gltf", br#"{"asset": {"version": "2.0"}, "buffers": [{"byteLength": 12, "uri": "missing.bin"}]}"#, &["buffer.gltf", "buffers[0].uri", "missing.bin"]),
         mesh("glb truncated", "cut.glb", b"glTF\x02\x00\x00\x00\xff\x00\x00\x00", &["cut.glb"]),
         mesh("gltf empty", "empty.gltf", b"", &["empty.gltf"]),
+        mesh("gltf image without mime type", "mime.gltf", &tiny_gltf_with_image(r#"{"bufferView": 0}"#), &["mime.gltf", "images[0].mimeType: an image in a buffer view needs its mimeType"]),
+        mesh("gltf image past the views", "view.gltf", &tiny_gltf_with_image(r#"{"bufferView": 9, "mimeType": "image/png"}"#), &["view.gltf", "images[0].bufferView: buffer view 9 does not exist (3 views)"]),
         Case {
             files: vec![
-                ("bomb.gltf", bomb_gltf()),
+                ("bomb.gltf", tiny_gltf_with_image(r#"{"uri": "bomb.ppm"}"#)),
                 ("bomb.ppm", b"P6\n20000 20000\n255\n\0\0\0".to_vec()),
             ],
             ..case("gltf image bomb", "[[objects]]\ntype = \"mesh\"\nfile = \"bomb.gltf\"\n", &["bomb.gltf", "image 0", "20000×20000", "texels in all are read"])

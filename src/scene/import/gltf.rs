@@ -25,7 +25,7 @@ const MAX_NODE_DEPTH: usize = 256;
 pub fn load(path: &Path) -> Result<ImportedMesh, ImportError> {
     let bytes = std::fs::read(path).map_err(|e| ImportError::unreadable(path, e))?;
     check_glb_header(&bytes).map_err(|e| ImportError::invalid(path, e))?;
-    check_attribute_indices(&bytes).map_err(|e| ImportError::invalid(path, e))?;
+    check_references(&bytes).map_err(|e| ImportError::invalid(path, e))?;
     let ::gltf::Gltf { document, blob } =
         ::gltf::Gltf::from_slice(&bytes).map_err(|e| ImportError::invalid(path, e))?;
     let version = &document.as_json().asset.version;
@@ -142,11 +142,12 @@ fn check_glb_header(bytes: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-/// Checks that every mesh primitive's attributes and morph targets name existing accessors:
-/// the `gltf` crate's validation reads the POSITION accessor before checking its index (an
-/// index past the accessors panicked). Input that is not glTF JSON (or GLB holding it) is
-/// left for the `gltf` crate to refuse.
-fn check_attribute_indices(bytes: &[u8]) -> Result<(), String> {
+/// Checks the references the `gltf` crate follows without checking (it panicked on each):
+/// every mesh primitive's attributes and morph targets name existing accessors (its
+/// validation reads the POSITION accessor before checking the index), and every image has
+/// a `uri` or a `bufferView` (an existing one, with a `mimeType`). Input that is not glTF JSON
+/// (or GLB holding it) is left for the `gltf` crate to refuse.
+fn check_references(bytes: &[u8]) -> Result<(), String> {
     let json = match ::gltf::Glb::from_slice(bytes) {
         Ok(glb) => glb.json.into_owned(),
         Err(_) => bytes.to_vec(),
@@ -186,6 +187,24 @@ fn check_attribute_indices(bytes: &[u8]) -> Result<(), String> {
                     }
                 }
             }
+        }
+    }
+    let views = count("bufferViews");
+    let images = root["images"].as_array().map(Vec::as_slice).unwrap_or(&[]);
+    for (i, image) in images.iter().enumerate() {
+        let view = &image["bufferView"];
+        if view.is_null() {
+            if !image["uri"].is_string() {
+                return Err(format!("images[{i}]: neither a uri nor a bufferView"));
+            }
+        } else if view.as_u64().is_none_or(|v| v >= views as u64) {
+            return Err(format!(
+                "images[{i}].bufferView: buffer view {view} does not exist ({views} views)"
+            ));
+        } else if !image["mimeType"].is_string() {
+            return Err(format!(
+                "images[{i}].mimeType: an image in a buffer view needs its mimeType"
+            ));
         }
     }
     Ok(())
