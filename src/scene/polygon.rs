@@ -35,6 +35,8 @@ pub enum Shape {
         corner: usize,
         /// Its distance from the plane, scene units.
         distance: f64,
+        /// That distance over the polygon's size (its bounding-box diagonal).
+        relative: f64,
     },
 }
 
@@ -91,6 +93,7 @@ pub fn classify(corners: &[Vec3]) -> Result<Shape, PolygonError> {
         Shape::NonPlanar {
             corner,
             distance: deviation * frame.size,
+            relative: deviation,
         }
     })
 }
@@ -335,7 +338,9 @@ mod tests {
             v(0., 1., 0.),
         ];
         match classify(&bent) {
-            Ok(Shape::NonPlanar { corner, distance }) => {
+            Ok(Shape::NonPlanar {
+                corner, distance, ..
+            }) => {
                 assert!(distance > 0.002 && distance < 0.003, "{distance}");
                 assert!(corner < 4);
             }

@@ -153,8 +153,12 @@ fn planar(t: &Table<'_>, e: &ObjectEntry, kind: ObjectType) -> Result<Shape, Sce
         ));
     }
     let shape = polygon::classify(&vertices).map_err(|m| t.error(span.clone(), "vertices", m))?;
-    if let polygon::Shape::NonPlanar { corner, distance } = shape {
-        let size = polygon_size(&vertices);
+    if let polygon::Shape::NonPlanar {
+        corner,
+        distance,
+        relative,
+    } = shape
+    {
         eprintln!(
             "warning: {}",
             t.error(
@@ -164,7 +168,7 @@ fn planar(t: &Table<'_>, e: &ObjectEntry, kind: ObjectType) -> Result<Shape, Sce
                     "the {} is not planar (vertex {corner} is {distance:.3e} from its plane, \
                      {:.1e} of its size; tolerance {:.0e}): split into triangles",
                     kind.name(),
-                    distance / size,
+                    relative,
                     polygon::PLANARITY_TOLERANCE
                 )
             )
@@ -210,16 +214,6 @@ fn planar(t: &Table<'_>, e: &ObjectEntry, kind: ObjectType) -> Result<Shape, Sce
             }))
         }
     })
-}
-
-/// The bounding-box diagonal of `vertices`.
-fn polygon_size(vertices: &[Vec3]) -> f64 {
-    let (lo, hi) = vertices
-        .iter()
-        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &v| {
-            (lo.min(v), hi.max(v))
-        });
-    (hi - lo).as_dvec3().length()
 }
 
 #[cfg(test)]

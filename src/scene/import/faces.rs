@@ -41,14 +41,16 @@ impl FaceCheck {
             start += size as usize;
             let line = self.lines.line(self.seen);
             self.seen += 1;
-            let corners: Vec<Vec3> = face
-                .iter()
-                .map(|&i| mesh.positions.get(i as usize).copied().unwrap_or(Vec3::NAN))
-                .collect();
-            let shape = if face.len() > 3 {
-                polygon::classify(&corners)
+            // Triangles are taken as they are: no corner list for them.
+            let (corners, shape) = if face.len() > 3 {
+                let corners: Vec<Vec3> = face
+                    .iter()
+                    .map(|&i| mesh.positions.get(i as usize).copied().unwrap_or(Vec3::NAN))
+                    .collect();
+                let shape = polygon::classify(&corners);
+                (corners, shape)
             } else {
-                Ok(Shape::Convex)
+                (Vec::new(), Ok(Shape::Convex))
             };
             match shape {
                 Ok(Shape::Convex)
@@ -62,7 +64,10 @@ impl FaceCheck {
                     face_sizes.push(size);
                 }
                 Ok(shape) => {
-                    if let Shape::NonPlanar { corner, distance } = shape {
+                    if let Shape::NonPlanar {
+                        corner, distance, ..
+                    } = shape
+                    {
                         self.bent += 1;
                         self.first_bent.get_or_insert((line, corner, distance));
                     }
