@@ -6,9 +6,10 @@
 //! Estimator. Source s (power Φₛ, see [`sources`]) sends exactly Nₛ of the N
 //! photons, Nₛ ≈ N·Φₛ/ΣΦ: photon i takes the source whose cumulative power interval holds
 //! the radical inverse (base 2) of i, so every prefix of the photon sequence, and so every
-//! partial run, is stratified over the sources. Each photon starts with power Φₛ/Nₛ (exactly
-//! so for untextured sources, so the emitted totals are exact), and scatters as
-//! [`scatter`] describes. The error falls as 1/√N.
+//! partial run, is stratified over the sources. Each photon emits power Φₛ/Nₛ (exactly so
+//! for untextured sources, so the emitted totals are exact) and starts with it (aimed
+//! directional and sky photons with a part of it, the rest escaping at once, see
+//! [`sources`]), and scatters as [`scatter`] describes. The error falls as 1/√N.
 //!
 //! Exact bookkeeping. Powers are tallied in 128-bit fixed point (2⁶² units for the total
 //! emitted power), and at every hit `absorbed = incident − carried on` in those units, so

@@ -17,8 +17,22 @@
 //!   L times the sphere's cross-section πR², over 4π sr): uniform directions, each with a
 //!   uniform point on the disc across the sphere.
 //!
+//! Aimed parallel photons. Of the rays through the disc across the sphere, only those through
+//! the union of the discs of a few spheres holding all bounded geometry (`sources/aim.rs`) can
+//! meet anything. Directional and sky photons start from a point of that union instead (a disc
+//! picked by area, a uniform point in it), each carrying the fraction (Σ disc areas)/(πR²)/m of
+//! its share, m the number of discs holding the point: the expected power entering through
+//! every point of the union is the uniform points', and the photons no longer go mostly past
+//! everything when the geometry fills little of the sphere. Each photon is still tallied as
+//! emitting its full share, the part it does not carry (rays known to meet nothing) as escaped
+//! at once, so emitted = absorbed + escaped stays exact. When the spheres together are nearly
+//! as large as the disc across the bounding sphere, or some geometry is unbounded, the points
+//! are uniform over that disc as above.
+//!
 //! Unbounded shapes (infinite planes) are outside the bounding sphere's measure: they receive
 //! directional and sky light only where it falls inside the sphere's shadow cylinder.
+
+mod aim;
 
 use crate::color::Rgb;
 use crate::geometry::{Frame, Ray, spawn_ray};
@@ -26,6 +40,7 @@ use crate::sampling::Sampler;
 use crate::sampling::warp::{concentric_disk, cosine_hemisphere, uniform_sphere, uniform_triangle};
 use crate::scene::LightKind;
 use crate::world::{World, emitted_toward};
+use aim::AimSet;
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -78,6 +93,10 @@ pub struct EmittedPhoton {
     pub power: Rgb,
     /// The emitting surface `(object, face)`, or `None` for non-surface lights.
     pub surface: Option<(u32, u32)>,
+    /// The fraction of `power` the photon carries into the scene, in [0, 1], dimensionless:
+    /// below 1 for aimed directional and sky photons, whose rest is known to meet nothing
+    /// (it escapes at once); 1 for every other photon.
+    pub carried: f64,
 }
 
 /// All photon sources of a scene.
@@ -89,6 +108,8 @@ pub struct PhotonSources {
     center: Vec3,
     /// Its radius (1 when there is no bounded geometry).
     radius: f32,
+    /// The spheres directional and sky photons are aimed at, when aiming pays.
+    aim: Option<AimSet>,
 }
 
 impl PhotonSources {
@@ -191,10 +212,17 @@ impl PhotonSources {
             });
         }
         sources.retain(|s| s.power.is_finite() && s.power.max_channel() > 0.0);
+        let parallel = sources
+            .iter()
+            .any(|s| matches!(s.kind, SourceKind::Directional { .. } | SourceKind::Sky));
+        let aim = parallel
+            .then(|| AimSet::new(&world.geometry, (center, radius)))
+            .flatten();
         PhotonSources {
             sources,
             center,
             radius,
+            aim,
         }
     }
 
@@ -217,12 +245,14 @@ impl PhotonSources {
                     ray: spawn_ray(at.p, at.ng, dir),
                     power: radiance * (PI * l.area * sides),
                     surface: Some((at.object, at.face)),
+                    carried: 1.0,
                 }
             }
             SourceKind::Point { position } => EmittedPhoton {
                 ray: Ray::new(*position, uniform_sphere(sampler.next_2d())),
                 power: source.power,
                 surface: None,
+                carried: 1.0,
             },
             SourceKind::Lambertian { position, frame } => EmittedPhoton {
                 ray: Ray::new(
@@ -231,6 +261,7 @@ impl PhotonSources {
                 ),
                 power: source.power,
                 surface: None,
+                carried: 1.0,
             },
             SourceKind::Spot {
                 position,
@@ -256,30 +287,41 @@ impl PhotonSources {
                     ray: Ray::new(*position, frame.to_world(local)),
                     power: source.power,
                     surface: None,
+                    carried: 1.0,
                 }
             }
-            SourceKind::Directional { frame, .. } => EmittedPhoton {
-                ray: self.parallel_ray(frame, sampler),
-                power: source.power,
-                surface: None,
-            },
+            SourceKind::Directional { frame, .. } => self.parallel_photon(frame, source, sampler),
             SourceKind::Sky => {
                 let frame = Frame::from_normal(uniform_sphere(sampler.next_2d()));
-                EmittedPhoton {
-                    ray: self.parallel_ray(&frame, sampler),
-                    power: source.power,
-                    surface: None,
-                }
+                self.parallel_photon(&frame, source, sampler)
             }
         }
     }
 
-    /// A ray along `frame.n` through a uniform point of the bounding sphere's cross-section,
-    /// starting outside the sphere.
-    fn parallel_ray(&self, frame: &Frame, sampler: &mut Sampler) -> Ray {
-        let d = concentric_disk(sampler.next_2d()) * self.radius;
-        let origin = self.center + frame.s * d.x + frame.t * d.y - frame.n * (2.0 * self.radius);
-        Ray::new(origin, frame.n)
+    /// A photon of `source` travelling along `frame.n`, entering the bounding sphere through
+    /// a point of its cross-section: uniform over the whole cross-section, or aimed at what
+    /// it can meet (carrying the corresponding fraction of its share).
+    fn parallel_photon(
+        &self,
+        frame: &Frame,
+        source: &PhotonSource,
+        sampler: &mut Sampler,
+    ) -> EmittedPhoton {
+        let (offset, carried) = match &self.aim {
+            Some(aim) => {
+                let point = aim.sample(frame, sampler);
+                (point.offset, point.carried)
+            }
+            None => (concentric_disk(sampler.next_2d()) * self.radius, 1.0),
+        };
+        let origin =
+            self.center + frame.s * offset.x + frame.t * offset.y - frame.n * (2.0 * self.radius);
+        EmittedPhoton {
+            ray: Ray::new(origin, frame.n),
+            power: source.power,
+            surface: None,
+            carried,
+        }
     }
 }
 

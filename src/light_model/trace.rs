@@ -188,14 +188,17 @@ impl Tracer<'_> {
         let source = self.source_of(index);
         let photon = self.sources.emit(world, source, &mut sampler);
         let count = self.counts[source] as f64;
-        let mut q = self.quantize(photon.power.to_f64().map(|c| c / count));
+        let share = photon.power.to_f64().map(|c| c / count);
+        let emitted = self.quantize(share);
+        let mut q = self.quantize(share.map(|c| c * photon.carried));
         match photon.surface {
             Some((object, face)) => {
                 let e = self.table.entry(object, face);
-                add_fixed(&mut tally.entries[e].emitted, q);
+                add_fixed(&mut tally.entries[e].emitted, emitted);
             }
-            None => add_fixed(&mut tally.light_emission, q),
+            None => add_fixed(&mut tally.light_emission, emitted),
         }
+        add_fixed(&mut tally.escaped, [0, 1, 2].map(|c| emitted[c] - q[c]));
         let mut ray = photon.ray;
         let mut bounces = 0;
         loop {
