@@ -17,10 +17,22 @@
 //! on the order of addition: a fixed seed gives identical reports for any thread count.
 //! Each photon draws its random numbers from its own stream (seed, photon index).
 //!
+//! Figures carry their standard error: per photon, the power it brought to each reported
+//! surface (over all its hits) and the irradiance it gave each sensor are squared and summed
+//! in fixed point too, and the standard error of a total `S = Σ xᵢ` over the `n` photons
+//! traced is `√(Σ xᵢ² − S²/n)` (treating the photons as independent draws; the stratification
+//! over sources only lowers the true error, so the figure is on the safe side).
+//!
+//! Sensors read the light by next-event estimation at every vertex of every photon (see
+//! `sensors.rs`); their direct part is what arrives straight from emitters, their indirect
+//! part what surfaces reflect. The same split is kept per surface: `direct` is the incident
+//! power of the photons' first hits.
+//!
 //! Photons stop after `max_bounces` scattering events (the last hit absorbs them; counted as
 //! `truncated_paths`), which only matters for scenes of near-perfect mirrors.
 
 pub mod scatter;
+mod sensors;
 pub mod sources;
 mod tally;
 mod trace;

@@ -97,6 +97,9 @@ pub struct EmittedPhoton {
     /// below 1 for aimed directional and sky photons, whose rest is known to meet nothing
     /// (it escapes at once); 1 for every other photon.
     pub carried: f64,
+    /// The unit normal of the emitting side of the surface (directions are cosine-distributed
+    /// about it), or `None` for non-surface lights.
+    pub normal: Option<Vec3>,
 }
 
 /// All photon sources of a scene.
@@ -246,6 +249,7 @@ impl PhotonSources {
                     power: radiance * (PI * l.area * sides),
                     surface: Some((at.object, at.face)),
                     carried: 1.0,
+                    normal: Some(n),
                 }
             }
             SourceKind::Point { position } => EmittedPhoton {
@@ -253,6 +257,7 @@ impl PhotonSources {
                 power: source.power,
                 surface: None,
                 carried: 1.0,
+                normal: None,
             },
             SourceKind::Lambertian { position, frame } => EmittedPhoton {
                 ray: Ray::new(
@@ -262,6 +267,7 @@ impl PhotonSources {
                 power: source.power,
                 surface: None,
                 carried: 1.0,
+                normal: None,
             },
             SourceKind::Spot {
                 position,
@@ -288,6 +294,7 @@ impl PhotonSources {
                     power: source.power,
                     surface: None,
                     carried: 1.0,
+                    normal: None,
                 }
             }
             SourceKind::Directional { frame, .. } => self.parallel_photon(frame, source, sampler),
@@ -321,6 +328,7 @@ impl PhotonSources {
             power: source.power,
             surface: None,
             carried,
+            normal: None,
         }
     }
 }

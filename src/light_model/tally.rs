@@ -4,13 +4,25 @@
 /// Fixed-point power triple.
 pub(super) type Fixed = [i128; 3];
 
-/// Per-entry quantities in a tally: incident, absorbed, emitted and reflected power.
+/// Per-entry quantities in a tally: incident (of it, direct), absorbed, emitted and
+/// reflected power, and the sum of the squares of each photon's incident power.
 #[derive(Clone, Copy, Default)]
 pub(super) struct FixedBalance {
     pub incident: Fixed,
+    pub direct: Fixed,
     pub absorbed: Fixed,
     pub emitted: Fixed,
     pub reflected: Fixed,
+    pub incident_squares: Fixed,
+}
+
+/// Per sensor: direct and indirect irradiance, and the sum of the squares of each photon's
+/// irradiance.
+#[derive(Clone, Copy, Default)]
+pub(super) struct FixedSensor {
+    pub direct: Fixed,
+    pub indirect: Fixed,
+    pub squares: Fixed,
 }
 
 /// What one worker has accumulated.
@@ -18,6 +30,11 @@ pub(super) struct FixedBalance {
 pub(super) struct Tally {
     /// Per report entry.
     pub entries: Vec<FixedBalance>,
+    /// Per sensor of the scene.
+    pub sensors: Vec<FixedSensor>,
+    /// Sums of the squares of each photon's incident power over all surfaces together, and
+    /// of the part after its first hit (indirect).
+    pub total_squares: [Fixed; 2],
     /// Emission of lights that are not surfaces.
     pub light_emission: Fixed,
     /// Power that left the scene.
@@ -35,11 +52,21 @@ pub(super) fn add_fixed(a: &mut Fixed, b: Fixed) {
     a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
 }
 
+/// Adds `b` to `a` channel by channel, stopping at the largest value instead of overflowing
+/// (for sums of squares, whose single terms may be huge).
+pub(super) fn add_fixed_saturating(a: &mut Fixed, b: Fixed) {
+    a.iter_mut()
+        .zip(b)
+        .for_each(|(x, y)| *x = x.saturating_add(y));
+}
+
 impl Tally {
-    /// Zeros for `entries` report entries.
-    pub fn new(entries: usize) -> Self {
+    /// Zeros for `entries` report entries and `sensors` sensors.
+    pub fn new(entries: usize, sensors: usize) -> Self {
         Tally {
             entries: vec![FixedBalance::default(); entries],
+            sensors: vec![FixedSensor::default(); sensors],
+            total_squares: [[0; 3]; 2],
             light_emission: [0; 3],
             escaped: [0; 3],
             rays: 0,
@@ -52,9 +79,19 @@ impl Tally {
     pub fn merge(&mut self, o: &Tally) {
         for (a, b) in self.entries.iter_mut().zip(&o.entries) {
             add_fixed(&mut a.incident, b.incident);
+            add_fixed(&mut a.direct, b.direct);
             add_fixed(&mut a.absorbed, b.absorbed);
             add_fixed(&mut a.emitted, b.emitted);
             add_fixed(&mut a.reflected, b.reflected);
+            add_fixed_saturating(&mut a.incident_squares, b.incident_squares);
+        }
+        for (a, b) in self.sensors.iter_mut().zip(&o.sensors) {
+            add_fixed(&mut a.direct, b.direct);
+            add_fixed(&mut a.indirect, b.indirect);
+            add_fixed_saturating(&mut a.squares, b.squares);
+        }
+        for (a, b) in self.total_squares.iter_mut().zip(o.total_squares) {
+            add_fixed_saturating(a, b);
         }
         add_fixed(&mut self.light_emission, o.light_emission);
         add_fixed(&mut self.escaped, o.escaped);

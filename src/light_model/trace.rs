@@ -2,11 +2,12 @@
 //! tallies, merged into the power per reported surface.
 
 use super::scatter::scatter_photon;
+use super::sensors::{connect_emission, connect_reflection, delta_light_direct};
 use super::sources::PhotonSources;
-use super::tally::{Fixed, FixedBalance, Tally, add_fixed};
+use super::tally::{Fixed, FixedBalance, FixedSensor, Tally, add_fixed, add_fixed_saturating};
 use crate::color::{Rgb, Rgb64};
 use crate::geometry::spawn_ray;
-use crate::measure::{Measurement, Stats, SurfacePower, SurfaceTable};
+use crate::measure::{Measurement, SensorReading, Stats, SurfacePower, SurfaceTable};
 use crate::progress::{Cancel, ProgressListener};
 use crate::sampling::{Sampler, SequenceKind};
 use crate::world::World;
@@ -15,6 +16,10 @@ use std::time::Instant;
 
 /// Fixed-point units of the total emitted power (largest channel).
 const FIXED_POINT_TOTAL: f64 = (1u64 << 62) as f64;
+/// Fixed-point units of the square of the total emitted power (or of the reference
+/// irradiance, for sensors): squares of one photon's share, about `1/N²`, keep six digits
+/// at a billion photons, and one photon's square of a million times the reference still fits.
+const FIXED_POINT_SQUARE: f64 = (1u128 << 80) as f64;
 /// Photons per progress step are at least this many.
 const MIN_BATCH: u64 = 4096;
 /// Number of progress steps of a run (at most).
@@ -62,8 +67,11 @@ pub enum LightTraceError {
 #[derive(Clone, Debug)]
 pub struct LightTraceOutput {
     /// Per-surface and scene-wide power, W, scaled to the full photon count when the run was
-    /// cancelled early.
+    /// cancelled early, with the standard error of every surface's incident power.
     pub power: SurfacePower,
+    /// One reading per sensor of the scene (irradiance, W·m⁻², with its standard error),
+    /// scaled like `power`.
+    pub sensors: Vec<SensorReading>,
     /// Photons asked for.
     pub photons: u64,
     /// Photons traced (less than `photons` when cancelled).
@@ -98,6 +106,7 @@ impl LightTraceOutput {
         Measurement {
             solver: Self::SOLVER,
             power: self.power.clone(),
+            sensors: self.sensors.clone(),
             stats: self.stats(),
         }
     }
@@ -133,7 +142,37 @@ struct Tracer<'a> {
     table: &'a SurfaceTable,
     /// Fixed-point units per watt.
     scale: f64,
+    /// The reference irradiance of sensor tallies, W·m⁻²: the total power over the square
+    /// of the bounding sphere's radius.
+    sensor_reference: f64,
     settings: LightTraceSettings,
+}
+
+/// A worker's tally and the scratch space of the photon it traces.
+#[derive(Clone)]
+struct Worker {
+    tally: Tally,
+    /// The current photon's hits: report entry and incident power.
+    hits: Vec<(usize, Fixed)>,
+    /// The current photon's irradiance at each sensor, direct and indirect, W·m⁻².
+    sensor_light: Vec<[Rgb64; 2]>,
+}
+
+impl Worker {
+    fn new(entries: usize, sensors: usize) -> Self {
+        Worker {
+            tally: Tally::new(entries, sensors),
+            hits: Vec::new(),
+            sensor_light: vec![[Rgb64::BLACK; 2]; sensors],
+        }
+    }
+}
+
+/// `x²` of a share `x` (of the total power or the reference irradiance) in the fixed-point
+/// units of squares.
+#[inline]
+fn square(x: f64) -> i128 {
+    to_fixed(x * x * FIXED_POINT_SQUARE)
 }
 
 /// Magnitude below which a fixed-point value fits an `i64` (2⁶² with room to spare).
@@ -182,7 +221,7 @@ impl Tracer<'_> {
         Rgb64::from(q.map(|c| from_fixed(c) / self.scale))
     }
 
-    fn trace_photon(&self, index: u64, tally: &mut Tally) {
+    fn trace_photon(&self, index: u64, worker: &mut Worker) {
         let world = self.world;
         let mut sampler = Sampler::new(SequenceKind::Random, self.settings.seed, index, 0);
         let source = self.source_of(index);
@@ -191,14 +230,24 @@ impl Tracer<'_> {
         let share = photon.power.to_f64().map(|c| c / count);
         let emitted = self.quantize(share);
         let mut q = self.quantize(share.map(|c| c * photon.carried));
+        let sensing = !worker.sensor_light.is_empty();
+        let tally = &mut worker.tally;
         match photon.surface {
             Some((object, face)) => {
                 let e = self.table.entry(object, face);
                 add_fixed(&mut tally.entries[e].emitted, emitted);
+                if sensing && let Some(n) = photon.normal {
+                    let mut direct: Vec<Rgb64> = vec![Rgb64::BLACK; worker.sensor_light.len()];
+                    connect_emission(world, photon.ray.origin, n, self.watts(q), &mut direct);
+                    for (light, d) in worker.sensor_light.iter_mut().zip(direct) {
+                        light[0] += d;
+                    }
+                }
             }
             None => add_fixed(&mut tally.light_emission, emitted),
         }
         add_fixed(&mut tally.escaped, [0, 1, 2].map(|c| emitted[c] - q[c]));
+        worker.hits.clear();
         let mut ray = photon.ray;
         let mut bounces = 0;
         loop {
@@ -206,10 +255,22 @@ impl Tracer<'_> {
             let Some(hit) = world.intersect(&ray) else {
                 add_fixed(&mut tally.escaped, q);
                 tally.escaped_photons += 1;
-                return;
+                break;
             };
-            let entry = &mut tally.entries[self.table.entry(hit.object, hit.face)];
+            let entry_index = self.table.entry(hit.object, hit.face);
+            worker.hits.push((entry_index, q));
+            let entry = &mut tally.entries[entry_index];
             add_fixed(&mut entry.incident, q);
+            if bounces == 0 {
+                add_fixed(&mut entry.direct, q);
+            }
+            if sensing {
+                let mut reflected: Vec<Rgb64> = vec![Rgb64::BLACK; worker.sensor_light.len()];
+                connect_reflection(world, &hit, ray.dir, self.watts(q), &mut reflected);
+                for (light, r) in worker.sensor_light.iter_mut().zip(reflected) {
+                    light[1] += r;
+                }
+            }
             let scattered = if bounces < self.settings.max_bounces {
                 scatter_photon(&world.scene, &hit, ray.dir, self.watts(q), &mut sampler)
             } else {
@@ -227,11 +288,105 @@ impl Tracer<'_> {
                 }
                 _ => {
                     add_fixed(&mut entry.absorbed, q);
-                    return;
+                    break;
                 }
             }
         }
+        self.add_squares(worker);
     }
+
+    /// Adds the squares of what the photon just traced brought to each surface it hit (its
+    /// hits summed per surface) and to each sensor, and moves its sensor light into the
+    /// tally.
+    fn add_squares(&self, worker: &mut Worker) {
+        let hits = &mut worker.hits;
+        let mut all = [0i128; 3];
+        hits.iter().for_each(|&(_, q)| add_fixed(&mut all, q));
+        let mut indirect = all;
+        if let Some(&(_, first)) = hits.first() {
+            indirect = [0, 1, 2].map(|c| all[c] - first[c]);
+        }
+        for (squares, total) in worker.tally.total_squares.iter_mut().zip([all, indirect]) {
+            add_fixed_saturating(
+                squares,
+                total.map(|c| square(from_fixed(c) / FIXED_POINT_TOTAL)),
+            );
+        }
+        hits.sort_unstable_by_key(|&(entry, _)| entry);
+        let mut k = 0;
+        while k < hits.len() {
+            let entry = hits[k].0;
+            let mut total = [0i128; 3];
+            while k < hits.len() && hits[k].0 == entry {
+                add_fixed(&mut total, hits[k].1);
+                k += 1;
+            }
+            let squares = total.map(|c| square(from_fixed(c) / FIXED_POINT_TOTAL));
+            add_fixed_saturating(&mut worker.tally.entries[entry].incident_squares, squares);
+        }
+        let sensor_scale = FIXED_POINT_TOTAL / self.sensor_reference;
+        for (light, fixed) in worker
+            .sensor_light
+            .iter_mut()
+            .zip(&mut worker.tally.sensors)
+        {
+            let [direct, indirect] = *light;
+            if direct.max_channel() <= 0.0 && indirect.max_channel() <= 0.0 {
+                continue;
+            }
+            add_fixed(
+                &mut fixed.direct,
+                direct.to_array().map(|c| to_fixed(c * sensor_scale)),
+            );
+            add_fixed(
+                &mut fixed.indirect,
+                indirect.to_array().map(|c| to_fixed(c * sensor_scale)),
+            );
+            let squares = (direct + indirect)
+                .to_array()
+                .map(|c| square(c / self.sensor_reference));
+            add_fixed_saturating(&mut fixed.squares, squares);
+            *light = [Rgb64::BLACK; 2];
+        }
+    }
+
+    /// The reading of sensor `k` from its tally over `traced` photons: the photons' direct and
+    /// indirect irradiance, the direct irradiance `delta` of the non-surface lights added, and
+    /// the standard error; everything of the photons multiplied by `factor` (to scale a
+    /// partial run to its full size).
+    fn sensor_reading(
+        &self,
+        k: usize,
+        fixed: &FixedSensor,
+        delta: Rgb64,
+        traced: u64,
+        factor: f64,
+    ) -> SensorReading {
+        let per_unit = self.sensor_reference / FIXED_POINT_TOTAL;
+        let irradiance = |q: Fixed| Rgb64::from(q.map(|c| from_fixed(c) * per_unit));
+        let (direct, indirect) = (irradiance(fixed.direct), irradiance(fixed.indirect));
+        let sum = direct + indirect;
+        let squares = Rgb64::from(fixed.squares.map(|c| {
+            from_fixed(c) / FIXED_POINT_SQUARE * self.sensor_reference * self.sensor_reference
+        }));
+        SensorReading {
+            sensor: self.world.scene.sensors[k].clone(),
+            direct: delta + direct * factor,
+            indirect: indirect * factor,
+            standard_error: Some(standard_error(sum, squares, traced) * factor),
+        }
+    }
+}
+
+/// The standard error of a sum `sum` of `n` independent terms whose squares sum to
+/// `squares`: `√(Σx² − S²/n)`, per channel.
+fn standard_error(sum: Rgb64, squares: Rgb64, n: u64) -> Rgb64 {
+    let n = n.max(1) as f64;
+    Rgb64::from([0, 1, 2].map(|c| {
+        (squares.to_array()[c] - sum.to_array()[c].powi(2) / n)
+            .max(0.0)
+            .sqrt()
+    }))
 }
 
 /// Photons per source for a run of `photons`: how many photon indices fall in each source's
@@ -323,19 +478,23 @@ pub fn trace_light(
         .sum::<Rgb>()
         .max_channel() as f64;
     let table = SurfaceTable::new(&world.scene, &world.geometry);
+    let radius = f64::from(world.entry_sphere().1);
     let tracer = Tracer {
         world,
         cdf,
         counts,
         table: &table,
         scale: FIXED_POINT_TOTAL / largest_channel,
+        sensor_reference: largest_channel / (radius * radius),
         settings: settings.clone(),
         sources,
     };
     let workers = rayon::current_num_threads().max(1) * 4;
-    let per_tally = table.len().max(1) * std::mem::size_of::<FixedBalance>();
+    let sensors = world.scene.sensors.len();
+    let per_tally = table.len().max(1) * std::mem::size_of::<FixedBalance>()
+        + sensors * std::mem::size_of::<FixedSensor>();
     let slots = workers.min(TALLY_BUDGET / per_tally).max(1);
-    let mut tallies = vec![Tally::new(table.len()); slots];
+    let mut workers = vec![Worker::new(table.len(), sensors); slots];
     let batch = settings
         .photons
         .div_ceil(BATCHES)
@@ -345,39 +504,72 @@ pub fn trace_light(
     while done < settings.photons && !cancel.is_requested() {
         let end = (done + batch).min(settings.photons);
         let span = end - done;
-        tallies
+        workers
             .par_iter_mut()
             .enumerate()
-            .for_each(|(slot, tally)| {
+            .for_each(|(slot, worker)| {
                 let from = done + span * slot as u64 / slots as u64;
                 let to = done + span * (slot as u64 + 1) / slots as u64;
                 for i in from..to {
-                    tracer.trace_photon(i, tally);
+                    tracer.trace_photon(i, worker);
                 }
             });
         progress.advance(span);
         done = end;
     }
     progress.finish();
-    let mut sum = Tally::new(table.len());
-    for t in &tallies {
-        sum.merge(t);
+    let mut sum = Tally::new(table.len(), sensors);
+    for w in &workers {
+        sum.merge(&w.tally);
     }
     let mut power = SurfacePower::new(table.clone());
+    let mut errors = Vec::with_capacity(table.len());
     for (e, b) in sum.entries.iter().enumerate() {
         let out = power.balance_mut(e);
         out.incident = tracer.watts(b.incident);
+        out.direct = Some(tracer.watts(b.direct));
         out.absorbed = tracer.watts(b.absorbed);
         out.emitted = tracer.watts(b.emitted);
         out.reflected = tracer.watts(b.reflected);
+        let squares = Rgb64::from(
+            b.incident_squares
+                .map(|c| from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel),
+        );
+        errors.push(standard_error(out.incident, squares, done));
     }
+    power.set_standard_errors(errors);
+    let totals = sum.entries.iter().fold([[0i128; 3]; 2], |mut t, b| {
+        add_fixed(&mut t[0], b.incident);
+        add_fixed(&mut t[1], [0, 1, 2].map(|c| b.incident[c] - b.direct[c]));
+        t
+    });
+    let [incident_error, indirect_error] = [0, 1].map(|k| {
+        let squares = Rgb64::from(
+            sum.total_squares[k]
+                .map(|c| from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel),
+        );
+        standard_error(tracer.watts(totals[k]), squares, done)
+    });
+    power.set_total_standard_errors(incident_error, indirect_error);
     power.add_light_emission(tracer.watts(sum.light_emission));
     power.add_escaped(tracer.watts(sum.escaped));
-    if done > 0 && done < settings.photons {
-        power.scale(settings.photons as f64 / done as f64);
-    }
+    let factor = if done > 0 && done < settings.photons {
+        settings.photons as f64 / done as f64
+    } else {
+        1.0
+    };
+    power.scale(factor);
+    let delta = delta_light_direct(world);
+    let sensors = sum
+        .sensors
+        .iter()
+        .zip(delta)
+        .enumerate()
+        .map(|(k, (fixed, delta))| tracer.sensor_reading(k, fixed, delta, done, factor))
+        .collect();
     Ok(LightTraceOutput {
         power,
+        sensors,
         photons: settings.photons,
         photons_traced: done,
         rays: sum.rays,

@@ -1,13 +1,15 @@
 //! What the algorithms measure, in plain containers that they fill and that `report` and
 //! `image` turn into files: the [`Film`] (radiance per pixel), the [`SurfacePower`] (power
 //! per reported surface, over the [`SurfaceTable`] of a scene), the [`LitMesh`] (radiosity
-//! per polygon corner) and the run's [`Stats`], with the process's peak memory; a solver's
-//! [`Measurement`] holds its surface power and statistics together.
+//! per polygon corner), the [`SensorReading`]s of the scene's point sensors and the run's
+//! [`Stats`], with the process's peak memory; a solver's [`Measurement`] holds its surface
+//! power, sensor readings and statistics together.
 
 mod film;
 mod lit_mesh;
 mod measurement;
 mod memory;
+mod sensor_reading;
 mod stats;
 mod surface_power;
 mod surfaces;
@@ -16,6 +18,7 @@ pub use film::Film;
 pub use lit_mesh::{LightmappedSurface, LitMesh};
 pub use measurement::Measurement;
 pub use memory::{peak_resident_bytes, resident_bytes, usable_memory_bytes};
+pub use sensor_reading::SensorReading;
 pub use stats::Stats;
 pub use surface_power::{PowerBalance, SurfacePower, Totals};
 pub use surfaces::{ReportSurface, SurfaceTable};

@@ -11,6 +11,9 @@ use serde::{Deserialize, Serialize};
 pub struct PowerBalance {
     /// Power arriving on either side.
     pub incident: Rgb64,
+    /// The part of `incident` that came straight from a light or an emitting surface,
+    /// without a reflection on its way, when the solver tells it apart.
+    pub direct: Option<Rgb64>,
     /// Power absorbed.
     pub absorbed: Rgb64,
     /// Power emitted by the surface itself.
@@ -35,6 +38,11 @@ pub struct Totals {
 pub struct SurfacePower {
     table: SurfaceTable,
     balances: Vec<PowerBalance>,
+    /// Per entry, the standard error of its incident power (Monte Carlo solvers only).
+    standard_errors: Option<Vec<Rgb64>>,
+    /// The standard errors of the incident power of all entries together and of its indirect
+    /// part (Monte Carlo solvers only).
+    total_standard_errors: Option<[Rgb64; 2]>,
     light_emission: Rgb64,
     escaped: Rgb64,
 }
@@ -44,6 +52,8 @@ impl SurfacePower {
     pub fn new(table: SurfaceTable) -> Self {
         SurfacePower {
             balances: vec![PowerBalance::default(); table.len()],
+            standard_errors: None,
+            total_standard_errors: None,
             table,
             light_emission: Rgb64::BLACK,
             escaped: Rgb64::BLACK,
@@ -65,6 +75,31 @@ impl SurfacePower {
         &self.balances[entry]
     }
 
+    /// Sets the standard error of every entry's incident power, W per channel, in entry
+    /// order (for solvers that estimate by Monte Carlo).
+    pub fn set_standard_errors(&mut self, errors: Vec<Rgb64>) {
+        debug_assert_eq!(errors.len(), self.balances.len());
+        self.standard_errors = Some(errors);
+    }
+
+    /// Sets the standard errors of the incident power summed over all entries and of its
+    /// indirect part (the sum less the direct power), W per channel.
+    pub fn set_total_standard_errors(&mut self, incident: Rgb64, indirect: Rgb64) {
+        self.total_standard_errors = Some([incident, indirect]);
+    }
+
+    /// The standard errors of the incident power summed over all entries and of its
+    /// indirect part, W per channel, when the solver gave them.
+    pub fn total_standard_errors(&self) -> Option<[Rgb64; 2]> {
+        self.total_standard_errors
+    }
+
+    /// The standard error of entry `entry`'s incident power, W per channel, when the solver
+    /// gave one.
+    pub fn standard_error(&self, entry: usize) -> Option<Rgb64> {
+        self.standard_errors.as_ref().map(|e| e[entry])
+    }
+
     /// Adds power (W) emitted by lights that are not surfaces (point, spot, directional, sky).
     pub fn add_light_emission(&mut self, power: Rgb64) {
         self.light_emission += power;
@@ -79,9 +114,16 @@ impl SurfacePower {
     pub fn scale(&mut self, factor: f64) {
         for b in &mut self.balances {
             b.incident *= factor;
+            b.direct = b.direct.map(|d| d * factor);
             b.absorbed *= factor;
             b.emitted *= factor;
             b.reflected *= factor;
+        }
+        if let Some(errors) = &mut self.standard_errors {
+            errors.iter_mut().for_each(|e| *e *= factor);
+        }
+        if let Some(errors) = &mut self.total_standard_errors {
+            errors.iter_mut().for_each(|e| *e *= factor);
         }
         self.light_emission *= factor;
         self.escaped *= factor;

@@ -17,16 +17,13 @@ use super::form_factor::receiver_points;
 use super::mesh::Patch;
 use crate::color::Rgb64;
 use crate::geometry::angle::upper_angle;
-use crate::geometry::{Frame, Ray, offset_origin};
-use crate::sampling::hash64;
-use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::scene::LightKind;
-use crate::world::World;
-use glam::{DVec3, Vec2};
+use crate::world::{World, sees_light, sky_share};
+use glam::DVec3;
 use std::f64::consts::PI;
 
-/// Sky directions per axis at each receiver point (`n × n` cosine-weighted strata).
-const SKY_DIRECTIONS_PER_AXIS: u32 = 4;
+/// Sky directions per axis at each receiver point of a patch (`n × n` cosine-weighted strata).
+pub const SKY_DIRECTIONS_PER_AXIS: u32 = 4;
 
 /// Irradiance in W·m⁻² that `light` sends to side `side` of `patch`, averaged over the patch,
 /// with shadows from every surface of `world` (for patches of curved shapes, the world
@@ -43,7 +40,9 @@ pub fn light_irradiance(
     let normal = side.normal(patch);
     let points = receiver_points(patch, samples);
     match *light {
-        LightKind::Sky { radiance } => radiance.to_f64() * (PI * sky_share(world, &points, normal)),
+        LightKind::Sky { radiance } => {
+            radiance.to_f64() * (PI * sky_share(world, &points, normal, SKY_DIRECTIONS_PER_AXIS))
+        }
         LightKind::Directional { direction, .. } => {
             let Some(inc) = light.incidence(patch.centroid.as_vec3()) else {
                 return Rgb64::BLACK;
@@ -101,28 +100,6 @@ pub fn light_irradiance(
     }
 }
 
-/// The irradiance (W·m⁻²) that `light` sends to the surface point `x` whose receiving side has
-/// the unit normal `normal`, with shadows: `I·f·cos θ/d²` for point and spot lights (`f` the
-/// falloff), `E·cos θ` for a directional light, `π·L` times the cosine-weighted open share of
-/// the hemisphere for the sky.
-pub fn point_irradiance(world: &World, light: &LightKind, x: DVec3, normal: DVec3) -> Rgb64 {
-    match *light {
-        LightKind::Sky { radiance } => {
-            radiance.to_f64() * (PI * sky_share(world, &[(x, 1.0)], normal))
-        }
-        _ => {
-            let Some(inc) = light.incidence(x.as_vec3()) else {
-                return Rgb64::BLACK;
-            };
-            let cos = normal.dot(inc.wi.as_dvec3());
-            if cos <= 0.0 || !sees_light(world, x, normal, light) {
-                return Rgb64::BLACK;
-            }
-            inc.irradiance.to_f64() * cos
-        }
-    }
-}
-
 /// The share of the intensity that `light` sends toward `x`: the spot falloff, the cosine
 /// for a Lambertian light, 1 for a point light.
 fn falloff(light: &LightKind, x: DVec3) -> f64 {
@@ -148,44 +125,6 @@ fn falloff(light: &LightKind, x: DVec3) -> f64 {
         }
         _ => 1.0,
     }
-}
-
-/// True when the way from surface point `x` (unit normal `normal` of the receiving side)
-/// to the point, spot or directional `light` is free.
-fn sees_light(world: &World, x: DVec3, normal: DVec3, light: &LightKind) -> bool {
-    let Some(inc) = light.incidence(x.as_vec3()) else {
-        return false;
-    };
-    let origin = offset_origin(x.as_vec3(), normal.as_vec3(), inc.wi);
-    let t_max = if inc.distance.is_finite() {
-        (x.as_vec3() + inc.wi * inc.distance - origin).length()
-    } else {
-        f32::INFINITY
-    };
-    !world.occluded(&Ray::new(origin, inc.wi), t_max)
-}
-
-/// The cosine-weighted share of the hemisphere over `normal` that reaches the sky, averaged
-/// over the weighted receiver `points` (stratified directions, jittered by a hash of the
-/// point and stratum: deterministic).
-fn sky_share(world: &World, points: &[(DVec3, f64)], normal: DVec3) -> f64 {
-    let n = SKY_DIRECTIONS_PER_AXIS;
-    let frame = Frame::from_normal(normal.as_vec3());
-    let unit = |h: u64| (h >> 40) as f32 * (1.0 / 16_777_216.0);
-    let mut share = 0.0;
-    for (k, &(x, w)) in points.iter().enumerate() {
-        let open = (0..n * n)
-            .filter(|&s| {
-                let h = hash64((k as u64) << 32 | s as u64);
-                let jitter = Vec2::new(unit(h), unit(hash64(h)));
-                let dir = frame.to_world(cosine_hemisphere(stratified(s, n, jitter)));
-                let origin = offset_origin(x.as_vec3(), normal.as_vec3(), dir);
-                !world.occluded(&Ray::new(origin, dir), f32::INFINITY)
-            })
-            .count();
-        share += w * open as f64 / (n * n) as f64;
-    }
-    share
 }
 
 /// The solid angle (sr) that the convex planar polygon `corners` subtends at `point`: the

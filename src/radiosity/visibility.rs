@@ -504,6 +504,45 @@ impl<'w> Visibility<'w> {
         })
     }
 
+    /// The visible share of patch `q` seen from the free point `x` (a sensor: unit normal
+    /// `normal`, on no patch) as the form factor weighs it, and the rays cast: 1 without a
+    /// ray when nothing crosses the pyramid from `x` over `q` (shaft culling), else the share
+    /// of `rays` rays to jittered strata of the part of `q` in front of `x` (spread as
+    /// [`Self::from_points`] spreads them). The jitter comes from `key`: deterministic.
+    pub fn share_from_point(
+        &self,
+        x: DVec3,
+        normal: DVec3,
+        q: &Patch,
+        key: u64,
+        rays: u32,
+    ) -> (f64, u64) {
+        let occluders = self.point_occluders(x, q);
+        if matches!(occluders, Occluders::None) {
+            return (1.0, 0);
+        }
+        let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, 0, 0) ^ key);
+        let mut sum = RaySums::default();
+        let m = (rays as f64).sqrt().ceil() as u32;
+        for (y, element) in self.targets(q, x, normal, m, &mut rng) {
+            let d = y - x;
+            let d2 = d.length_squared();
+            let factor = normal.dot(d).max(0.0) * q.normal.dot(d).abs() / (d2 * d2) * element;
+            let factor = if factor.is_finite() { factor } else { 0.0 };
+            sum.total += factor;
+            sum.rays += 1;
+            if !self.blocked(x, normal, y, q.normal, &occluders) {
+                sum.seen += factor;
+            }
+        }
+        let share = if sum.total > 0.0 {
+            sum.seen / sum.total
+        } else {
+            0.0
+        };
+        (share, u64::from(sum.rays))
+    }
+
     /// The ray targets on patch `q` from point `x` (receiving normal `normal`), each with
     /// the area it stands for (the inverse of its sampling density, scene units²): an
     /// `m × m` jittered grid over the part of `q` in front of `x` — over its area where `q`
@@ -560,7 +599,11 @@ impl<'w> Visibility<'w> {
 
     fn shaft_survivors(&self, a: &Patch, b: &Patch) -> Vec<u32> {
         let shaft = Shaft::between_polygons(a.corners(), b.corners());
-        let planes = [Plane::of_patch(a), Plane::of_patch(b)];
+        self.survivors(&shaft, &[Plane::of_patch(a), Plane::of_patch(b)])
+    }
+
+    /// The primitives that may cross `shaft`, less those lying in one of `planes`.
+    fn survivors(&self, shaft: &Shaft, planes: &[Plane]) -> Vec<u32> {
         let geometry = &self.world().geometry;
         self.clusters
             .iter()
@@ -581,6 +624,23 @@ impl<'w> Visibility<'w> {
                     })
             })
             .collect()
+    }
+
+    /// What may block rays from the free point `x` to patch `q`: the primitives crossing
+    /// the pyramid from `x` over `q` (all of the scene without shaft culling).
+    fn point_occluders(&self, x: DVec3, q: &Patch) -> Occluders {
+        if !self.options.shaft_culling {
+            return Occluders::Scene;
+        }
+        let shaft = Shaft::between_polygons(&[x], q.corners());
+        let survivors = self.survivors(&shaft, &[Plane::of_patch(q)]);
+        if survivors.is_empty() {
+            Occluders::None
+        } else if survivors.len() > DIRECT_TEST_LIMIT {
+            Occluders::Scene
+        } else {
+            Occluders::Listed(survivors)
+        }
     }
 
     fn occluders(&self, a: &Patch, b: &Patch) -> Occluders {

@@ -8,5 +8,5 @@ mod schema;
 mod write;
 
 pub use export::{ExportError, ExportFormat, export_lit_mesh};
-pub use schema::{ObjectReport, Report, Units};
+pub use schema::{ObjectReport, Report, SensorReport, Units};
 pub use write::{ReportError, ReportFormat, write_report};

@@ -14,13 +14,23 @@
 //! - `illuminance_lux` = 683 lm/W × luminance Y of `irradiance`; it is lux only when lengths
 //!   are metres (otherwise lm per squared scene unit).
 //! - `luminous_flux_lm` = 683 lm/W × luminance Y of `incident_power`, lumens.
+//! - `direct_power` (light model only): the part of `incident_power` that came straight from
+//!   a light or emitting surface, W; `direct_illuminance_lux` and `indirect_illuminance_lux`
+//!   split `illuminance_lux` the same way.
+//! - `incident_power_standard_error` (Monte Carlo solvers): the standard error of
+//!   `incident_power`, W; `illuminance_standard_error_lux` is 683 × the luminance of the
+//!   per-channel errors over the area (an upper bound of the error of the luminance).
+//!
+//! Sensors (`sensors`, when the scene has any) report the irradiance at their point on the
+//! side their normal faces, W·m⁻², split into direct and indirect, and the same in lux; Monte
+//! Carlo solvers add `standard_error_lux` (683 × the luminance of the per-channel errors).
 //!
 //! Y is the linear Rec.709 luminance 0.2126·R + 0.7152·G + 0.0722·B. Unbounded surfaces
 //! (infinite planes) have no area: `area`, `irradiance`, `radiosity` and `illuminance_lux`
 //! are then `null`.
 
 use crate::color::{LUMINOUS_EFFICACY, Rgb64};
-use crate::measure::{Measurement, PowerBalance, Stats, Totals};
+use crate::measure::{Measurement, PowerBalance, SensorReading, Stats, Totals};
 use serde::{Deserialize, Serialize};
 
 /// A complete report.
@@ -39,6 +49,58 @@ pub struct Report {
     pub objects: Vec<ObjectReport>,
     /// Scene-wide power balance.
     pub totals: Totals,
+    /// One entry per sensor of the scene, in scene order (absent when there is none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<SensorReport>,
+}
+
+/// The reading of one point sensor.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SensorReport {
+    /// Sensor name (`name[i,j]` for a point of a grid).
+    pub name: String,
+    /// Where it is, length units.
+    pub position: [f32; 3],
+    /// Unit normal of its receiving side.
+    pub normal: [f32; 3],
+    /// Irradiance on the receiving side, W·m⁻².
+    pub irradiance: Rgb64,
+    /// The part straight from lights and emitting surfaces, W·m⁻².
+    pub direct_irradiance: Rgb64,
+    /// The part reflected by surfaces on its way, W·m⁻².
+    pub indirect_irradiance: Rgb64,
+    /// 683 × luminance of `irradiance`, lux (when lengths are metres).
+    pub illuminance_lux: f64,
+    /// 683 × luminance of `direct_irradiance`, lux.
+    pub direct_illuminance_lux: f64,
+    /// 683 × luminance of `indirect_irradiance`, lux.
+    pub indirect_illuminance_lux: f64,
+    /// Standard error of `irradiance` per channel (Monte Carlo solvers), W·m⁻².
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub standard_error: Option<Rgb64>,
+    /// 683 × luminance of `standard_error`, lux.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub standard_error_lux: Option<f64>,
+}
+
+impl SensorReport {
+    /// The report of one sensor reading.
+    pub fn new(reading: &SensorReading) -> Self {
+        let lux = |e: Rgb64| LUMINOUS_EFFICACY * e.luminance();
+        SensorReport {
+            name: reading.sensor.name.clone(),
+            position: reading.sensor.position.to_array(),
+            normal: reading.sensor.normal.to_array(),
+            irradiance: reading.irradiance(),
+            direct_irradiance: reading.direct,
+            indirect_irradiance: reading.indirect,
+            illuminance_lux: lux(reading.irradiance()),
+            direct_illuminance_lux: lux(reading.direct),
+            indirect_illuminance_lux: lux(reading.indirect),
+            standard_error: reading.standard_error,
+            standard_error_lux: reading.standard_error.map(lux),
+        }
+    }
 }
 
 /// Units of the report's numbers.
@@ -89,6 +151,22 @@ pub struct ObjectReport {
     pub illuminance_lux: Option<f64>,
     /// 683 × luminance of `incident_power`, lumens.
     pub luminous_flux_lm: f64,
+    /// The part of `incident_power` straight from lights and emitting surfaces, W (light
+    /// model only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direct_power: Option<Rgb64>,
+    /// 683 × luminance of `direct_power` / area, lux.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direct_illuminance_lux: Option<f64>,
+    /// 683 × luminance of (`incident_power` − `direct_power`) / area, lux.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub indirect_illuminance_lux: Option<f64>,
+    /// Standard error of `incident_power` per channel (Monte Carlo solvers), W.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub incident_power_standard_error: Option<Rgb64>,
+    /// 683 × luminance of `incident_power_standard_error` / area, lux.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub illuminance_standard_error_lux: Option<f64>,
 }
 
 impl ObjectReport {
@@ -100,9 +178,11 @@ impl ObjectReport {
         face: Option<u32>,
         (area, parts): (f64, u32),
         powers: &PowerBalance,
+        standard_error: Option<Rgb64>,
     ) -> Self {
         let bounded = area.is_finite() && area > 0.0;
         let per_area = |v: Rgb64| bounded.then(|| v.map(|c| c / area));
+        let lux = |v: Rgb64| per_area(v).map(|e| LUMINOUS_EFFICACY * e.luminance());
         let irradiance = per_area(powers.incident);
         let leaving = powers.emitted + powers.reflected;
         ObjectReport {
@@ -118,6 +198,11 @@ impl ObjectReport {
             radiosity: per_area(leaving),
             illuminance_lux: irradiance.map(|e| LUMINOUS_EFFICACY * e.luminance()),
             luminous_flux_lm: LUMINOUS_EFFICACY * powers.incident.luminance(),
+            direct_power: powers.direct,
+            direct_illuminance_lux: powers.direct.and_then(lux),
+            indirect_illuminance_lux: powers.direct.and_then(|d| lux(powers.incident - d)),
+            incident_power_standard_error: standard_error,
+            illuminance_standard_error_lux: standard_error.and_then(lux),
         }
     }
 }
@@ -132,7 +217,13 @@ impl Report {
             .iter()
             .enumerate()
             .map(|(e, s)| {
-                ObjectReport::new(s.name.clone(), s.face, (s.area, s.parts), power.balance(e))
+                ObjectReport::new(
+                    s.name.clone(),
+                    s.face,
+                    (s.area, s.parts),
+                    power.balance(e),
+                    power.standard_error(e),
+                )
             })
             .collect();
         Report {
@@ -142,6 +233,7 @@ impl Report {
             stats: measured.stats.clone(),
             objects,
             totals: power.totals(),
+            sensors: measured.sensors.iter().map(SensorReport::new).collect(),
         }
     }
 
@@ -169,6 +261,11 @@ impl Report {
                 return Some((o.name.clone(), "illuminance_lux"));
             }
         }
+        for s in &self.sensors {
+            if !finite(&s.irradiance) || !s.illuminance_lux.is_finite() {
+                return Some((s.name.clone(), "sensor irradiance"));
+            }
+        }
         let t = &self.totals;
         [
             ("emitted_power", t.emitted_power),
@@ -189,17 +286,21 @@ mod tests {
     fn derived_values_follow_the_definitions() {
         let p = PowerBalance {
             incident: Rgb64::new(2.0, 4.0, 6.0),
+            direct: Some(Rgb64::new(1.0, 1.0, 1.0)),
             absorbed: Rgb64::new(1.0, 1.0, 1.0),
             emitted: Rgb64::new(0.5, 0.0, 0.0),
             reflected: Rgb64::new(1.0, 3.0, 5.0),
         };
-        let r = ObjectReport::new("leaf".into(), None, (2.0, 1), &p);
+        let r = ObjectReport::new("leaf".into(), None, (2.0, 1), &p, None);
         assert_eq!(r.irradiance, Some(Rgb64::new(1.0, 2.0, 3.0)));
         assert_eq!(r.radiosity, Some(Rgb64::new(0.75, 1.5, 2.5)));
         let y = 0.2126 + 0.7152 * 2.0 + 0.0722 * 3.0;
         assert!((r.illuminance_lux.unwrap() - 683.0 * y).abs() < 1e-9);
         assert!((r.luminous_flux_lm - 683.0 * 2.0 * y).abs() < 1e-9);
-        let unbounded = ObjectReport::new("ground".into(), None, (f64::INFINITY, 1), &p);
+        let y1 = 1.0 / 2.0;
+        assert!((r.direct_illuminance_lux.unwrap() - 683.0 * y1).abs() < 1e-9);
+        assert!((r.indirect_illuminance_lux.unwrap() - 683.0 * (y - y1)).abs() < 1e-9);
+        let unbounded = ObjectReport::new("ground".into(), None, (f64::INFINITY, 1), &p, None);
         assert_eq!(unbounded.area, None);
         assert_eq!(unbounded.irradiance, None);
         assert_eq!(unbounded.illuminance_lux, None);
@@ -213,8 +314,9 @@ mod tests {
             solver: "matrix".into(),
             units: Units::default(),
             stats: Stats::default(),
-            objects: vec![ObjectReport::new("a".into(), None, (1.0, 1), &fine)],
+            objects: vec![ObjectReport::new("a".into(), None, (1.0, 1), &fine, None)],
             totals: Totals::default(),
+            sensors: Vec::new(),
         };
         assert_eq!(report.first_non_finite(), None);
         report.totals.escaped_power = Rgb64::new(0.0, f64::NEG_INFINITY, 0.0);
@@ -228,7 +330,7 @@ mod tests {
         };
         report
             .objects
-            .push(ObjectReport::new("b".into(), None, (1.0, 1), &broken));
+            .push(ObjectReport::new("b".into(), None, (1.0, 1), &broken, None));
         assert_eq!(
             report.first_non_finite(),
             Some(("b".to_string(), "absorbed_power"))
@@ -253,8 +355,10 @@ mod tests {
                 Some(3),
                 (1.0, 1),
                 &PowerBalance::default(),
+                None,
             )],
             totals: Totals::default(),
+            sensors: Vec::new(),
         };
         let text = serde_json::to_string(&report).unwrap();
         assert!(text.contains("\"stats\":{\"seconds\":1.5,\"rays\":10,\"photons\":7}"));

@@ -3,8 +3,14 @@
 //! CSV has one row per report entry and these columns, arrays flattened per channel:
 //! `name, face, area, parts, incident_power_{r,g,b}, absorbed_power_{r,g,b}, emitted_power_{r,g,b},
 //! reflected_power_{r,g,b}, irradiance_{r,g,b}, radiosity_{r,g,b}, illuminance_lux,
-//! luminous_flux_lm`. Empty cells stand for absent values (no face; unbounded area). The
-//! scene name, solver, units, statistics and totals are in the JSON form only.
+//! luminous_flux_lm, direct_illuminance_lux, indirect_illuminance_lux,
+//! illuminance_standard_error_lux`. Empty cells stand for absent values (no face; unbounded
+//! area; no direct split or standard error from the solver). The scene name, solver, units,
+//! statistics and totals are in the JSON form only.
+//!
+//! When the scene has sensors, a second file next to it, named `<stem>.sensors.csv`, has one
+//! row per sensor: `name, x, y, z, nx, ny, nz, illuminance_lux, direct_illuminance_lux,
+//! indirect_illuminance_lux, standard_error_lux, irradiance_{r,g,b}` (irradiance in W·m⁻²).
 
 use super::schema::Report;
 use crate::color::Rgb64;
@@ -17,7 +23,8 @@ use std::path::Path;
 pub enum ReportFormat {
     /// The full report as pretty-printed JSON.
     Json,
-    /// One row per entry (objects only; see the module documentation).
+    /// One row per entry (objects only; sensors in a second file, see the module
+    /// documentation).
     Csv,
 }
 
@@ -81,12 +88,75 @@ pub fn write_report(report: &Report, path: &Path) -> Result<(), ReportError> {
                 .map_err(|e| io(std::io::Error::other(e)))?;
             writeln!(out).map_err(io)?;
         }
-        ReportFormat::Csv => write_csv(report, &mut out).map_err(|source| ReportError::Csv {
-            path: name(),
-            source,
-        })?,
+        ReportFormat::Csv => {
+            write_csv(report, &mut out).map_err(|source| ReportError::Csv {
+                path: name(),
+                source,
+            })?;
+            if !report.sensors.is_empty() {
+                let sensors_path = sensors_csv_path(path);
+                let file = File::create(&sensors_path).map_err(|source| ReportError::Io {
+                    path: sensors_path.display().to_string(),
+                    source,
+                })?;
+                write_sensors_csv(report, BufWriter::new(file)).map_err(|source| {
+                    ReportError::Csv {
+                        path: sensors_path.display().to_string(),
+                        source,
+                    }
+                })?;
+            }
+        }
     }
     out.flush().map_err(io)
+}
+
+/// Where the sensor rows of a CSV report at `path` go: `<stem>.sensors.csv` beside it.
+pub fn sensors_csv_path(path: &Path) -> std::path::PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    path.with_file_name(format!("{stem}.sensors.csv"))
+}
+
+/// Writes one CSV row per sensor of `report` to `out`.
+fn write_sensors_csv(report: &Report, out: impl Write) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
+    w.write_record([
+        "name",
+        "x",
+        "y",
+        "z",
+        "nx",
+        "ny",
+        "nz",
+        "illuminance_lux",
+        "direct_illuminance_lux",
+        "indirect_illuminance_lux",
+        "standard_error_lux",
+        "irradiance_r",
+        "irradiance_g",
+        "irradiance_b",
+    ])?;
+    for s in &report.sensors {
+        let mut row = vec![s.name.clone()];
+        row.extend(s.position.iter().chain(&s.normal).map(|v| v.to_string()));
+        row.extend(
+            [
+                s.illuminance_lux,
+                s.direct_illuminance_lux,
+                s.indirect_illuminance_lux,
+            ]
+            .map(|v| v.to_string()),
+        );
+        row.push(
+            s.standard_error_lux
+                .map(|v| v.to_string())
+                .unwrap_or_default(),
+        );
+        row.extend(s.irradiance.to_array().map(|v| v.to_string()));
+        w.write_record(&row)?;
+    }
+    w.flush()?;
+    Ok(())
 }
 
 /// Column names of the CSV form.
@@ -111,6 +181,9 @@ pub(crate) fn csv_header() -> Vec<String> {
     }
     h.push("illuminance_lux".into());
     h.push("luminous_flux_lm".into());
+    h.push("direct_illuminance_lux".into());
+    h.push("indirect_illuminance_lux".into());
+    h.push("illuminance_standard_error_lux".into());
     h
 }
 
@@ -143,6 +216,9 @@ fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
         rgb(&mut row, o.radiosity);
         row.push(opt(o.illuminance_lux));
         row.push(num(o.luminous_flux_lm));
+        row.push(opt(o.direct_illuminance_lux));
+        row.push(opt(o.indirect_illuminance_lux));
+        row.push(opt(o.illuminance_standard_error_lux));
         w.write_record(&row)?;
     }
     w.flush()?;
@@ -166,10 +242,11 @@ mod tests {
             units: Units::default(),
             stats: Stats::default(),
             objects: vec![
-                ObjectReport::new("leaf, big".into(), Some(1), (0.5, 1), &p),
-                ObjectReport::new("ground".into(), None, (f64::INFINITY, 1), &p),
+                ObjectReport::new("leaf, big".into(), Some(1), (0.5, 1), &p, None),
+                ObjectReport::new("ground".into(), None, (f64::INFINITY, 1), &p, None),
             ],
             totals: Totals::default(),
+            sensors: Vec::new(),
         }
     }
 
@@ -181,7 +258,7 @@ mod tests {
         let mut reader = csv::Reader::from_reader(text.as_bytes());
         let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
         assert_eq!(header, csv_header());
-        assert_eq!(header.len(), 24);
+        assert_eq!(header.len(), 27);
         let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
         assert_eq!(rows.len(), 2);
         assert_eq!(&rows[0][0], "leaf, big");

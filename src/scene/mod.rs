@@ -10,6 +10,7 @@ mod material;
 mod mesh;
 mod object;
 pub(crate) mod polygon;
+mod sensor;
 mod tessellate;
 mod texture;
 
@@ -19,6 +20,7 @@ pub use light::{Incidence, Light, LightKind};
 pub use material::{Material, MaterialId};
 pub use mesh::PolygonMesh;
 pub use object::{AnalyticKind, Object, Shape};
+pub use sensor::{MAX_SENSORS, Sensor};
 pub use tessellate::{polygon_area, polygon_normal};
 pub use texture::{
     ALPHA_CUTOFF, ColorSpace, Coverage, MAX_TEXELS, MAX_TEXTURE_SIDE, TexelStats, Texture,
@@ -42,6 +44,8 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// Point, spot, directional and sky lights (emissive surfaces are lights too).
     pub lights: Vec<Light>,
+    /// Measuring points (they neither block nor reflect light).
+    pub sensors: Vec<Sensor>,
 }
 
 impl Scene {
@@ -72,6 +76,7 @@ impl Scene {
             textures: Vec::new(),
             objects: Vec::new(),
             lights: Vec::new(),
+            sensors: Vec::new(),
         }
     }
 

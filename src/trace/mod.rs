@@ -7,11 +7,15 @@
 //!   sampled BSDF and the choice of a light for next-event estimation;
 //! - render: the image loops that drive an integrator over the camera's pixels — tiles with
 //!   antialiasing ([`render()`]) and progressive passes for Monte Carlo integrators
-//!   ([`render_progressive`]).
+//!   ([`render_progressive`]);
+//! - sensors: the irradiance at the scene's point sensors by rays from the sensor
+//!   ([`sensor_readings`]: direct light as the standard ray tracer computes it, indirect light
+//!   from an integrator).
 
 pub mod direct;
 mod path;
 pub mod render;
+mod sensors;
 pub mod shading;
 mod whitted;
 
@@ -21,6 +25,7 @@ pub use render::{
     AntialiasMode, ProgressiveOutput, ProgressiveSettings, RenderOutput, RenderSettings, render,
     render_progressive,
 };
+pub use sensors::{SensorSettings, sensor_readings};
 pub use whitted::StandardRayTracer;
 
 use crate::color::Rgb;

@@ -2,7 +2,8 @@
 //!
 //! A [`World`] holds the scene, its geometry flattened into world-space primitives
 //! ([`SceneGeometry`], the second stage of intersection included), an accelerator over them,
-//! and the lights as samplers see them ([`LightSet`]). [`SurfaceMaterial`] is a material at a
+//! and the lights as samplers see them ([`LightSet`]), with the irradiance a non-surface
+//! light sends to a point ([`point_irradiance`]). [`SurfaceMaterial`] is a material at a
 //! surface point with its textures applied; [`optics`] holds the mirror, refraction, Fresnel
 //! and Phong formulas both the ray tracers and the light model scatter by.
 //!
@@ -10,11 +11,13 @@
 //! along a Morton curve, then analytic shapes), so every accelerator, light and hit refers to
 //! the same primitive by the same index.
 
+mod light_at_point;
 mod lights;
 pub mod optics;
 mod scene_geometry;
 mod surface_material;
 
+pub use light_at_point::{point_irradiance, sees_light, sees_point, sky_share};
 pub use lights::{AreaLight, AreaSample, LightSet};
 pub use scene_geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};

@@ -11,6 +11,7 @@ mod lightmap;
 mod lookup;
 mod matrix;
 mod progressive;
+mod sensors;
 mod solution;
 mod system;
 mod unshot_progress;

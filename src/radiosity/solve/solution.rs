@@ -158,6 +158,7 @@ impl Solution {
         Measurement {
             solver: self.solver.name(),
             power: self.surface_power(system),
+            sensors: self.sensor_readings(system),
             stats: self.stats(system),
         }
     }

@@ -208,6 +208,11 @@ impl<'w> RadiositySystem<'w> {
         &self.options
     }
 
+    /// The visibility between patches (and from points), with the world its rays meet.
+    pub fn visibility(&self) -> &Visibility<'w> {
+        &self.visibility
+    }
+
     /// Number of elements (unknowns per channel): two per leaf.
     pub fn len(&self) -> usize {
         self.elements.len()

@@ -1,5 +1,5 @@
 //! Turning a parsed scene file into a [`Scene`]: camera, materials (in file order, then the
-//! implicit `default`, then imported ones), objects and lights.
+//! implicit `default`, then imported ones), objects, lights and sensors.
 
 use super::LoadOptions;
 use super::camera::build_camera;
@@ -10,6 +10,7 @@ use super::lights::build_light;
 use super::locate::toml_error;
 use super::materials::{TextureContext, build_material};
 use super::meshes::{FaceMaterials, MeshCache};
+use super::sensors::build_sensors;
 use super::shapes::build_shape;
 use super::textures::TextureCache;
 use super::transform::build_transform;
@@ -68,6 +69,10 @@ pub(super) fn build_scene(
     for (i, entry) in file.lights.iter().enumerate() {
         let t = Table::new(src, format!("lights[{i}]"), entry.span());
         scene.lights.push(build_light(&t, entry.get_ref())?);
+    }
+    for (i, entry) in file.sensors.iter().enumerate() {
+        let t = Table::new(src, format!("sensors[{i}]"), entry.span());
+        build_sensors(&t, i, entry.get_ref(), &mut scene.sensors)?;
     }
     Ok(scene)
 }

@@ -22,6 +22,21 @@ pub(super) struct SceneFile {
     pub objects: Vec<Spanned<ObjectEntry>>,
     #[serde(default)]
     pub lights: Vec<Spanned<LightEntry>>,
+    #[serde(default)]
+    pub sensors: Vec<Spanned<SensorEntry>>,
+}
+
+/// `[[sensors]]`: one measuring point, or a grid of them when `edge_u`, `edge_v` and
+/// `count` are given.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct SensorEntry {
+    pub name: Option<String>,
+    pub position: Option<Spanned<Coords>>,
+    pub normal: Option<Spanned<Coords>>,
+    pub edge_u: Option<Spanned<Coords>>,
+    pub edge_v: Option<Spanned<Coords>>,
+    pub count: Option<Spanned<[u32; 2]>>,
 }
 
 /// `[camera]`.

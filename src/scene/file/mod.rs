@@ -11,6 +11,7 @@ mod locate;
 mod materials;
 mod meshes;
 mod photometry;
+mod sensors;
 mod shapes;
 mod textures;
 mod transform;

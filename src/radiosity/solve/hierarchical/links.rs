@@ -29,11 +29,12 @@ use crate::color::Rgb64;
 use crate::radiosity::clip::{Facing, facing};
 use crate::radiosity::element::Side;
 use crate::radiosity::form_factor::{gauss_points, point_to_side};
-use crate::radiosity::light_links::{light_irradiance, point_irradiance};
+use crate::radiosity::light_links::{SKY_DIRECTIONS_PER_AXIS, light_irradiance};
 use crate::radiosity::mesh::{Patch, PatchMesh};
 use crate::radiosity::visibility::Visibility;
 use crate::scene::LightKind;
 use crate::world::World;
+use crate::world::point_irradiance;
 use glam::DVec3;
 use smallvec::SmallVec;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -397,7 +398,7 @@ impl Linker<'_> {
         let mut range = (f64::INFINITY, 0.0f64);
         let points = gauss_points(patch);
         for p in points.iter().map(|p| p.0).chain([patch.centroid]) {
-            let y = point_irradiance(shadows, kind, p, normal).luminance();
+            let y = point_irradiance(shadows, kind, p, normal, SKY_DIRECTIONS_PER_AXIS).luminance();
             range = (range.0.min(y), range.1.max(y));
         }
         self.rays

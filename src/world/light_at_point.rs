@@ -1,0 +1,93 @@
+//! The irradiance a point, Lambertian, spot or directional light or the sky sends to one
+//! point of a surface or to a sensor, with shadows: what every algorithm that evaluates such
+//! lights at a point shares (radiosity's emitter-only links, sensor readings), and the
+//! shadow test between two points that sensor readings share.
+
+use super::World;
+use crate::color::Rgb64;
+use crate::geometry::{Frame, Ray, offset_origin};
+use crate::sampling::hash64;
+use crate::sampling::warp::{cosine_hemisphere, stratified};
+use crate::scene::LightKind;
+use glam::{DVec3, Vec2, Vec3};
+use std::f64::consts::PI;
+
+/// The irradiance (W·m⁻²) that `light` sends to the point `x` whose receiving side has the
+/// unit normal `normal`, with shadows: `I·f·cos θ/d²` for point, Lambertian and spot lights
+/// (`f` the falloff), `E·cos θ` for a directional light, `π·L` times the cosine-weighted open
+/// share of the hemisphere for the sky, estimated with `sky_per_axis²` stratified directions.
+pub fn point_irradiance(
+    world: &World,
+    light: &LightKind,
+    x: DVec3,
+    normal: DVec3,
+    sky_per_axis: u32,
+) -> Rgb64 {
+    match *light {
+        LightKind::Sky { radiance } => {
+            radiance.to_f64() * (PI * sky_share(world, &[(x, 1.0)], normal, sky_per_axis))
+        }
+        _ => {
+            let Some(inc) = light.incidence(x.as_vec3()) else {
+                return Rgb64::BLACK;
+            };
+            let cos = normal.dot(inc.wi.as_dvec3());
+            if cos <= 0.0 || !sees_light(world, x, normal, light) {
+                return Rgb64::BLACK;
+            }
+            inc.irradiance.to_f64() * cos
+        }
+    }
+}
+
+/// True when the way from surface point `x` (unit normal `normal` of the receiving side)
+/// to the point, Lambertian, spot or directional `light` is free.
+pub fn sees_light(world: &World, x: DVec3, normal: DVec3, light: &LightKind) -> bool {
+    let Some(inc) = light.incidence(x.as_vec3()) else {
+        return false;
+    };
+    let origin = offset_origin(x.as_vec3(), normal.as_vec3(), inc.wi);
+    let t_max = if inc.distance.is_finite() {
+        (x.as_vec3() + inc.wi * inc.distance - origin).length()
+    } else {
+        f32::INFINITY
+    };
+    !world.occluded(&Ray::new(origin, inc.wi), t_max)
+}
+
+/// True when nothing lies between the points `x` (unit normal `nx`) and `y` (unit normal
+/// `ny`); both ends are moved off the surfaces they may lie on first (a sensor's point is
+/// moved along its normal as if it lay on one).
+pub fn sees_point(world: &World, (x, nx): (Vec3, Vec3), (y, ny): (Vec3, Vec3)) -> bool {
+    let start = offset_origin(x, nx, y - x);
+    let end = offset_origin(y, ny, x - y);
+    let d = end - start;
+    let length = d.length();
+    if length.is_nan() || length <= 0.0 {
+        return true;
+    }
+    !world.occluded(&Ray::new(start, d / length), length)
+}
+
+/// The cosine-weighted share of the hemisphere over `normal` that reaches the sky, averaged
+/// over the weighted `points` (weights summing to 1): `per_axis²` stratified directions per
+/// point, jittered by a hash of the point's place in the list and the stratum (deterministic).
+pub fn sky_share(world: &World, points: &[(DVec3, f64)], normal: DVec3, per_axis: u32) -> f64 {
+    let n = per_axis.max(1);
+    let frame = Frame::from_normal(normal.as_vec3());
+    let unit = |h: u64| (h >> 40) as f32 * (1.0 / 16_777_216.0);
+    let mut share = 0.0;
+    for (k, &(x, w)) in points.iter().enumerate() {
+        let open = (0..n * n)
+            .filter(|&s| {
+                let h = hash64((k as u64) << 32 | s as u64);
+                let jitter = Vec2::new(unit(h), unit(hash64(h)));
+                let dir = frame.to_world(cosine_hemisphere(stratified(s, n, jitter)));
+                let origin = offset_origin(x.as_vec3(), normal.as_vec3(), dir);
+                !world.occluded(&Ray::new(origin, dir), f32::INFINITY)
+            })
+            .count();
+        share += w * open as f64 / (n * n) as f64;
+    }
+    share
+}
