@@ -17,7 +17,9 @@
 //!    other;
 //! 7. [`final_gather`] — images from two algorithms together (ray-traced direct light,
 //!    indirect light from radiosity);
-//! 8. [`image`], then [`report`] — files made from what was measured.
+//! 8. [`image`], then [`report`] — files made from what was measured;
+//! 9. [`validate`] — the analytic validation suite, which runs the algorithms on scenes
+//!    with closed-form answers.
 
 #![warn(missing_docs)]
 
@@ -36,4 +38,5 @@ pub mod report;
 pub mod sampling;
 pub mod scene;
 pub mod trace;
+pub mod validate;
 pub mod world;

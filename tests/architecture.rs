@@ -43,6 +43,22 @@ const ALLOWED: &[(&str, &[&str])] = &[
     // Files made from what was measured.
     ("image", &["choice", "color", "measure"]),
     ("report", &["color", "image", "measure", "scene"]),
+    // The validation suite, over the algorithms.
+    (
+        "validate",
+        &[
+            "accel",
+            "choice",
+            "color",
+            "light_model",
+            "measure",
+            "progress",
+            "radiosity",
+            "scene",
+            "trace",
+            "world",
+        ],
+    ),
 ];
 
 /// What every algorithm may import: everything below the algorithms.

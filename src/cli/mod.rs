@@ -1,4 +1,4 @@
-//! The `strahl` command line: `render`, `solve`, `scenes`, `info` and `bench`. The only part
+//! The `strahl` command line: `render`, `solve`, `validate`, `scenes`, `info` and `bench`. The only part
 //! of strahl that knows the argument parser; everything it runs is in the library.
 
 mod bench;
@@ -11,6 +11,7 @@ mod render;
 mod solve;
 mod source;
 mod tone;
+mod validate;
 
 use clap::{Parser, Subcommand};
 
@@ -30,6 +31,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Compute the light on every object and write a per-object report.
     Solve(solve::SolveArgs),
+    /// Run the analytic validation suite (closed-form cases through every method).
+    Validate(validate::ValidateArgs),
     /// List the built-in scenes.
     Scenes,
     /// Validate a scene and print its statistics.
@@ -50,6 +53,7 @@ pub fn main() -> std::process::ExitCode {
             progress::watch_memory(args.limits.memory_bytes());
             solve::run(&args)
         }
+        Command::Validate(args) => validate::run(&args),
         Command::Scenes => {
             for (name, description) in strahl::scene::builtin::names() {
                 println!("{name:18} {description}");

@@ -1,0 +1,182 @@
+#!/usr/bin/env python3
+"""The figures of docs/VALIDATION.md, as SVG, from runs of the strahl binary.
+
+- validation-light-trace.svg: RMS and largest relative error of the light model over the
+  quick suite's sensor checks, and its mean reported standard error, against the photons;
+- validation-pathtrace.svg: the same for the path tracer against the samples per sensor;
+- validation-hierarchical.svg: the Cornell box per object, hierarchical radiosity against a
+  light-model reference (--reference-photons), largest and RMS error against --error, with
+  the seconds of each run;
+- validation-links.svg: links against leaves of those hierarchical runs, with leaves² (what
+  linking every pair would cost) for scale.
+
+Needs a release build (`cargo build --release`). Prints the numbers as Markdown tables too.
+
+Usage: scripts/validation-figures.py [--strahl target/release/strahl] [--out docs/images]
+           [--reference-photons 20000000]
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import tempfile
+import time
+
+
+def run_json(cmd, path):
+    subprocess.run(cmd, check=False, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(path) as f:
+        return json.load(f)
+
+
+def suite_errors(strahl, method, option, value, tmp):
+    """RMS and largest |relative error| and mean 1σ (relative) over the sensor rows."""
+    path = os.path.join(tmp, "suite.json")
+    rows = run_json(
+        [strahl, "validate", "--quick", "--method", method, option, str(value), "--report", path],
+        path,
+    )
+    rows = [r for r in rows if r["quantity"].startswith("E(")]
+    errors = [abs(r["relative_error"]) for r in rows]
+    sigmas = [r["standard_error"] / r["expected"] for r in rows if r["standard_error"]]
+    rms = math.sqrt(sum(e * e for e in errors) / len(errors))
+    return rms, max(errors), sum(sigmas) / max(len(sigmas), 1)
+
+
+def solve(strahl, args, tmp):
+    path = os.path.join(tmp, "report.json")
+    start = time.time()
+    report = run_json([strahl, "solve", "cornell", "-q", "--report", path] + args, path)
+    return report, time.time() - start
+
+
+def per_object(report):
+    return {o["name"]: o["irradiance"][1] for o in report["objects"] if o["irradiance"]}
+
+
+class Plot:
+    """A log-log line plot written as SVG by hand (no plotting library needed)."""
+
+    W, H, L, R, T, B = 560, 380, 70, 20, 30, 50
+
+    def __init__(self, title, xlabel, ylabel):
+        self.title, self.xlabel, self.ylabel = title, xlabel, ylabel
+        self.series = []
+
+    def add(self, name, points, colour, dashed=False):
+        self.series.append((name, [(x, y) for x, y in points if x > 0 and y > 0], colour, dashed))
+
+    def write(self, path):
+        xs = [x for _, p, _, _ in self.series for x, _ in p]
+        ys = [y for _, p, _, _ in self.series for _, y in p]
+        x0, x1 = math.floor(math.log10(min(xs))), math.ceil(math.log10(max(xs)))
+        y0, y1 = math.floor(math.log10(min(ys))), math.ceil(math.log10(max(ys)))
+        pw, ph = self.W - self.L - self.R, self.H - self.T - self.B
+
+        def sx(x):
+            return self.L + (math.log10(x) - x0) / max(x1 - x0, 1) * pw
+
+        def sy(y):
+            return self.T + ph - (math.log10(y) - y0) / max(y1 - y0, 1) * ph
+
+        out = [
+            f'<svg xmlns="http://www.w3.org/2000/svg" width="{self.W}" height="{self.H}" '
+            'font-family="sans-serif" font-size="12">',
+            f'<rect width="{self.W}" height="{self.H}" fill="white"/>',
+            f'<text x="{self.W / 2}" y="18" text-anchor="middle" font-size="14">{self.title}</text>',
+        ]
+        for k in range(x0, x1 + 1):
+            x = sx(10**k)
+            out.append(f'<line x1="{x}" y1="{self.T}" x2="{x}" y2="{self.T + ph}" stroke="#ddd"/>')
+            out.append(f'<text x="{x}" y="{self.T + ph + 16}" text-anchor="middle">1e{k}</text>')
+        for k in range(y0, y1 + 1):
+            y = sy(10**k)
+            out.append(f'<line x1="{self.L}" y1="{y}" x2="{self.L + pw}" y2="{y}" stroke="#ddd"/>')
+            out.append(f'<text x="{self.L - 6}" y="{y + 4}" text-anchor="end">1e{k}</text>')
+        out.append(
+            f'<rect x="{self.L}" y="{self.T}" width="{pw}" height="{ph}" fill="none" stroke="black"/>'
+        )
+        out.append(
+            f'<text x="{self.L + pw / 2}" y="{self.H - 12}" text-anchor="middle">{self.xlabel}</text>'
+        )
+        out.append(
+            f'<text x="16" y="{self.T + ph / 2}" text-anchor="middle" '
+            f'transform="rotate(-90 16 {self.T + ph / 2})">{self.ylabel}</text>'
+        )
+        for i, (name, points, colour, dashed) in enumerate(self.series):
+            dash = ' stroke-dasharray="5,4"' if dashed else ""
+            line = " ".join(f"{sx(x):.1f},{sy(y):.1f}" for x, y in points)
+            out.append(f'<polyline points="{line}" fill="none" stroke="{colour}" stroke-width="2"{dash}/>')
+            for x, y in points:
+                out.append(f'<circle cx="{sx(x):.1f}" cy="{sy(y):.1f}" r="3" fill="{colour}"/>')
+            ly = self.T + 14 + 16 * i
+            out.append(f'<line x1="{self.L + pw - 170}" y1="{ly - 4}" x2="{self.L + pw - 150}" '
+                       f'y2="{ly - 4}" stroke="{colour}" stroke-width="2"{dash}/>')
+            out.append(f'<text x="{self.L + pw - 145}" y="{ly}">{name}</text>')
+        out.append("</svg>")
+        with open(path, "w") as f:
+            f.write("\n".join(out) + "\n")
+
+
+def convergence(strahl, method, option, values, label, out, tmp):
+    rows = [(v,) + suite_errors(strahl, method, option, v, tmp) for v in values]
+    print(f"\n| {label} | RMS error | largest error | mean 1σ |\n|---|---|---|---|")
+    for v, rms, worst, sigma in rows:
+        print(f"| {v:,} | {100 * rms:.3f} % | {100 * worst:.3f} % | {100 * sigma:.3f} % |")
+    plot = Plot(f"{method}: quick suite, sensor checks", label, "relative error")
+    plot.add("RMS error", [(v, r) for v, r, _, _ in rows], "#1f77b4")
+    plot.add("largest error", [(v, w) for v, _, w, _ in rows], "#d62728")
+    plot.add("mean 1σ reported", [(v, s) for v, _, _, s in rows], "#2ca02c", dashed=True)
+    plot.write(os.path.join(out, f"validation-{method}.svg"))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--strahl", default="target/release/strahl")
+    parser.add_argument("--out", default="docs/images")
+    parser.add_argument("--reference-photons", type=int, default=20_000_000)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        convergence(args.strahl, "light-trace", "--photons",
+                    [10_000, 30_000, 100_000, 300_000, 1_000_000, 3_000_000],
+                    "photons", args.out, tmp)
+        convergence(args.strahl, "pathtrace", "--samples",
+                    [256, 1024, 4096, 16_384, 65_536, 262_144],
+                    "samples per sensor", args.out, tmp)
+
+        reference, seconds = solve(
+            args.strahl, ["--solver", "light-trace", "--photons", str(args.reference_photons)], tmp)
+        ref = per_object(reference)
+        print(f"\nReference: light model, {args.reference_photons:,} photons, {seconds:.1f} s")
+        print("\n| --error | largest error | RMS error | links | leaves | seconds |")
+        print("|---|---|---|---|---|---|")
+        rows = []
+        for error in [1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5]:
+            report, seconds = solve(
+                args.strahl,
+                ["--solver", "hierarchical", "--error", str(error), "--threads", "1"], tmp)
+            got = per_object(report)
+            errs = [abs(got[k] / ref[k] - 1) for k in ref if k in got and ref[k] > 0]
+            worst = max(errs)
+            rms = math.sqrt(sum(e * e for e in errs) / len(errs))
+            links, leaves = report["stats"]["links"], report["stats"]["patches"]
+            rows.append((error, worst, rms, links, leaves, seconds))
+            print(f"| {error:g} | {100 * worst:.2f} % | {100 * rms:.2f} % | {links:,} | "
+                  f"{leaves:,} | {seconds:.2f} |")
+        plot = Plot("Cornell box: hierarchical radiosity vs light model", "--error",
+                    "relative error per object")
+        plot.add("largest error", [(e, w) for e, w, _, _, _, _ in rows], "#d62728")
+        plot.add("RMS error", [(e, r) for e, _, r, _, _, _ in rows], "#1f77b4")
+        plot.add("seconds (one thread)", [(e, s) for e, _, _, _, _, s in rows], "#7f7f7f",
+                 dashed=True)
+        plot.write(os.path.join(args.out, "validation-hierarchical.svg"))
+        plot = Plot("Cornell box: links against leaves", "leaves", "count")
+        plot.add("links", [(l, k) for _, _, _, k, l, _ in rows], "#1f77b4")
+        plot.add("leaves²", [(l, l * l) for _, _, _, _, l, _ in rows], "#7f7f7f", dashed=True)
+        plot.write(os.path.join(args.out, "validation-links.svg"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,45 @@
+//! `strahl validate --quick`: every analytic case passes through every method, as the
+//! command line runs it, and the table and JSON report say so.
+
+mod common;
+
+use common::{strahl, temp};
+
+#[test]
+fn the_quick_validation_suite_passes_for_every_method() {
+    let report = temp("validate", "table.json");
+    let run = strahl(&["validate", "--quick", "--report", report.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(stdout.contains(" 0 failed"), "{stdout}");
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+    assert!(rows.len() >= 250, "{} rows", rows.len());
+    for method in [
+        "direct",
+        "pathtrace",
+        "light-trace",
+        "matrix",
+        "progressive",
+        "hierarchical-shooting",
+        "hierarchical",
+    ] {
+        let of_method: Vec<_> = rows.iter().filter(|r| r["method"] == method).collect();
+        assert!(of_method.len() >= 20, "{method}: {} rows", of_method.len());
+        for r in of_method {
+            let error = r["relative_error"].as_f64().unwrap();
+            assert!(r["pass"] == true && error.abs() <= 0.01, "{r}");
+        }
+    }
+}
+
+#[test]
+fn unknown_methods_are_refused() {
+    let run = strahl(&["validate", "--quick", "--method", "nonsense"]);
+    assert!(!run.status.success());
+    assert!(String::from_utf8_lossy(&run.stderr).contains("nonsense"));
+}
