@@ -600,3 +600,61 @@ fn textured_emitter_emits_its_texture_weighted_power() {
         "{got} vs {expected} ± {sigma}"
     );
 }
+
+/// A one-sided grey floor lit from its back and a white ceiling over it, under a point light
+/// between them.
+fn one_sided_floor_lit_from_behind() -> Scene {
+    let mut scene = Scene::empty("one-sided");
+    let grey = scene.add_material(Material {
+        one_sided: true,
+        ..Material::diffuse("grey", Rgb::splat(0.5))
+    });
+    let white = scene.add_material(Material::diffuse("white", Rgb::splat(0.8)));
+    // The floor's front faces down: the light above meets its back.
+    scene.add_object(
+        "floor",
+        quad(Vec3::new(-1.0, 0.0, -1.0), Vec3::X * 2.0, Vec3::Z * 2.0),
+        grey,
+    );
+    scene.add_object(
+        "roof",
+        quad(Vec3::new(-1.0, 2.0, -1.0), Vec3::Z * 2.0, Vec3::X * 2.0),
+        white,
+    );
+    scene.lights.push(Light {
+        name: None,
+        kind: LightKind::Point {
+            position: Vec3::Y,
+            intensity: Rgb::splat(1.0),
+        },
+    });
+    scene
+}
+
+#[test]
+fn a_one_sided_surface_absorbs_what_reaches_its_back_as_radiosity_counts_it() {
+    let report = solve(one_sided_floor_lit_from_behind(), 400_000, 2);
+    let floor = object(&report, "floor");
+    // Everything that reaches the back is absorbed and nothing reflected, as the radiosity
+    // solvers' back element of a one-sided material (reflectance 0) has it.
+    assert_eq!(floor.reflected_power, Rgb64::BLACK);
+    assert_eq!(floor.absorbed_power, floor.incident_power);
+    let world = World::new(one_sided_floor_lit_from_behind(), AccelKind::Bvh).unwrap();
+    let (system, solution) = strahl::radiosity::solve::hierarchical::solve_hierarchical(
+        &world,
+        strahl::radiosity::solve::SystemOptions::default(),
+        &Default::default(),
+        &NoProgress,
+        &Cancel::new(),
+    )
+    .unwrap();
+    let radiosity = Report::new("one-sided", &solution.measurement(&system));
+    let expected = object(&radiosity, "floor").incident_power.g;
+    let got = floor.incident_power.g;
+    let se = floor.incident_power_standard_error.unwrap().g;
+    assert!(
+        (got - expected).abs() < 0.01 * expected + 4.0 * se,
+        "light model {got} ± {se} W, hierarchical radiosity {expected} W"
+    );
+    assert_eq!(object(&radiosity, "floor").reflected_power, Rgb64::BLACK);
+}

@@ -38,6 +38,30 @@ fn the_quick_validation_suite_passes_for_every_method() {
 }
 
 #[test]
+fn the_full_validation_suite_passes_with_every_monte_carlo_figure_proven_to_one_percent() {
+    let report = temp("validate", "full.json");
+    let run = strahl(&["validate", "--report", report.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_slice(&std::fs::read(&report).unwrap()).unwrap();
+    assert!(rows.len() >= 270, "{} rows", rows.len());
+    assert!(rows.iter().any(|r| r["case"] == "cube ρ=0.95"));
+    for r in &rows {
+        assert!(r["pass"] == true, "{r}");
+        // Three standard errors under 1 %: the run's own noise cannot hide a 1 % error.
+        if let Some(se) = r["standard_error"].as_f64() {
+            let expected = r["expected"].as_f64().unwrap();
+            assert!(3.0 * se < 0.01 * expected.abs(), "{r}");
+        }
+    }
+}
+
+#[test]
 fn unknown_methods_are_refused() {
     let run = strahl(&["validate", "--quick", "--method", "nonsense"]);
     assert!(!run.status.success());
