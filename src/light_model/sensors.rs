@@ -50,23 +50,28 @@ pub(super) fn delta_light_direct(world: &World) -> Vec<Rgb64> {
         .collect()
 }
 
-/// Adds to `out` (one entry per sensor, W·m⁻²) the irradiance of a photon of power `power`
-/// (W) leaving an emitting surface at `x` whose emitting side has the unit normal `n`.
-pub(super) fn connect_emission(world: &World, x: Vec3, n: Vec3, power: Rgb64, out: &mut [Rgb64]) {
-    connect(world, x, n, out, |to_sensor| {
+/// Adds to part `part` of each sensor's entry of `out` (W·m⁻²) the irradiance of a photon
+/// of power `power` (W) leaving an emitting surface at `x` whose emitting side has the unit
+/// normal `n`.
+pub(super) fn connect_emission(
+    world: &World,
+    (x, n): (Vec3, Vec3),
+    power: Rgb64,
+    (out, part): (&mut [[Rgb64; 2]], usize),
+) {
+    connect(world, x, n, (out, part), |to_sensor| {
         power * (f64::from(n.dot(to_sensor)).max(0.0) / PI)
     });
 }
 
-/// Adds to `out` (one entry per sensor, W·m⁻²) the irradiance of a photon of power `power`
-/// (W) arriving along the unit direction `dir` at `hit`, reflected toward the sensors by
-/// the non-delta part of the material there.
+/// Adds to part `part` of each sensor's entry of `out` (W·m⁻²) the irradiance of a photon
+/// of power `power` (W) arriving along the unit direction `dir` at `hit`, reflected toward
+/// the sensors by the non-delta part of the material there.
 pub(super) fn connect_reflection(
     world: &World,
-    hit: &SurfaceHit,
-    dir: Vec3,
+    (hit, dir): (&SurfaceHit, Vec3),
     power: Rgb64,
-    out: &mut [Rgb64],
+    (out, part): (&mut [[Rgb64; 2]], usize),
 ) {
     let m = SurfaceMaterial::at(&world.scene, hit);
     if m.is_black_from(hit.front_face) || (m.diffuse.is_black() && m.specular.is_black()) {
@@ -74,7 +79,7 @@ pub(super) fn connect_reflection(
     }
     let side = if hit.front_face { 1.0 } else { -1.0 };
     let (ng, ns) = (hit.ng * side, hit.ns * side);
-    connect(world, hit.p, ng, out, |to_sensor| {
+    connect(world, hit.p, ng, (out, part), |to_sensor| {
         let cos = f64::from(ng.dot(to_sensor));
         if cos <= 0.0 {
             return Rgb64::BLACK;
@@ -83,11 +88,17 @@ pub(super) fn connect_reflection(
     });
 }
 
-/// Adds to each sensor's entry of `out` the irradiance `I·cos θₛ/d²` from the surface point
-/// `x` (unit normal `n` of the side light leaves from), where `intensity(ω)` is the radiant
-/// intensity (W·sr⁻¹) it sends along the unit direction `ω` toward the sensor, when the way
-/// is free.
-fn connect(world: &World, x: Vec3, n: Vec3, out: &mut [Rgb64], intensity: impl Fn(Vec3) -> Rgb64) {
+/// Adds to part `part` of each sensor's entry of `out` the irradiance `I·cos θₛ/d²` from the
+/// surface point `x` (unit normal `n` of the side light leaves from), where `intensity(ω)` is
+/// the radiant intensity (W·sr⁻¹) it sends along the unit direction `ω` toward the sensor,
+/// when the way is free.
+fn connect(
+    world: &World,
+    x: Vec3,
+    n: Vec3,
+    (out, part): (&mut [[Rgb64; 2]], usize),
+    intensity: impl Fn(Vec3) -> Rgb64,
+) {
     for (sensor, e) in world.scene.sensors.iter().zip(out.iter_mut()) {
         let d = sensor.position - x;
         let d2 = f64::from(d.length_squared());
@@ -100,6 +111,6 @@ fn connect(world: &World, x: Vec3, n: Vec3, out: &mut [Rgb64], intensity: impl F
         if i.max_channel() <= 0.0 || !sees_point(world, (x, n), (sensor.position, sensor.normal)) {
             continue;
         }
-        *e += i * (cos_sensor / d2);
+        e[part] += i * (cos_sensor / d2);
     }
 }

@@ -152,8 +152,9 @@ struct Tracer<'a> {
 #[derive(Clone)]
 struct Worker {
     tally: Tally,
-    /// The current photon's hits: report entry and incident power.
-    hits: Vec<(usize, Fixed)>,
+    /// The current photon's hits: report entry and incident power as a share of the total
+    /// emitted power (largest channel).
+    hits: Vec<(usize, [f64; 3])>,
     /// The current photon's irradiance at each sensor, direct and indirect, W·m⁻².
     sensor_light: Vec<[Rgb64; 2]>,
 }
@@ -217,6 +218,11 @@ impl Tracer<'_> {
         p.to_array().map(|c| to_fixed(c * self.scale))
     }
 
+    /// Share of the total emitted power (largest channel) per watt.
+    fn share_per_watt(&self) -> f64 {
+        self.scale / FIXED_POINT_TOTAL
+    }
+
     fn watts(&self, q: Fixed) -> Rgb64 {
         Rgb64::from(q.map(|c| from_fixed(c) / self.scale))
     }
@@ -237,11 +243,8 @@ impl Tracer<'_> {
                 let e = self.table.entry(object, face);
                 add_fixed(&mut tally.entries[e].emitted, emitted);
                 if sensing && let Some(n) = photon.normal {
-                    let mut direct: Vec<Rgb64> = vec![Rgb64::BLACK; worker.sensor_light.len()];
-                    connect_emission(world, photon.ray.origin, n, self.watts(q), &mut direct);
-                    for (light, d) in worker.sensor_light.iter_mut().zip(direct) {
-                        light[0] += d;
-                    }
+                    let light = (&mut worker.sensor_light[..], 0);
+                    connect_emission(world, (photon.ray.origin, n), self.watts(q), light);
                 }
             }
             None => add_fixed(&mut tally.light_emission, emitted),
@@ -258,21 +261,22 @@ impl Tracer<'_> {
                 break;
             };
             let entry_index = self.table.entry(hit.object, hit.face);
-            worker.hits.push((entry_index, q));
+            let power = self.watts(q);
+            worker.hits.push((
+                entry_index,
+                power.to_array().map(|c| c * self.share_per_watt()),
+            ));
             let entry = &mut tally.entries[entry_index];
             add_fixed(&mut entry.incident, q);
             if bounces == 0 {
                 add_fixed(&mut entry.direct, q);
             }
             if sensing {
-                let mut reflected: Vec<Rgb64> = vec![Rgb64::BLACK; worker.sensor_light.len()];
-                connect_reflection(world, &hit, ray.dir, self.watts(q), &mut reflected);
-                for (light, r) in worker.sensor_light.iter_mut().zip(reflected) {
-                    light[1] += r;
-                }
+                let light = (&mut worker.sensor_light[..], 1);
+                connect_reflection(world, (&hit, ray.dir), power, light);
             }
             let scattered = if bounces < self.settings.max_bounces {
-                scatter_photon(&world.scene, &hit, ray.dir, self.watts(q), &mut sampler)
+                scatter_photon(&world.scene, &hit, ray.dir, power, &mut sampler)
             } else {
                 tally.truncated_paths += 1;
                 None
@@ -300,29 +304,23 @@ impl Tracer<'_> {
     /// tally.
     fn add_squares(&self, worker: &mut Worker) {
         let hits = &mut worker.hits;
-        let mut all = [0i128; 3];
-        hits.iter().for_each(|&(_, q)| add_fixed(&mut all, q));
-        let mut indirect = all;
-        if let Some(&(_, first)) = hits.first() {
-            indirect = [0, 1, 2].map(|c| all[c] - first[c]);
-        }
+        let add = |a: [f64; 3], b: [f64; 3]| [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+        let all = hits.iter().fold([0.0; 3], |a, &(_, x)| add(a, x));
+        let indirect = match hits.first() {
+            Some(&(_, first)) => [0, 1, 2].map(|c| all[c] - first[c]),
+            None => all,
+        };
         for (squares, total) in worker.tally.total_squares.iter_mut().zip([all, indirect]) {
-            add_fixed_saturating(
-                squares,
-                total.map(|c| square(from_fixed(c) / FIXED_POINT_TOTAL)),
-            );
+            add_fixed_saturating(squares, total.map(square));
         }
-        hits.sort_unstable_by_key(|&(entry, _)| entry);
-        let mut k = 0;
-        while k < hits.len() {
-            let entry = hits[k].0;
-            let mut total = [0i128; 3];
-            while k < hits.len() && hits[k].0 == entry {
-                add_fixed(&mut total, hits[k].1);
-                k += 1;
-            }
-            let squares = total.map(|c| square(from_fixed(c) / FIXED_POINT_TOTAL));
-            add_fixed_saturating(&mut worker.tally.entries[entry].incident_squares, squares);
+        // Per surface: the photon's hits summed (in hit order, so the same for any thread).
+        hits.sort_by_key(|&(entry, _)| entry);
+        for run in hits.chunk_by(|a, b| a.0 == b.0) {
+            let total = run.iter().fold([0.0; 3], |a, &(_, x)| add(a, x));
+            add_fixed_saturating(
+                &mut worker.tally.entries[run[0].0].incident_squares,
+                total.map(square),
+            );
         }
         let sensor_scale = FIXED_POINT_TOTAL / self.sensor_reference;
         for (light, fixed) in worker
