@@ -14,8 +14,9 @@
 //! - `illuminance_lux` = 683 lm/W × luminance Y of `irradiance`; it is lux only when lengths
 //!   are metres (otherwise lm per squared scene unit).
 //! - `luminous_flux_lm` = 683 lm/W × luminance Y of `incident_power`, lumens.
-//! - `direct_power` (light model only): the part of `incident_power` that came straight from
-//!   a light or emitting surface, W; `direct_illuminance_lux` and `indirect_illuminance_lux`
+//! - `direct_power` (the light model, the matrix and progressive solvers and hierarchical
+//!   radiosity): the part of `incident_power` that came straight from a light or emitting
+//!   surface, W; `direct_illuminance_lux` and `indirect_illuminance_lux`
 //!   split `illuminance_lux` the same way.
 //! - `incident_power_standard_error` (Monte Carlo solvers): the standard error of
 //!   `incident_power`, W; `illuminance_standard_error_lux` is 683 × the luminance of the
@@ -151,8 +152,8 @@ pub struct ObjectReport {
     pub illuminance_lux: Option<f64>,
     /// 683 × luminance of `incident_power`, lumens.
     pub luminous_flux_lm: f64,
-    /// The part of `incident_power` straight from lights and emitting surfaces, W (light
-    /// model only).
+    /// The part of `incident_power` straight from lights and emitting surfaces, W (the
+    /// solvers that tell it apart: not hierarchical shooting).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub direct_power: Option<Rgb64>,
     /// 683 × luminance of `direct_power` / area, lux.

@@ -117,6 +117,12 @@ pub fn solve_matrix(
         .into_par_iter()
         .map(|i| system.light_irradiance[i] + gather(&rows[i], b))
         .collect();
+    solution.direct_irradiance = Some(
+        (0..n)
+            .into_par_iter()
+            .map(|i| system.light_irradiance[i] + gather(&rows[i], &system.emission))
+            .collect(),
+    );
     solution.seconds.iterations = start.elapsed().as_secs_f64();
     Ok(solution)
 }

@@ -13,7 +13,7 @@
 //! no form factors.
 
 use super::SolveError;
-use super::solution::{Solution, SolverKind, power_fraction};
+use super::solution::{Solution, SolverKind, direct_from_emitters, power_fraction};
 use super::system::{Couplings, RadiositySystem};
 use super::unshot_progress::UnshotProgress;
 use crate::color::Rgb64;
@@ -110,6 +110,9 @@ pub fn solve_progressive(
     }
     bar.finish();
     solution.converged = fraction <= settings.tolerance;
+    if !solution.interrupted {
+        solution.direct_irradiance = Some(direct_from_emitters(system));
+    }
     solution.seconds.form_factors = form_factor_seconds;
     solution.seconds.iterations = started.elapsed().as_secs_f64() - form_factor_seconds;
     Ok(solution)

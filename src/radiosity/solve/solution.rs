@@ -86,6 +86,9 @@ pub struct Solution {
     pub radiosity: Vec<Rgb64>,
     /// Irradiance `H` gathered per element (light links included), W·m⁻².
     pub irradiance: Vec<Rgb64>,
+    /// The part of `irradiance` straight from the lights and the emitting elements, W·m⁻²,
+    /// when the solver computed it (not for hierarchical shooting or an interrupted solve).
+    pub direct_irradiance: Option<Vec<Rgb64>>,
     /// Ambient radiosity estimate of the light not yet distributed (progressive refinement,
     /// seed 004), W·m⁻²; zero for the matrix solvers. Display adds `ρ_i × ambient`.
     pub ambient: Rgb64,
@@ -177,8 +180,10 @@ impl Solution {
                 system.reflectance[k],
                 system.coverage[k],
             );
+            let direct = self.direct_irradiance.as_ref().map(|d| d[k] * (c * a));
             let balance = power.balance_mut(entry);
             balance.incident += h * (c * a);
+            balance.direct = direct.map(|d| balance.direct.unwrap_or(Rgb64::BLACK) + d);
             balance.absorbed += (Rgb64::splat(c) - r) * a * h;
             balance.emitted += e * a;
             balance.reflected += r * a * h;
@@ -284,6 +289,7 @@ impl Solution {
             solver,
             radiosity: (0..system.len()).map(|k| system.source(k)).collect(),
             irradiance: system.light_irradiance.clone(),
+            direct_irradiance: None,
             ambient: Rgb64::BLACK,
             convergence: Vec::new(),
             converged: false,
@@ -297,6 +303,20 @@ impl Solution {
             link_segments: Vec::new(),
         }
     }
+}
+
+/// Per element: the irradiance straight from the lights and the emitting elements,
+/// `H_light,i + Σⱼ F_ij V_ij E_j` over the emitting elements `j`, W·m⁻² (their columns of
+/// couplings computed again, in parallel over receivers).
+pub(super) fn direct_from_emitters(system: &RadiositySystem) -> Vec<Rgb64> {
+    let mut direct = system.light_irradiance.clone();
+    for j in (0..system.len()).filter(|&j| system.emission[j].max_channel() > 0.0) {
+        let column = system.column(j);
+        for (&i, &f) in column.leaves.iter().zip(&column.values) {
+            direct[i as usize] += system.emission[j] * f;
+        }
+    }
+    direct
 }
 
 /// Largest number of rows of the convergence history in the statistics.

@@ -124,6 +124,26 @@ impl Nodes {
         (change, source)
     }
 
+    /// Per node, at the leaves: what `gathered` (irradiance gathered per node) and the light
+    /// links hand down to each leaf from it and its ancestors, W·m⁻² (zero at inner nodes).
+    pub fn push_down(&self, mesh: &PatchMesh, gathered: &[Rgb64]) -> Vec<Rgb64> {
+        let mut at_leaves = vec![Rgb64::BLACK; gathered.len()];
+        let mut stack: Vec<(usize, Rgb64)> = mesh
+            .roots
+            .iter()
+            .flat_map(|&root| Side::BOTH.map(|side| (node(root, side), Rgb64::BLACK)))
+            .collect();
+        while let Some((n, above)) = stack.pop() {
+            let (patch, side) = split_node(n);
+            let h = above + gathered[n] + self.lit[n];
+            match mesh.patch(patch).children {
+                None => at_leaves[n] = h,
+                Some(children) => stack.extend(children.map(|c| (node(c, side), h))),
+            }
+        }
+        at_leaves
+    }
+
     /// Push-pull below node `n`, which receives `above` (irradiance from its ancestors'
     /// links, of which `above_lit` from lights). Returns the change and source powers of its
     /// leaves.

@@ -384,7 +384,14 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
 
     /// Every node gathers `Σ F·V·B` over its links (seed §6.7).
     fn gather(&mut self) {
-        let (b, gathered) = (&self.nodes.radiosity, &mut self.nodes.gathered);
+        let mut gathered = std::mem::take(&mut self.nodes.gathered);
+        self.gather_from(&self.nodes.radiosity, &mut gathered);
+        self.nodes.gathered = gathered;
+    }
+
+    /// Into `gathered` (cleared first), per node: `Σ F·V·B` over its links and the cluster
+    /// links, for the radiosity `b` per node.
+    fn gather_from(&self, b: &[Rgb64], gathered: &mut Vec<Rgb64>) {
         gathered.clear();
         gathered.resize(b.len(), Rgb64::BLACK);
         for link in self.links.iter().filter(|l| !l.is_blocked()) {
@@ -398,6 +405,15 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 tree.gather(&self.mesh, link, b, gathered);
             }
         }
+    }
+
+    /// Per node, at the leaves: the irradiance straight from the emitting surfaces and the
+    /// lights (one gather of the emitted radiosity alone over the final links, pushed down
+    /// with the light links), W·m⁻².
+    fn direct_irradiance(&self) -> Vec<Rgb64> {
+        let mut gathered = Vec::new();
+        self.gather_from(&self.nodes.emission, &mut gathered);
+        self.nodes.push_down(&self.mesh, &gathered)
     }
 
     /// One refinement pass (seed §6.4); true when a link was refined.
@@ -562,6 +578,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         };
         let radiosity = per_element(&self.nodes.radiosity);
         let irradiance = per_element(&self.nodes.irradiance);
+        let direct_irradiance = per_element(&self.direct_irradiance());
         let lit = per_element(&self.nodes.lit_total);
         let links = self.link_count();
         let mut link_segments: Vec<LinkSegment> = self
@@ -603,6 +620,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             solver: kind,
             radiosity,
             irradiance,
+            direct_irradiance: matches!(kind, SolverKind::Hierarchical(_))
+                .then_some(direct_irradiance),
             ambient: Rgb64::BLACK,
             convergence,
             converged,
