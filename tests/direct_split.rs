@@ -12,7 +12,11 @@ fn direct_parts(args: &[&str], out: &str) -> Vec<(String, f64, f64, f64)> {
     let mut all = vec!["solve", "cornell", "-q", "--report", path.to_str().unwrap()];
     all.extend_from_slice(args);
     let run = strahl(&all);
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let report: serde_json::Value = serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
     report["objects"]
         .as_array()

@@ -12,11 +12,11 @@
 //! be connected to a point and is not counted (a caustic on a sensor is not measured).
 //! Point, Lambertian, spot and directional lights and the sky, whose photons start from a
 //! single point or travel in a single direction, reach the sensor through
-//! [`crate::world::point_irradiance`] instead (exact for the first four, stratified
+//! [`crate::world::non_surface_irradiance`] instead (exact for the first four, stratified
 //! directions for the sky), which is what a connection from their photons would give.
 
 use crate::color::Rgb64;
-use crate::world::{SurfaceHit, SurfaceMaterial, World, point_irradiance, sees_point};
+use crate::world::{SurfaceHit, SurfaceMaterial, World, non_surface_irradiance, sees_point};
 use glam::Vec3;
 use std::f64::consts::PI;
 
@@ -25,27 +25,13 @@ const SKY_DIRECTIONS_PER_AXIS: u32 = 32;
 
 /// The irradiance (W·m⁻²) that every non-surface light of `world` sends to each sensor.
 pub(super) fn delta_light_direct(world: &World) -> Vec<Rgb64> {
-    let mut kinds: Vec<_> = world.lights.delta.clone();
-    if let Some(radiance) = world.lights.sky {
-        kinds.push(crate::scene::LightKind::Sky { radiance });
-    }
     world
         .scene
         .sensors
         .iter()
         .map(|s| {
-            kinds
-                .iter()
-                .map(|l| {
-                    point_irradiance(
-                        world,
-                        l,
-                        s.position.as_dvec3(),
-                        s.normal.as_dvec3(),
-                        SKY_DIRECTIONS_PER_AXIS,
-                    )
-                })
-                .fold(Rgb64::BLACK, |a, b| a + b)
+            let (x, n) = (s.position.as_dvec3(), s.normal.as_dvec3());
+            non_surface_irradiance(world, x, n, SKY_DIRECTIONS_PER_AXIS)
         })
         .collect()
 }

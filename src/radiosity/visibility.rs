@@ -233,6 +233,20 @@ enum Occluders {
     Scene,
 }
 
+impl Occluders {
+    /// The primitives `survivors` of a shaft: none, the listed ones, or (beyond
+    /// [`DIRECT_TEST_LIMIT`]) the scene's BVH.
+    fn of(survivors: Vec<u32>) -> Occluders {
+        if survivors.is_empty() {
+            Occluders::None
+        } else if survivors.len() > DIRECT_TEST_LIMIT {
+            Occluders::Scene
+        } else {
+            Occluders::Listed(survivors)
+        }
+    }
+}
+
 impl<'w> Visibility<'w> {
     /// Prepares visibility queries on the surfaces of `world`'s patch mesh, whose curved
     /// shapes have `segments` segments around the axis.
@@ -633,28 +647,14 @@ impl<'w> Visibility<'w> {
             return Occluders::Scene;
         }
         let shaft = Shaft::between_polygons(&[x], q.corners());
-        let survivors = self.survivors(&shaft, &[Plane::of_patch(q)]);
-        if survivors.is_empty() {
-            Occluders::None
-        } else if survivors.len() > DIRECT_TEST_LIMIT {
-            Occluders::Scene
-        } else {
-            Occluders::Listed(survivors)
-        }
+        Occluders::of(self.survivors(&shaft, &[Plane::of_patch(q)]))
     }
 
     fn occluders(&self, a: &Patch, b: &Patch) -> Occluders {
         if !self.options.shaft_culling {
             return Occluders::Scene;
         }
-        let survivors = self.shaft_survivors(a, b);
-        if survivors.is_empty() {
-            Occluders::None
-        } else if survivors.len() > DIRECT_TEST_LIMIT {
-            Occluders::Scene
-        } else {
-            Occluders::Listed(survivors)
-        }
+        Occluders::of(self.shaft_survivors(a, b))
     }
 
     /// Whether the segment between surface points `x` (normal `nx`) and `y` (normal `ny`) is

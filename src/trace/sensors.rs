@@ -1,6 +1,6 @@
 //! Readings at point sensors by ray tracing from the sensor:
 //! - direct light: point, Lambertian, spot and directional lights and the sky through
-//!   [`crate::world::point_irradiance`] (exact for the first four, stratified directions for
+//!   [`crate::world::non_surface_irradiance`] (exact for the first four, stratified directions for
 //!   the sky); every emitting surface by `samples` stratified points on it,
 //!   `E = ⟨L·cos θₛ·cos θₗ / (d²·p_A)⟩` with a shadow ray each — what the standard ray
 //!   tracer's direct light computes at a surface point;
@@ -17,8 +17,8 @@ use crate::geometry::{Frame, Ray, offset_origin};
 use crate::measure::SensorReading;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::sampling::{Sampler, SequenceKind};
-use crate::scene::{LightKind, Sensor};
-use crate::world::{World, emitted, point_irradiance, sees_point};
+use crate::scene::Sensor;
+use crate::world::{World, emitted, non_surface_irradiance, sees_point};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -95,21 +95,9 @@ pub fn sensor_readings(
 /// Direct irradiance at `sensor` (W·m⁻²) and the variance of its estimate.
 fn direct(world: &World, sensor: &Sensor, index: u64, settings: &SensorSettings) -> (Rgb64, Rgb64) {
     let (x, n) = (sensor.position, sensor.normal);
-    let mut total = Rgb64::BLACK;
+    let mut total =
+        non_surface_irradiance(world, x.as_dvec3(), n.as_dvec3(), SKY_DIRECTIONS_PER_AXIS);
     let mut variance = Rgb64::BLACK;
-    let mut kinds: Vec<LightKind> = world.lights.delta.clone();
-    if let Some(radiance) = world.lights.sky {
-        kinds.push(LightKind::Sky { radiance });
-    }
-    for light in &kinds {
-        total += point_irradiance(
-            world,
-            light,
-            x.as_dvec3(),
-            n.as_dvec3(),
-            SKY_DIRECTIONS_PER_AXIS,
-        );
-    }
     let per_axis = (settings.samples.max(1) as f64).sqrt().ceil() as u32;
     for light in 0..world.lights.area.len() {
         let mut sampler = Sampler::new(SequenceKind::Random, settings.seed, index, light as u32);

@@ -40,6 +40,20 @@ pub fn point_irradiance(
     }
 }
 
+/// The irradiance (W·m⁻²) that all point, Lambertian, spot and directional lights and the
+/// sky of `world` send to the point `x` whose receiving side has the unit normal `normal`
+/// ([`point_irradiance`] of each, the sky with `sky_per_axis²` directions).
+pub fn non_surface_irradiance(world: &World, x: DVec3, normal: DVec3, sky_per_axis: u32) -> Rgb64 {
+    let sky = world.lights.sky.map(|radiance| LightKind::Sky { radiance });
+    world
+        .lights
+        .delta
+        .iter()
+        .chain(sky.as_ref())
+        .map(|light| point_irradiance(world, light, x, normal, sky_per_axis))
+        .fold(Rgb64::BLACK, |a, b| a + b)
+}
+
 /// True when the way from surface point `x` (unit normal `normal` of the receiving side)
 /// to the point, Lambertian, spot or directional `light` is free.
 pub fn sees_light(world: &World, x: DVec3, normal: DVec3, light: &LightKind) -> bool {

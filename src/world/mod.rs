@@ -17,7 +17,9 @@ pub mod optics;
 mod scene_geometry;
 mod surface_material;
 
-pub use light_at_point::{point_irradiance, sees_light, sees_point, sky_share};
+pub use light_at_point::{
+    non_surface_irradiance, point_irradiance, sees_light, sees_point, sky_share,
+};
 pub use lights::{AreaLight, AreaSample, LightSet};
 pub use scene_geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};

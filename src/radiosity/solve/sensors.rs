@@ -11,8 +11,7 @@ use crate::color::Rgb64;
 use crate::measure::SensorReading;
 use crate::radiosity::element::Side;
 use crate::radiosity::form_factor::point_to_side;
-use crate::scene::LightKind;
-use crate::world::point_irradiance;
+use crate::world::non_surface_irradiance;
 use rayon::prelude::*;
 
 /// Visibility rays from a sensor to a leaf side that something may hide (16 × 16: a shadow
@@ -28,10 +27,6 @@ impl Solution {
         let world = system.world();
         let shadows = system.visibility().world();
         let radiosity = self.display_radiosity(system);
-        let mut lights: Vec<LightKind> = world.lights.delta.clone();
-        if let Some(radiance) = world.lights.sky {
-            lights.push(LightKind::Sky { radiance });
-        }
         world
             .scene
             .sensors
@@ -39,10 +34,7 @@ impl Solution {
             .enumerate()
             .map(|(index, sensor)| {
                 let (x, n) = (sensor.position.as_dvec3(), sensor.normal.as_dvec3());
-                let mut direct = lights
-                    .iter()
-                    .map(|l| point_irradiance(shadows, l, x, n, SKY_DIRECTIONS_PER_AXIS))
-                    .fold(Rgb64::BLACK, |a, b| a + b);
+                let mut direct = non_surface_irradiance(shadows, x, n, SKY_DIRECTIONS_PER_AXIS);
                 let mut indirect = Rgb64::BLACK;
                 let mut rays = 0;
                 for (leaf, &patch) in system.leaves.iter().enumerate() {
