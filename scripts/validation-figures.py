@@ -8,7 +8,9 @@
   light-model reference (--reference-photons), largest and RMS error against --error, with
   the seconds of each run;
 - validation-links.svg: links against leaves of those hierarchical runs, with leaves² (what
-  linking every pair would cost) for scale.
+  linking every pair would cost) for scale;
+- validation-cornell-line.svg: illuminance along a line across the Cornell box's floor by
+  the path tracer, the light model and hierarchical radiosity (`examples/cornell_sensors.rs`).
 
 Needs a release build (`cargo build --release`). Prints the numbers as Markdown tables too.
 
@@ -57,29 +59,43 @@ def per_object(report):
 
 
 class Plot:
-    """A log-log line plot written as SVG by hand (no plotting library needed)."""
+    """A line plot, log-log or linear, written as SVG by hand (no plotting library needed)."""
 
     W, H, L, R, T, B = 560, 380, 70, 20, 30, 50
 
-    def __init__(self, title, xlabel, ylabel):
-        self.title, self.xlabel, self.ylabel = title, xlabel, ylabel
+    def __init__(self, title, xlabel, ylabel, log=True):
+        self.title, self.xlabel, self.ylabel, self.log = title, xlabel, ylabel, log
         self.series = []
 
     def add(self, name, points, colour, dashed=False):
-        self.series.append((name, [(x, y) for x, y in points if x > 0 and y > 0], colour, dashed))
+        keep = [(x, y) for x, y in points if not self.log or (x > 0 and y > 0)]
+        self.series.append((name, keep, colour, dashed))
+
+    def axis(self, values):
+        """(to axis units, first tick, last tick, tick step, tick label) for `values`."""
+        if self.log:
+            lo, hi = math.floor(math.log10(min(values))), math.ceil(math.log10(max(values)))
+            return math.log10, lo, hi, 1, lambda k: f"1e{k}"
+        step = 10 ** math.floor(math.log10((max(values) - min(values)) / 4))
+        for factor in (1, 2, 5, 10):
+            if (max(values) - min(values)) / (step * factor) <= 6:
+                step *= factor
+                break
+        lo, hi = math.floor(min(values) / step), math.ceil(max(values) / step)
+        return (lambda v: v / step), lo, hi, 1, lambda k: f"{k * step:g}"
 
     def write(self, path):
         xs = [x for _, p, _, _ in self.series for x, _ in p]
         ys = [y for _, p, _, _ in self.series for _, y in p]
-        x0, x1 = math.floor(math.log10(min(xs))), math.ceil(math.log10(max(xs)))
-        y0, y1 = math.floor(math.log10(min(ys))), math.ceil(math.log10(max(ys)))
+        fx, x0, x1, _, xlabel = self.axis(xs)
+        fy, y0, y1, _, ylabel = self.axis(ys)
         pw, ph = self.W - self.L - self.R, self.H - self.T - self.B
 
         def sx(x):
-            return self.L + (math.log10(x) - x0) / max(x1 - x0, 1) * pw
+            return self.L + (fx(x) - x0) / max(x1 - x0, 1) * pw
 
         def sy(y):
-            return self.T + ph - (math.log10(y) - y0) / max(y1 - y0, 1) * ph
+            return self.T + ph - (fy(y) - y0) / max(y1 - y0, 1) * ph
 
         out = [
             f'<svg xmlns="http://www.w3.org/2000/svg" width="{self.W}" height="{self.H}" '
@@ -88,13 +104,13 @@ class Plot:
             f'<text x="{self.W / 2}" y="18" text-anchor="middle" font-size="14">{self.title}</text>',
         ]
         for k in range(x0, x1 + 1):
-            x = sx(10**k)
+            x = self.L + (k - x0) / max(x1 - x0, 1) * pw
             out.append(f'<line x1="{x}" y1="{self.T}" x2="{x}" y2="{self.T + ph}" stroke="#ddd"/>')
-            out.append(f'<text x="{x}" y="{self.T + ph + 16}" text-anchor="middle">1e{k}</text>')
+            out.append(f'<text x="{x}" y="{self.T + ph + 16}" text-anchor="middle">{xlabel(k)}</text>')
         for k in range(y0, y1 + 1):
-            y = sy(10**k)
+            y = self.T + ph - (k - y0) / max(y1 - y0, 1) * ph
             out.append(f'<line x1="{self.L}" y1="{y}" x2="{self.L + pw}" y2="{y}" stroke="#ddd"/>')
-            out.append(f'<text x="{self.L - 6}" y="{y + 4}" text-anchor="end">1e{k}</text>')
+            out.append(f'<text x="{self.L - 6}" y="{y + 4}" text-anchor="end">{ylabel(k)}</text>')
         out.append(
             f'<rect x="{self.L}" y="{self.T}" width="{pw}" height="{ph}" fill="none" stroke="black"/>'
         )
@@ -176,6 +192,28 @@ def main():
         plot.add("links", [(l, k) for _, _, _, k, l, _ in rows], "#1f77b4")
         plot.add("leaves²", [(l, l * l) for _, _, _, _, l, _ in rows], "#7f7f7f", dashed=True)
         plot.write(os.path.join(args.out, "validation-links.svg"))
+
+    cornell_line(args.out)
+
+
+def cornell_line(out):
+    """Illuminance along the Cornell box's floor line by three methods."""
+    text = subprocess.run(
+        ["cargo", "run", "--release", "--quiet", "--example", "cornell_sensors"],
+        check=True, capture_output=True, text=True,
+    ).stdout
+    rows = [list(map(float, line.split(","))) for line in text.strip().splitlines()[1:]]
+    print("\n| x (m) | path tracer | light model | hierarchical | largest difference |")
+    print("|---|---|---|---|---|")
+    for x, p, _, l, _, h in rows:
+        spread = (max(p, l, h) - min(p, l, h)) / l
+        print(f"| {x:.3f} | {p:.1f} | {l:.1f} | {h:.1f} | {100 * spread:.2f} % |")
+    plot = Plot("Cornell box floor, z = 0.5 m: illuminance by three methods", "x (m)",
+                "illuminance (683 × Y of W/m²)", log=False)
+    plot.add("path tracer", [(r[0], r[1]) for r in rows], "#1f77b4")
+    plot.add("light model", [(r[0], r[3]) for r in rows], "#2ca02c", dashed=True)
+    plot.add("hierarchical radiosity", [(r[0], r[5]) for r in rows], "#d62728")
+    plot.write(os.path.join(out, "validation-cornell-line.svg"))
 
 
 if __name__ == "__main__":
