@@ -282,3 +282,46 @@ fn sensor_reports_are_the_same_for_any_thread_count_and_reach_the_csv() {
         lines[2]
     );
 }
+
+#[test]
+fn a_sensor_at_the_coordinate_origin_on_a_floor_is_not_shadowed_by_the_floor() {
+    // A 0.5 m square lamp of radiance 10 one metre above a sensor lying on the floor at
+    // (0, 0, 0): E = π·L·F with F from the closed form. Shadow rays arriving there from the
+    // lamp once hit the floor they end on (the end's offset is tiny at the origin).
+    let text = SENSOR_SCENE.replace(
+        "[[sensors]]\nname = \"desk\"",
+        "[[unused]]\nname = \"desk\"",
+    );
+    let text = &text[..text.find("[[unused]]").unwrap()];
+    let scene = load_str(text, "origin.toml", std::path::Path::new(".")).unwrap();
+    assert_eq!(scene.sensors[0].position, Vec3::ZERO);
+    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let f = strahl::validate::closed_forms::parallel_rectangle((-0.25, 0.25), (-0.25, 0.25), 1.0);
+    let expected = std::f64::consts::PI * 10.0 * f;
+    let settings = LightTraceSettings {
+        photons: 1_000_000,
+        seed: 9,
+        ..LightTraceSettings::default()
+    };
+    let light = trace_light(&world, &settings, &NoProgress, &Cancel::new()).unwrap();
+    let reading = &light.sensors[0];
+    let (direct, se) = (reading.direct.g, reading.standard_error.unwrap().g);
+    assert!(
+        (direct - expected).abs() < 4.0 * se + 1e-4 * expected,
+        "{direct} ± {se} vs {expected}"
+    );
+    let traced = strahl::trace::sensor_readings(
+        &world,
+        None,
+        &strahl::trace::SensorSettings {
+            samples: 1 << 16,
+            paths: 1,
+            seed: 9,
+        },
+    );
+    let (direct, se) = (traced[0].direct.g, traced[0].standard_error.unwrap().g);
+    assert!(
+        (direct - expected).abs() < 4.0 * se + 1e-4 * expected,
+        "{direct} ± {se} vs {expected}"
+    );
+}

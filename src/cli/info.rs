@@ -74,6 +74,9 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             .sum::<usize>()
     ));
     println!("lights      {}", light_list.join(", "));
+    if !scene.sensors.is_empty() {
+        println!("sensors     {}", scene.sensors.len());
+    }
     let b = world.geometry.bounds();
     println!(
         "bounds      {:?} .. {:?}",

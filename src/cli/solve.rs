@@ -208,7 +208,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     Ok(())
 }
 
-/// Prints one line per report entry to standard error.
+/// Prints one line per report entry, then one per sensor, to standard error.
 fn print_table(report: &Report) {
     eprintln!(
         "{:24} {:>10} {:>12} {:>12} {:>12}",
@@ -216,6 +216,22 @@ fn print_table(report: &Report) {
     );
     for o in &report.objects {
         eprintln!("{}", table_row(o));
+    }
+    if report.sensors.is_empty() {
+        return;
+    }
+    eprintln!(
+        "{:24} {:>12} {:>12} {:>12} {:>12}",
+        "sensor", "lux", "direct lux", "indirect lux", "±1σ lux"
+    );
+    for s in &report.sensors {
+        let sigma = s
+            .standard_error_lux
+            .map_or("-".to_string(), |e| format!("{e:.4}"));
+        eprintln!(
+            "{:24} {:>12.4} {:>12.4} {:>12.4} {:>12}",
+            s.name, s.illuminance_lux, s.direct_illuminance_lux, s.indirect_illuminance_lux, sigma
+        );
     }
 }
 
