@@ -7,6 +7,7 @@ use super::{progress, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::PathBuf;
+use strahl::choice::Choice;
 use strahl::validate::{Effort, Method, Row, STANDARD_ERRORS, TOLERANCE, run_suite};
 
 /// Arguments of `strahl validate`.
@@ -43,7 +44,10 @@ pub struct ValidateArgs {
 /// Runs `strahl validate`.
 pub fn run(args: &ValidateArgs) -> Result<()> {
     let methods = if args.method.is_empty() {
-        Method::ALL.to_vec()
+        Method::VALUES
+            .iter()
+            .map(|&(method, _, _)| method)
+            .collect()
     } else {
         args.method.clone()
     };

@@ -20,19 +20,13 @@ use crate::world::{SurfaceHit, SurfaceMaterial, World, non_surface_irradiance, s
 use glam::Vec3;
 use std::f64::consts::PI;
 
-/// Sky directions per axis from each sensor (`n × n` cosine-weighted strata).
-const SKY_DIRECTIONS_PER_AXIS: u32 = 32;
-
 /// The irradiance (W·m⁻²) that every non-surface light of `world` sends to each sensor.
 pub(super) fn delta_light_direct(world: &World) -> Vec<Rgb64> {
     world
         .scene
         .sensors
         .iter()
-        .map(|s| {
-            let (x, n) = (s.position.as_dvec3(), s.normal.as_dvec3());
-            non_surface_irradiance(world, x, n, SKY_DIRECTIONS_PER_AXIS)
-        })
+        .map(|s| non_surface_irradiance(world, s))
         .collect()
 }
 

@@ -23,9 +23,6 @@ use glam::Vec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
-/// Sky directions per axis from each sensor for its direct light (`n × n` strata).
-const SKY_DIRECTIONS_PER_AXIS: u32 = 32;
-
 /// How many rays a sensor reading spends.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SensorSettings {
@@ -95,8 +92,7 @@ pub fn sensor_readings(
 /// Direct irradiance at `sensor` (W·m⁻²) and the variance of its estimate.
 fn direct(world: &World, sensor: &Sensor, index: u64, settings: &SensorSettings) -> (Rgb64, Rgb64) {
     let (x, n) = (sensor.position, sensor.normal);
-    let mut total =
-        non_surface_irradiance(world, x.as_dvec3(), n.as_dvec3(), SKY_DIRECTIONS_PER_AXIS);
+    let mut total = non_surface_irradiance(world, sensor);
     let mut variance = Rgb64::BLACK;
     let per_axis = (settings.samples.max(1) as f64).sqrt().ceil() as u32;
     for light in 0..world.lights.area.len() {

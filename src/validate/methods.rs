@@ -46,17 +46,6 @@ crate::choice::named_values!(Method {
 });
 
 impl Method {
-    /// Every method, in table order.
-    pub const ALL: [Method; 7] = [
-        Method::Direct,
-        Method::PathTrace,
-        Method::LightTrace,
-        Method::Matrix,
-        Method::Progressive,
-        Method::HierarchicalShooting,
-        Method::Hierarchical,
-    ];
-
     /// True for Monte Carlo methods, whose figures carry a standard error.
     pub fn is_monte_carlo(self) -> bool {
         matches!(

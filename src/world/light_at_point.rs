@@ -8,7 +8,7 @@ use crate::color::Rgb64;
 use crate::geometry::{Frame, Ray, offset_origin};
 use crate::sampling::hash64;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
-use crate::scene::LightKind;
+use crate::scene::{LightKind, Sensor};
 use glam::{DVec3, Vec2, Vec3};
 use std::f64::consts::PI;
 
@@ -40,17 +40,21 @@ pub fn point_irradiance(
     }
 }
 
+/// Sky directions per axis from each sensor (`n × n` cosine-weighted strata).
+const SENSOR_SKY_DIRECTIONS_PER_AXIS: u32 = 32;
+
 /// The irradiance (W·m⁻²) that all point, Lambertian, spot and directional lights and the
-/// sky of `world` send to the point `x` whose receiving side has the unit normal `normal`
-/// ([`point_irradiance`] of each, the sky with `sky_per_axis²` directions).
-pub fn non_surface_irradiance(world: &World, x: DVec3, normal: DVec3, sky_per_axis: u32) -> Rgb64 {
+/// sky of `world` send to `sensor` ([`point_irradiance`] of each, the sky with 32 × 32
+/// directions): the part of every method's sensor reading that no photon or path needs.
+pub fn non_surface_irradiance(world: &World, sensor: &Sensor) -> Rgb64 {
+    let (x, normal) = (sensor.position.as_dvec3(), sensor.normal.as_dvec3());
     let sky = world.lights.sky.map(|radiance| LightKind::Sky { radiance });
     world
         .lights
         .delta
         .iter()
         .chain(sky.as_ref())
-        .map(|light| point_irradiance(world, light, x, normal, sky_per_axis))
+        .map(|light| point_irradiance(world, light, x, normal, SENSOR_SKY_DIRECTIONS_PER_AXIS))
         .fold(Rgb64::BLACK, |a, b| a + b)
 }
 

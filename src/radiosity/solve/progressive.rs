@@ -13,7 +13,7 @@
 //! no form factors.
 
 use super::SolveError;
-use super::solution::{Solution, SolverKind, direct_from_emitters, power_fraction};
+use super::solution::{Solution, SolverKind, power_fraction};
 use super::system::{Couplings, RadiositySystem};
 use super::unshot_progress::UnshotProgress;
 use crate::color::Rgb64;
@@ -111,11 +111,33 @@ pub fn solve_progressive(
     bar.finish();
     solution.converged = fraction <= settings.tolerance;
     if !solution.interrupted {
-        solution.direct_irradiance = Some(direct_from_emitters(system));
+        solution.direct_irradiance = Some(direct_from_emitters(system, &cache));
     }
     solution.seconds.form_factors = form_factor_seconds;
     solution.seconds.iterations = started.elapsed().as_secs_f64() - form_factor_seconds;
     Ok(solution)
+}
+
+/// Per element: the irradiance straight from the lights and the emitting elements,
+/// `H_light,i + Σⱼ F_ij V_ij E_j` over the emitting elements `j`, W·m⁻², from the emitters'
+/// columns in `cache` (they shoot first, so they are there unless the cache was full) or
+/// computed again.
+fn direct_from_emitters(system: &RadiositySystem, cache: &[Option<Couplings>]) -> Vec<Rgb64> {
+    let mut direct = system.light_irradiance.clone();
+    for j in (0..system.len()).filter(|&j| system.emission[j].max_channel() > 0.0) {
+        let computed;
+        let column = match &cache[j] {
+            Some(column) => column,
+            None => {
+                computed = system.column(j);
+                &computed
+            }
+        };
+        for (&i, &f) in column.leaves.iter().zip(&column.values) {
+            direct[i as usize] += system.emission[j] * f;
+        }
+    }
+    direct
 }
 
 /// Adds a shot `s` from one leaf through its coupling column to every receiver.

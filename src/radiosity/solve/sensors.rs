@@ -17,9 +17,6 @@ use rayon::prelude::*;
 /// Visibility rays from a sensor to a leaf side that something may hide (16 × 16: a shadow
 /// edge across the leaf costs well under 1 % of it).
 const RAYS_PER_LEAF: u32 = 256;
-/// Sky directions per axis from each sensor (`n × n` cosine-weighted strata).
-const SKY_DIRECTIONS_PER_AXIS: u32 = 32;
-
 impl Solution {
     /// The reading of every sensor of `system`'s scene (in scene order), in parallel over the
     /// sensors; deterministic.
@@ -34,7 +31,7 @@ impl Solution {
             .enumerate()
             .map(|(index, sensor)| {
                 let (x, n) = (sensor.position.as_dvec3(), sensor.normal.as_dvec3());
-                let mut direct = non_surface_irradiance(shadows, x, n, SKY_DIRECTIONS_PER_AXIS);
+                let mut direct = non_surface_irradiance(shadows, sensor);
                 let mut indirect = Rgb64::BLACK;
                 let mut rays = 0;
                 for (leaf, &patch) in system.leaves.iter().enumerate() {

@@ -305,20 +305,6 @@ impl Solution {
     }
 }
 
-/// Per element: the irradiance straight from the lights and the emitting elements,
-/// `H_light,i + Σⱼ F_ij V_ij E_j` over the emitting elements `j`, W·m⁻² (their columns of
-/// couplings computed again, in parallel over receivers).
-pub(super) fn direct_from_emitters(system: &RadiositySystem) -> Vec<Rgb64> {
-    let mut direct = system.light_irradiance.clone();
-    for j in (0..system.len()).filter(|&j| system.emission[j].max_channel() > 0.0) {
-        let column = system.column(j);
-        for (&i, &f) in column.leaves.iter().zip(&column.values) {
-            direct[i as usize] += system.emission[j] * f;
-        }
-    }
-    direct
-}
-
 /// Largest number of rows of the convergence history in the statistics.
 pub const CONVERGENCE_ROWS: usize = 64;
 
