@@ -10,6 +10,7 @@
 pub mod angle;
 mod bounds;
 pub mod cuboid;
+mod dvec3x4;
 mod frame;
 pub mod frustum;
 mod local_hit;
@@ -21,6 +22,7 @@ mod triangle;
 mod triangle8;
 
 pub use bounds::Aabb;
+pub use dvec3x4::DVec3x4;
 pub use frame::{Frame, to_world_about};
 pub use local_hit::LocalHit;
 pub use ray::{

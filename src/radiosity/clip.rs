@@ -223,20 +223,29 @@ pub fn split(plane: &Plane, corners: &[DVec3], uvs: &[DVec2]) -> SplitPolygon {
     out
 }
 
+/// True when every corner of `polygon` lies in front of `plane`, beyond the epsilon band:
+/// [`clip_to_front`] returns such a polygon as it is.
+#[inline(always)]
+pub fn wholly_in_front(plane: &Plane, polygon: &[DVec3]) -> bool {
+    let eps = band(plane, polygon);
+    polygon.iter().all(|&p| plane.distance(p) > eps)
+}
+
 /// The part of a convex polygon strictly in front of `plane` (corners in the epsilon band
 /// count as on it). Returns an empty list when nothing lies clearly in front, in particular
 /// for a polygon lying in the plane. Used to clip an emitter to a receiver's front
 /// half-space before the contour integral.
+#[inline(always)]
 pub fn clip_to_front<'a>(plane: &Plane, polygon: &'a [DVec3]) -> Cow<'a, [DVec3]> {
+    // The common case, a polygon wholly in front, is returned as it is.
+    if wholly_in_front(plane, polygon) {
+        return Cow::Borrowed(polygon);
+    }
     let eps = band(plane, polygon);
     let distance = |p: DVec3| {
         let x = plane.distance(p);
         if x.abs() <= eps { 0.0 } else { x }
     };
-    // The common case, a polygon wholly in front, is returned as it is.
-    if polygon.iter().all(|&p| distance(p) > 0.0) {
-        return Cow::Borrowed(polygon);
-    }
     let n = polygon.len();
     let mut out = Vec::with_capacity(n + 1);
     for i in 0..n {

@@ -9,13 +9,15 @@
 //! factors here are purely geometric (no visibility) and do not depend on which side of the
 //! emitter faces the receiver; [`super::clip::facing`] decides whether a pair exchanges light.
 
-use super::clip::{Plane, clip_to_front};
+use super::clip::{Plane, clip_to_front, wholly_in_front};
 use super::element::Side;
 use super::mesh::Patch;
-use crate::geometry::angle::upper_angle;
+use crate::geometry::DVec3x4;
+use crate::geometry::angle::upper_angles;
 use glam::DVec3;
 use smallvec::SmallVec;
 use std::f64::consts::{PI, TAU};
+use wide::{CmpGt, f64x4};
 
 /// Which form-factor approximation to use (`--form-factor`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -76,22 +78,70 @@ impl Default for FormFactorOptions {
 /// in the point's own plane gives 0. Result in `[0, 1]`.
 pub fn point_to_polygon(point: DVec3, normal: DVec3, polygon: &[DVec3]) -> f64 {
     let visible = clip_to_front(&Plane::new(point, normal), polygon);
-    let Some(&last) = visible.last() else {
-        return 0.0;
-    };
-    let mut sum = DVec3::ZERO;
-    let mut a = last - point;
-    for &corner in visible.iter() {
-        let b = corner - point;
-        let cross = a.cross(b);
-        let length = cross.length();
-        if length > 0.0 {
-            // The edge's angle, with full precision for small and for near-π angles.
-            sum += cross * (upper_angle(length, a.dot(b)) / length);
-        }
-        a = b;
+    let n = visible.len();
+    // The edges four at a time (a lane past the last edge is a zero edge and adds nothing).
+    let corner = |k: usize| visible[k % n] - point;
+    let mut sum = 0.0;
+    for first in (0..n).step_by(4) {
+        let lane = |k: usize, offset: usize| {
+            if first + k < n {
+                corner(first + k + offset)
+            } else {
+                DVec3::ZERO
+            }
+        };
+        let a = DVec3x4::from_fn(|k| lane(k, n - 1));
+        let b = DVec3x4::from_fn(|k| lane(k, 0));
+        sum += edge_terms(a, b, normal).reduce_add();
     }
-    (sum.dot(normal).abs() / TAU).min(1.0)
+    (sum.abs() / TAU).min(1.0)
+}
+
+/// [`point_to_polygon`] from each of `points` (all with the unit normal `normal`), in
+/// order. Points whose front half-space holds the whole polygon (the common case: a patch
+/// seen from the samples of another) go four at a time, a lane per point; the others are
+/// clipped and taken one by one.
+pub fn points_to_polygon(points: &[DVec3], normal: DVec3, polygon: &[DVec3]) -> FactorList {
+    let mut factors = FactorList::from_elem(0.0, points.len());
+    let mut whole: SmallVec<[usize; 9]> = SmallVec::new();
+    for (i, &p) in points.iter().enumerate() {
+        if wholly_in_front(&Plane::new(p, normal), polygon) {
+            whole.push(i);
+        } else {
+            factors[i] = point_to_polygon(p, normal, polygon);
+        }
+    }
+    let n = polygon.len();
+    for chunk in whole.chunks(4) {
+        let at = DVec3x4::from_fn(|k| points[chunk[k.min(chunk.len() - 1)]]);
+        let mut sum = f64x4::ZERO;
+        for k in 0..n {
+            let a = DVec3x4::splat(polygon[(k + n - 1) % n]) - at;
+            let b = DVec3x4::splat(polygon[k]) - at;
+            sum += edge_terms(a, b, normal);
+        }
+        let f = (sum.abs() / TAU).fast_min(f64x4::ONE).to_array();
+        for (&i, f) in chunk.iter().zip(f) {
+            factors[i] = f;
+        }
+    }
+    factors
+}
+
+/// Point form factors of a few points (kept off the heap up to nine).
+pub type FactorList = SmallVec<[f64; 9]>;
+
+/// Per lane, the term of one edge of the contour integral of [`point_to_polygon`]: the edge
+/// from `a` to `b` (corners relative to the receiving point) contributes
+/// `θ · (a × b)·n / |a × b|`, θ the angle it subtends; 0 for a zero cross product.
+#[inline(always)]
+fn edge_terms(a: DVec3x4, b: DVec3x4, normal: DVec3) -> f64x4 {
+    let cross = a.cross(b);
+    let length = cross.dot(cross).sqrt();
+    // The edge's angle, with full precision for small and for near-π angles.
+    let angle = upper_angles(length, a.dot(b));
+    let positive = length.cmp_gt(f64x4::ZERO);
+    positive.blend(cross.dot_one(normal) * angle / length, f64x4::ZERO)
 }
 
 /// The form factor from a differential area at `point` (unit normal `normal`) to side `side`
@@ -103,6 +153,27 @@ pub fn point_to_side(point: DVec3, normal: DVec3, patch: &Patch, side: Side) -> 
     } else {
         0.0
     }
+}
+
+/// [`point_to_side`] from each of `points` (all with the unit normal `normal`), in order,
+/// four at a time where they all lie in front of the side ([`points_to_polygon`]).
+pub fn points_to_side(points: &[DVec3], normal: DVec3, patch: &Patch, side: Side) -> FactorList {
+    let plane = Plane::of_side(patch, side);
+    let front: SmallVec<[usize; 9]> = (0..points.len())
+        .filter(|&i| plane.distance(points[i]) > 0.0)
+        .collect();
+    if front.len() == points.len() {
+        return points_to_polygon(points, normal, patch.corners());
+    }
+    let seen: SmallVec<[DVec3; 9]> = front.iter().map(|&i| points[i]).collect();
+    let mut factors = FactorList::from_elem(0.0, points.len());
+    for (&i, f) in front
+        .iter()
+        .zip(points_to_polygon(&seen, normal, patch.corners()))
+    {
+        factors[i] = f;
+    }
+    factors
 }
 
 /// The point-to-point form factor (seed §3.2, "second simplification") from a differential

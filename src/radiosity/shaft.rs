@@ -8,7 +8,10 @@
 //! of the polygons' convex hull, which holds every segment from one polygon to the other and
 //! is much tighter than the boxes' shaft for tilted or far-apart patches.
 
+use crate::geometry::DVec3x4;
 use glam::DVec3;
+use smallvec::SmallVec;
+use wide::{CmpGt, CmpLt, f64x4};
 
 /// An axis-aligned box in scene units (`f64`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,7 +70,7 @@ pub struct Shaft {
     planes: Vec<(DVec3, f64)>,
     /// Faces `normal · x ≤ offset` (unit normals) of the convex hull of the two polygons
     /// the shaft was built from; empty for a shaft between boxes.
-    hull: Vec<(DVec3, f64)>,
+    hull: SmallVec<[(DVec3, f64); 16]>,
     /// Tolerance added to every plane test (relative to the shaft's size), so that boxes
     /// touching the shaft are kept.
     tolerance: f64,
@@ -95,7 +98,7 @@ impl Shaft {
         Shaft {
             bounds,
             planes,
-            hull: Vec::new(),
+            hull: SmallVec::new(),
             tolerance: tolerance(&bounds),
         }
     }
@@ -111,10 +114,10 @@ impl Shaft {
         let mut shaft = Shaft {
             bounds,
             planes: Vec::new(),
-            hull: Vec::new(),
+            hull: SmallVec::new(),
             tolerance: tolerance(&bounds),
         };
-        let points: Vec<DVec3> = a.iter().chain(b).copied().collect();
+        let points = Lanes::of(a.iter().chain(b).copied());
         let tolerance = shaft.tolerance;
         let mut add = |normal: DVec3, at: DVec3| {
             let length = normal.length();
@@ -125,15 +128,7 @@ impl Shaft {
             let offset = n.dot(at);
             // Degenerate (near-parallel) candidates give a direction of no use; the
             // supporting test below rejects those that do not bound the points.
-            let (mut above, mut below) = (false, false);
-            for p in &points {
-                let d = n.dot(*p) - offset;
-                above |= d > tolerance;
-                below |= d < -tolerance;
-                if above && below {
-                    return;
-                }
-            }
+            let (above, below) = points.sides(n, offset, tolerance);
             match (above, below) {
                 (false, true) => shaft.hull.push((n, offset)),
                 (true, false) => shaft.hull.push((-n, -offset)),
@@ -195,6 +190,34 @@ impl Shaft {
         self.hull
             .iter()
             .all(|&(n, offset)| points.iter().any(|p| n.dot(*p) < offset - self.tolerance))
+    }
+}
+
+/// Points four to a lane group (the last group padded with the first point, which changes
+/// no side test).
+struct Lanes(SmallVec<[DVec3x4; 2]>);
+
+impl Lanes {
+    fn of(points: impl Iterator<Item = DVec3>) -> Lanes {
+        let all: SmallVec<[DVec3; 8]> = points.collect();
+        let first = all.first().copied().unwrap_or(DVec3::ZERO);
+        Lanes(
+            all.chunks(4)
+                .map(|c| DVec3x4::from_fn(|k| c.get(k).copied().unwrap_or(first)))
+                .collect(),
+        )
+    }
+
+    /// Whether any point lies more than `tolerance` above the plane `n · x = offset`, and
+    /// whether any lies more than `tolerance` below it.
+    fn sides(&self, n: DVec3, offset: f64, tolerance: f64) -> (bool, bool) {
+        let (mut above, mut below) = (false, false);
+        for group in &self.0 {
+            let d = group.dot_one(n) - offset;
+            above |= d.cmp_gt(f64x4::splat(tolerance)).any();
+            below |= d.cmp_lt(f64x4::splat(-tolerance)).any();
+        }
+        (above, below)
     }
 }
 

@@ -59,6 +59,46 @@ const DIRECT_TEST_LIMIT: usize = 48;
 /// building and testing the shaft).
 const SHAFT_MIN_RAYS: u32 = 4;
 
+/// Most primitives a pair hands down to the pairs of its children ([`Blockers`]).
+const INHERITED_BLOCKERS: usize = 8;
+
+/// The primitives that may block the rays between two patches, as shaft culling found them
+/// for a pair, handed down to the pairs of the patches' children: a child's rays run inside
+/// the pair's convex hull, so nothing else can block them, and the children's pairs need
+/// neither a shaft of their own nor a search of the scene. Unknown when the pair had more
+/// than [`INHERITED_BLOCKERS`] or none was searched for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Blockers {
+    prims: [u32; INHERITED_BLOCKERS],
+    len: u8,
+}
+
+impl Blockers {
+    /// Nothing known: the pairs below search the scene themselves.
+    pub const UNKNOWN: Blockers = Blockers {
+        prims: [0; INHERITED_BLOCKERS],
+        len: u8::MAX,
+    };
+
+    /// The list `prims`, unknown when it is too long to hand down.
+    fn of(prims: &[u32]) -> Blockers {
+        if prims.len() > INHERITED_BLOCKERS {
+            return Blockers::UNKNOWN;
+        }
+        let mut blockers = Blockers {
+            prims: [0; INHERITED_BLOCKERS],
+            len: prims.len() as u8,
+        };
+        blockers.prims[..prims.len()].copy_from_slice(prims);
+        blockers
+    }
+
+    /// The primitives, when known.
+    fn get(&self) -> Option<&[u32]> {
+        self.prims.get(..usize::from(self.len))
+    }
+}
+
 /// What the visibility rays from points of one patch to another found
 /// ([`Visibility::from_points`]).
 #[derive(Clone, Debug, PartialEq)]
@@ -70,6 +110,8 @@ pub struct PointShares {
     pub rays: u64,
     /// Whether any ray arrived unblocked.
     pub any_unblocked: bool,
+    /// What may block the rays of the pairs of the patches' children.
+    pub blockers: Blockers,
 }
 
 /// One point's rays: their number and the form factor they stand for (each ray's
@@ -459,12 +501,18 @@ impl<'w> Visibility<'w> {
         (a, points, normal): (PatchId, &[DVec3], DVec3),
         b: PatchId,
         per_point: u32,
+        inherited: Blockers,
     ) -> Option<PointShares> {
         let (p, q) = (mesh.patch(a), mesh.patch(b));
-        let occluders = self.occluders(p, q);
-        if matches!(occluders, Occluders::None) {
-            return None;
-        }
+        let occluders = match inherited.get() {
+            Some(prims) => self.within(p, q, prims),
+            None => self.occluders(p, q),
+        };
+        let blockers = match &occluders {
+            Occluders::None => return None,
+            Occluders::Listed(prims) => Blockers::of(prims),
+            Occluders::Scene => Blockers::UNKNOWN,
+        };
         let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, a, b) ^ 0x9e37);
         let mut sums = vec![RaySums::default(); points.len()];
         let mut any_unblocked = false;
@@ -515,6 +563,7 @@ impl<'w> Visibility<'w> {
             shares,
             rays,
             any_unblocked,
+            blockers,
         })
     }
 
@@ -618,26 +667,28 @@ impl<'w> Visibility<'w> {
 
     /// The primitives that may cross `shaft`, less those lying in one of `planes`.
     fn survivors(&self, shaft: &Shaft, planes: &[Plane]) -> Vec<u32> {
-        let geometry = &self.world().geometry;
         self.clusters
             .iter()
             .filter(|c| shaft.may_intersect(&c.bounds))
             .flat_map(|c| c.first..c.end)
-            .filter(|&prim| {
-                if !shaft.may_intersect(&self.bounds[prim as usize]) {
-                    return false;
-                }
-                let Some(triangle) = geometry.triangle(prim) else {
-                    return true;
-                };
-                let corners = triangle.vertices().map(|v| v.as_dvec3());
-                shaft.may_intersect_points(&corners)
-                    && !planes.iter().any(|plane| {
-                        let s = SideCounts::of(plane, &corners);
-                        s.front == 0 && s.back == 0
-                    })
-            })
+            .filter(|&prim| self.may_cross(shaft, planes, prim))
             .collect()
+    }
+
+    /// Whether primitive `prim` may cross `shaft` and lies in none of `planes`.
+    fn may_cross(&self, shaft: &Shaft, planes: &[Plane], prim: u32) -> bool {
+        if !shaft.may_intersect(&self.bounds[prim as usize]) {
+            return false;
+        }
+        let Some(triangle) = self.world().geometry.triangle(prim) else {
+            return true;
+        };
+        let corners = triangle.vertices().map(|v| v.as_dvec3());
+        shaft.may_intersect_points(&corners)
+            && !planes.iter().any(|plane| {
+                let s = SideCounts::of(plane, &corners);
+                s.front == 0 && s.back == 0
+            })
     }
 
     /// What may block rays from the free point `x` to patch `q`: the primitives crossing
@@ -648,6 +699,20 @@ impl<'w> Visibility<'w> {
         }
         let shaft = Shaft::between_polygons(&[x], q.corners());
         Occluders::of(self.survivors(&shaft, &[Plane::of_patch(q)]))
+    }
+
+    /// What may block rays between `a` and `b` of the primitives `inherited` (those of a
+    /// pair of their ancestors, in neither patch's plane): the ones that may cross the
+    /// pair's shaft.
+    fn within(&self, a: &Patch, b: &Patch, inherited: &[u32]) -> Occluders {
+        let shaft = Shaft::between_polygons(a.corners(), b.corners());
+        Occluders::of(
+            inherited
+                .iter()
+                .copied()
+                .filter(|&prim| self.may_cross(&shaft, &[], prim))
+                .collect(),
+        )
     }
 
     fn occluders(&self, a: &Patch, b: &Patch) -> Occluders {
@@ -891,7 +956,9 @@ mod tests {
                 ..fixed(4, true)
             };
             let vis = Visibility::new(&world, options, 16).unwrap();
-            let found = vis.from_points(&mesh, (0, &[x], DVec3::Z), 1, 4).unwrap();
+            let found = vis
+                .from_points(&mesh, (0, &[x], DVec3::Z), 1, 4, Blockers::UNKNOWN)
+                .unwrap();
             sum += found.shares[0];
         }
         (sum / seeds as f64, exact)

@@ -28,14 +28,15 @@ use super::nodes::{node, split_node};
 use crate::color::Rgb64;
 use crate::radiosity::clip::{Facing, facing};
 use crate::radiosity::element::Side;
-use crate::radiosity::form_factor::{gauss_points, point_to_side};
+use crate::radiosity::form_factor::{FactorList, gauss_points, points_to_side};
 use crate::radiosity::light_links::{SKY_DIRECTIONS_PER_AXIS, light_irradiance};
 use crate::radiosity::mesh::{Patch, PatchMesh};
-use crate::radiosity::visibility::Visibility;
+use crate::radiosity::visibility::{Blockers, Visibility};
 use crate::scene::LightKind;
 use crate::world::World;
 use crate::world::point_irradiance;
 use glam::DVec3;
+use rayon::prelude::*;
 use smallvec::SmallVec;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -63,6 +64,8 @@ pub enum Prior {
     /// Its rays were all blocked so far: if the Gauss points see nothing again, look over
     /// both patches with this many rays.
     Blocked(u32),
+    /// It is part of a pair only these primitives can block.
+    Within(Blockers),
 }
 
 /// A receiver node gathering an emitter node's radiosity.
@@ -83,13 +86,16 @@ pub struct Link {
     pub visible: f64,
     /// True when nothing can block the pair: its children's links need no visibility rays.
     pub unoccluded: bool,
+    /// What may block the rays of its ends' children, where known.
+    pub blockers: Blockers,
     /// The rays asked of the last look over both patches, when every ray between the pair
     /// was blocked (the link is blocked and carries nothing); 0 once any ray arrived.
     pub blocked_rays: u32,
     /// The share of the transport that leaves each quarter of the emitter (the quarters its
-    /// children will cover, in their order): gathering weighs the children's radiosities by
-    /// it once the emitter is split.
-    pub shares: [f32; 4],
+    /// children cover, in their order): gathering weighs the children's radiosities by it
+    /// once the emitter is split. `None` until then where it would cost form factors of its
+    /// own ([`Linker::complete_shares`] computes it when the emitter is split).
+    pub shares: Option<[f32; 4]>,
     /// The point form factor (times the visible share, where known) at the receiver's Gauss
     /// points, one per quarter its children cover (a triangle's middle child: their mean):
     /// how a shot taken at a split receiver divides among its children.
@@ -101,8 +107,10 @@ impl Link {
     pub fn prior_for_children(&self) -> Prior {
         if self.unoccluded {
             Prior::Unoccluded
-        } else {
+        } else if self.blockers == Blockers::UNKNOWN {
             Prior::Unknown
+        } else {
+            Prior::Within(self.blockers)
         }
     }
 
@@ -112,16 +120,17 @@ impl Link {
     }
 
     /// The radiosity the receiver sees, W·m⁻²: the emitter's children's radiosities weighted
-    /// by the link's shares once the emitter is split, else the emitter's own.
+    /// by the link's shares once the emitter is split (and its shares known), else the
+    /// emitter's own.
     pub fn emitter_radiosity(&self, mesh: &PatchMesh, radiosity: &[Rgb64]) -> Rgb64 {
         let (patch, side) = split_node(self.emitter as usize);
-        match mesh.patch(patch).children {
-            Some(children) => children
+        match (mesh.patch(patch).children, self.shares) {
+            (Some(children), Some(shares)) => children
                 .iter()
-                .zip(self.shares)
+                .zip(shares)
                 .map(|(&c, w)| radiosity[node(c, side)] * f64::from(w))
                 .fold(Rgb64::BLACK, |sum, b| sum + b),
-            None => radiosity[self.emitter as usize],
+            _ => radiosity[self.emitter as usize],
         }
     }
 
@@ -177,10 +186,9 @@ impl IntoIterator for Divided {
 /// from that side and is taken as even.
 fn emitter_shares(emitter: &Patch, es: Side, receiver: &Patch, rs: Side) -> [f32; 4] {
     let gauss = gauss_points(emitter);
-    let normal = es.normal(emitter);
-    quadrant_shares(emitter, |i| {
-        gauss[i].1 * point_to_side(gauss[i].0, normal, receiver, rs)
-    })
+    let points: SmallVec<[DVec3; 4]> = gauss.iter().map(|g| g.0).collect();
+    let factors = points_to_side(&points, es.normal(emitter), receiver, rs);
+    quadrant_shares(emitter, |i| gauss[i].1 * factors[i])
 }
 
 /// Shares in proportion to `weight(i)` of Gauss point `i` of `patch` (see
@@ -270,10 +278,7 @@ impl Linker<'_> {
                     .map(|&c| c + (r.centroid - c) * CORNER_INSET),
             )
             .collect();
-        let factors: SmallVec<[f64; 9]> = range_points
-            .iter()
-            .map(|&p| point_to_side(p, normal, e, es))
-            .collect();
+        let factors = points_to_side(&range_points, normal, e, es);
         // The transport is integrated over the smaller patch (its Gauss points, each with the
         // share of the other patch it sees) and carried over by reciprocity,
         // A_r·F_re = A_e·F_er: point samples of a small emitter from a large receiver would
@@ -291,13 +296,10 @@ impl Linker<'_> {
         };
         let points: SmallVec<[DVec3; 4]> = gauss.iter().map(|g| g.0).collect();
         // The receiver's Gauss points lead its range points: their factors are known.
-        let point_factors: SmallVec<[f64; 4]> = if scale == 1.0 {
+        let point_factors: FactorList = if scale == 1.0 {
             SmallVec::from_slice(&factors[..gauss.len()])
         } else {
-            points
-                .iter()
-                .map(|&p| point_to_side(p, from_normal, to, to_side))
-                .collect()
+            points_to_side(&points, from_normal, to, to_side)
         };
         // The unoccluded mean over the receiver, `scale · Σ w F`, is at most the maximum: it
         // holds the range up where the receiver's samples all miss a small, close emitter.
@@ -311,6 +313,10 @@ impl Linker<'_> {
         if f_max <= 0.0 {
             return None;
         }
+        let inherited = match prior {
+            Prior::Within(blockers) => blockers,
+            _ => Blockers::UNKNOWN,
+        };
         let seen = if prior == Prior::Unoccluded {
             None
         } else {
@@ -319,8 +325,10 @@ impl Linker<'_> {
                 (from_patch, &points, from_normal),
                 to_patch,
                 RAYS_PER_POINT,
+                inherited,
             )
         };
+        let blockers = seen.as_ref().map_or(Blockers::UNKNOWN, |s| s.blockers);
         self.form_factors
             .fetch_add((range_points.len() + gauss.len()) as u64, Ordering::Relaxed);
         let any_unblocked = seen.as_ref().is_none_or(|s| s.any_unblocked);
@@ -346,7 +354,7 @@ impl Linker<'_> {
             // too, before calling the pair blocked.
             let rays = match prior {
                 Prior::Blocked(rays) => rays,
-                Prior::Unknown | Prior::Unoccluded => FIRST_LOOK_RAYS,
+                Prior::Unknown | Prior::Unoccluded | Prior::Within(_) => FIRST_LOOK_RAYS,
             };
             let to_normal = to_side.normal(to);
             let look =
@@ -359,10 +367,18 @@ impl Linker<'_> {
                 blocked_rays = rays;
             }
         }
-        let shares = if scale == 1.0 {
-            emitter_shares(e, es, r, rs)
+        // Integrated over the emitter, the shares come with the transport; over the
+        // receiver, they need form factors of their own, computed once the emitter is split.
+        let shares = if scale != 1.0 {
+            Some(quadrant_shares(e, |i| {
+                gauss[i].1 * point_factors[i] * visible_at(i)
+            }))
+        } else if e.children.is_some() {
+            self.form_factors
+                .fetch_add(gauss_points(e).len() as u64, Ordering::Relaxed);
+            Some(emitter_shares(e, es, r, rs))
         } else {
-            quadrant_shares(e, |i| gauss[i].1 * point_factors[i] * visible_at(i))
+            None
         };
         let receiver_visible = |i: usize| if scale == 1.0 { visible_at(i) } else { 1.0 };
         let receiver_weights = quarter_values(r, |i| factors[i] * receiver_visible(i));
@@ -380,10 +396,36 @@ impl Linker<'_> {
             f_max,
             visible,
             unoccluded: seen.is_none(),
+            blockers,
             blocked_rays,
             shares,
             receiver_weights,
         })
+    }
+
+    /// Computes the emitter shares of every link in `links` whose emitter has been split
+    /// since the link was made, in parallel.
+    pub fn complete_shares(&self, mesh: &PatchMesh, links: &mut [Link]) {
+        let evaluated: u64 = links
+            .par_iter_mut()
+            .filter(|l| {
+                l.shares.is_none()
+                    && mesh
+                        .patch(split_node(l.emitter as usize).0)
+                        .children
+                        .is_some()
+            })
+            .map(|l| {
+                let ((rp, rs), (ep, es)) = (
+                    split_node(l.receiver as usize),
+                    split_node(l.emitter as usize),
+                );
+                let emitter = mesh.patch(ep);
+                l.shares = Some(emitter_shares(emitter, es, mesh.patch(rp), rs));
+                if emitter.is_triangle() { 3 } else { 4 }
+            })
+            .sum();
+        self.form_factors.fetch_add(evaluated, Ordering::Relaxed);
     }
 
     /// The link from light `light` (an index into the scene's lights) to `receiver`, `None`

@@ -205,8 +205,9 @@ mod tests {
             f_max: 0.2,
             visible: 0.0,
             unoccluded: false,
+            blockers: crate::radiosity::visibility::Blockers::UNKNOWN,
             blocked_rays: rays,
-            shares: [0.25; 4],
+            shares: None,
             receiver_weights: [0.0; 4],
         };
         (link, mesh)

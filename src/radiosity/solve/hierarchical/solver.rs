@@ -438,6 +438,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             let applied = self.apply(&decisions, &light_decisions);
             let refined = applied.refined + self.refine_textures();
             let (created_clusters, refined_clusters) = self.refine_clusters(cancel);
+            self.linker.complete_shares(&self.mesh, &mut self.links);
             let (created, refined) = (
                 applied.created + created_clusters,
                 refined + refined_clusters,
