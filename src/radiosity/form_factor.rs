@@ -340,6 +340,39 @@ mod tests {
         Patch::new(&corners.map(DVec3::from_array), &[DVec2::ZERO; 4]).unwrap()
     }
 
+    #[test]
+    fn many_points_at_once_match_one_at_a_time() {
+        // A tilted quad; points in front of it, behind it, straddling its plane's front
+        // half-space (so that it is clipped) and in its plane, with one receiving normal.
+        let quad = rect([
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.2],
+            [1.0, 1.0, 1.4],
+            [0.0, 1.0, 1.2],
+        ]);
+        let normal = DVec3::new(0.3, -0.2, 1.0).normalize();
+        let f = |x: u32| (x as f64 * 0.618_033_988_75).fract();
+        let points: Vec<DVec3> = (0..11)
+            .map(|k| DVec3::new(2.0 * f(k) - 0.5, 2.0 * f(k + 5) - 0.5, 2.5 * f(k + 9) - 0.5))
+            .chain([DVec3::new(0.5, 0.5, 1.2), DVec3::new(0.2, 0.9, 1.3)])
+            .collect();
+        for side in Side::BOTH {
+            for n in [3, 4, 5, 9, points.len()] {
+                let many = points_to_side(&points[..n], normal, &quad, side);
+                assert_eq!(many.len(), n);
+                for (p, f) in points[..n].iter().zip(&many) {
+                    let one = point_to_side(*p, normal, &quad, side);
+                    assert!(
+                        (f - one).abs() <= 1e-14 * one.max(1e-3),
+                        "{p}: {f} vs {one}"
+                    );
+                }
+            }
+        }
+        let seen = Side::BOTH.map(|side| points_to_side(&points, normal, &quad, side));
+        assert!(seen.iter().flatten().filter(|&&f| f > 0.05).count() >= 3);
+    }
+
     /// Differential element at the origin facing +z, to the parallel rectangle
     /// `[0,a]×[0,b]` at height c (corner above the element): Howell catalog B-3.
     fn element_to_parallel_rectangle(a: f64, b: f64, c: f64) -> f64 {

@@ -965,6 +965,59 @@ mod tests {
     }
 
     #[test]
+    fn children_looking_through_their_parents_blockers_see_what_they_would_see_alone() {
+        // The blocker covers x ∈ [0.8, 1.2] half-way between the squares; the bottom
+        // square's children look at the top one through the blockers the whole pair handed
+        // down.
+        let scene = pair_scene(Some((0.8, 1.2)), 1.0);
+        let options = MeshOptions {
+            contact_splits: false,
+            ..MeshOptions::default()
+        };
+        let mut mesh = PatchMesh::from_scene(&scene, &options).unwrap();
+        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let vis = Visibility::new(&world, fixed(16, true), 16).unwrap();
+        let points_of = |mesh: &PatchMesh, p: PatchId| {
+            crate::radiosity::form_factor::gauss_points(mesh.patch(p))
+                .iter()
+                .map(|g| g.0)
+                .collect::<Vec<_>>()
+        };
+        let parent = vis
+            .from_points(
+                &mesh,
+                (0, &points_of(&mesh, 0), DVec3::Z),
+                1,
+                16,
+                Blockers::UNKNOWN,
+            )
+            .unwrap();
+        assert_eq!(
+            parent.blockers.get().map(<[u32]>::len),
+            Some(2),
+            "the plate's triangles"
+        );
+        let mut unoccluded = 0;
+        for child in mesh.subdivide(0) {
+            let points = points_of(&mesh, child);
+            let alone =
+                vis.from_points(&mesh, (child, &points, DVec3::Z), 1, 16, Blockers::UNKNOWN);
+            let handed = vis.from_points(&mesh, (child, &points, DVec3::Z), 1, 16, parent.blockers);
+            assert_eq!(
+                alone.as_ref().map(|a| &a.shares),
+                handed.as_ref().map(|h| &h.shares)
+            );
+            assert_eq!(
+                alone.as_ref().map(|a| a.rays),
+                handed.as_ref().map(|h| h.rays)
+            );
+            unoccluded += usize::from(handed.is_none());
+        }
+        // Half-way up, the shafts of the children at x < 0.5 reach x = 0.75 only.
+        assert_eq!(unoccluded, 2);
+    }
+
+    #[test]
     fn four_rays_estimate_the_share_behind_a_near_blocker_with_a_small_bias() {
         // The ratio of seen to cast ray weights is biased for four rays. Far (rays by area;
         // the corners' squared distances differ 2.3-fold) it is 0.0058 high here (5 %);
