@@ -223,12 +223,22 @@ pub fn split(plane: &Plane, corners: &[DVec3], uvs: &[DVec2]) -> SplitPolygon {
     out
 }
 
-/// True when every corner of `polygon` lies in front of `plane`, beyond the epsilon band:
-/// [`clip_to_front`] returns such a polygon as it is.
+/// True when clipping `polygon` to the front of `plane` leaves it as it is: no corner lies
+/// behind the plane beyond the epsilon band, and one lies in front beyond it (corners in the
+/// band are on the plane, where the clipped polygon keeps them). [`clip_to_front`] returns
+/// such a polygon as it is.
 #[inline(always)]
-pub fn wholly_in_front(plane: &Plane, polygon: &[DVec3]) -> bool {
+pub fn unclipped(plane: &Plane, polygon: &[DVec3]) -> bool {
     let eps = band(plane, polygon);
-    polygon.iter().all(|&p| plane.distance(p) > eps)
+    let mut in_front = false;
+    for &p in polygon {
+        let d = plane.distance(p);
+        if d < -eps {
+            return false;
+        }
+        in_front |= d > eps;
+    }
+    in_front
 }
 
 /// The part of a convex polygon strictly in front of `plane` (corners in the epsilon band
@@ -237,8 +247,9 @@ pub fn wholly_in_front(plane: &Plane, polygon: &[DVec3]) -> bool {
 /// half-space before the contour integral.
 #[inline(always)]
 pub fn clip_to_front<'a>(plane: &Plane, polygon: &'a [DVec3]) -> Cow<'a, [DVec3]> {
-    // The common case, a polygon wholly in front, is returned as it is.
-    if wholly_in_front(plane, polygon) {
+    // The common case, a polygon in front (touching the plane at most), is returned as it
+    // is.
+    if unclipped(plane, polygon) {
         return Cow::Borrowed(polygon);
     }
     let eps = band(plane, polygon);
@@ -408,6 +419,29 @@ mod tests {
             facing(&floor(), Side::Front, &below, Side::Front),
             Facing::Away
         );
+    }
+
+    #[test]
+    fn a_polygon_touching_the_plane_is_not_clipped() {
+        let plane = Plane::new(DVec3::ZERO, DVec3::Z);
+        // A wall standing on the plane along its bottom edge.
+        let wall = [
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(1.0, 1.0, 1.0),
+            DVec3::new(0.0, 1.0, 1.0),
+        ];
+        assert!(unclipped(&plane, &wall));
+        assert!(matches!(clip_to_front(&plane, &wall), Cow::Borrowed(_)));
+        // Reaching a little below it: clipped back to the wall.
+        let lower = wall.map(|p| p - DVec3::Z * 0.1);
+        assert!(!unclipped(&plane, &lower));
+        let clipped = clip_to_front(&plane, &lower);
+        assert!(clipped.iter().all(|p| p.z > -1e-12) && clipped.len() == 4);
+        // Lying in the plane: nothing is in front.
+        let flat = wall.map(|p| DVec3::new(p.x, p.z, 0.0));
+        assert!(!unclipped(&plane, &flat));
+        assert!(clip_to_front(&plane, &flat).is_empty());
     }
 
     #[test]

@@ -9,7 +9,7 @@
 //! factors here are purely geometric (no visibility) and do not depend on which side of the
 //! emitter faces the receiver; [`super::clip::facing`] decides whether a pair exchanges light.
 
-use super::clip::{Plane, clip_to_front, wholly_in_front};
+use super::clip::{Plane, clip_to_front, unclipped};
 use super::element::Side;
 use super::mesh::Patch;
 use crate::geometry::DVec3x4;
@@ -98,14 +98,14 @@ pub fn point_to_polygon(point: DVec3, normal: DVec3, polygon: &[DVec3]) -> f64 {
 }
 
 /// [`point_to_polygon`] from each of `points` (all with the unit normal `normal`), in
-/// order. Points whose front half-space holds the whole polygon (the common case: a patch
-/// seen from the samples of another) go four at a time, a lane per point; the others are
-/// clipped and taken one by one.
+/// order. Points whose front half-space holds the whole polygon, up to corners on its
+/// plane (the common case: a patch seen from the samples of another), go four at a time, a
+/// lane per point; the others are clipped and taken one by one.
 pub fn points_to_polygon(points: &[DVec3], normal: DVec3, polygon: &[DVec3]) -> FactorList {
     let mut factors = FactorList::from_elem(0.0, points.len());
     let mut whole: SmallVec<[usize; 9]> = SmallVec::new();
     for (i, &p) in points.iter().enumerate() {
-        if wholly_in_front(&Plane::new(p, normal), polygon) {
+        if unclipped(&Plane::new(p, normal), polygon) {
             whole.push(i);
         } else {
             factors[i] = point_to_polygon(p, normal, polygon);
@@ -226,40 +226,6 @@ pub fn receiver_points(patch: &Patch, n: u32) -> Vec<(DVec3, f64)> {
             points.push((patch.point_at(s, t), patch.area_element(s, t)));
         }
     }
-    let total: f64 = points.iter().map(|p| p.1).sum();
-    for p in &mut points {
-        p.1 /= total;
-    }
-    points
-}
-
-/// A patch's Gauss points with their area weights (at most four; kept off the heap).
-pub type GaussPoints = SmallVec<[(DVec3, f64); 4]>;
-
-/// Gauss points of `patch` with their area weights (summing to 1): the 2 × 2 Gauss–Legendre
-/// points of a quad (exact for bicubic functions over a parallelogram), the three-point rule
-/// of a triangle (exact for quadratics). The area average of a smooth function over the patch
-/// is `Σ w·f(p)`.
-pub fn gauss_points(patch: &Patch) -> GaussPoints {
-    let c = patch.corners();
-    if patch.is_triangle() {
-        let (a, b) = (2.0 / 3.0, 1.0 / 6.0);
-        return SmallVec::from_slice(&[
-            (c[0] * a + c[1] * b + c[2] * b, 1.0 / 3.0),
-            (c[0] * b + c[1] * a + c[2] * b, 1.0 / 3.0),
-            (c[0] * b + c[1] * b + c[2] * a, 1.0 / 3.0),
-        ]);
-    }
-    let g = 0.5 / 3f64.sqrt();
-    let mut points: GaussPoints = [
-        (0.5 - g, 0.5 - g),
-        (0.5 + g, 0.5 - g),
-        (0.5 + g, 0.5 + g),
-        (0.5 - g, 0.5 + g),
-    ]
-    .into_iter()
-    .map(|(s, t)| (patch.point_at(s, t), patch.area_element(s, t)))
-    .collect();
     let total: f64 = points.iter().map(|p| p.1).sum();
     for p in &mut points {
         p.1 /= total;
@@ -535,24 +501,6 @@ mod tests {
         let low: f64 = pts.iter().filter(|x| x.0.y < 0.5).map(|x| x.1).sum();
         // Exact lower-half share of the trapezoid: (4 + 3)/2·0.5 / 3 = 7/12.
         assert!((low - 7.0 / 12.0).abs() < 1e-12, "{low}");
-    }
-
-    #[test]
-    fn gauss_points_integrate_quadratics_exactly() {
-        // ∫ x² over the unit square is 1/3, over the triangle (0,0),(1,0),(0,1) (mean) 1/6.
-        let square = rect([[0.0; 3], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
-        let mean: f64 = gauss_points(&square)
-            .iter()
-            .map(|(p, w)| w * p.x * p.x)
-            .sum();
-        assert!((mean - 1.0 / 3.0).abs() < 1e-14, "{mean}");
-        let tri = Patch::new(
-            &[DVec3::ZERO, DVec3::X, DVec3::Y],
-            &[DVec2::ZERO, DVec2::X, DVec2::Y],
-        )
-        .unwrap();
-        let mean: f64 = gauss_points(&tri).iter().map(|(p, w)| w * p.x * p.y).sum();
-        assert!((mean - 1.0 / 12.0).abs() < 1e-14, "{mean}");
     }
 
     #[test]

@@ -46,6 +46,10 @@ pub struct Patch {
     pub children: Option<[PatchId; 4]>,
     /// Quadtree level: 0 for roots.
     pub depth: u32,
+    /// Gauss points ([`Patch::gauss_points`]).
+    gauss: [DVec3; 4],
+    /// Their area weights.
+    gauss_weights: [f64; 4],
 }
 
 impl Patch {
@@ -66,6 +70,7 @@ impl Patch {
         let mut t = [DVec2::ZERO; 4];
         c[..sides].copy_from_slice(corners);
         t[..sides].copy_from_slice(uvs);
+        let (gauss, gauss_weights) = gauss_rule(corners);
         Some(Patch {
             corners: c,
             uvs: t,
@@ -79,7 +84,23 @@ impl Patch {
             parent: None,
             children: None,
             depth: 0,
+            gauss,
+            gauss_weights,
         })
+    }
+
+    /// The Gauss points (world space): the 2 × 2 Gauss–Legendre points of a quad (exact for
+    /// bicubic functions over a parallelogram), the three-point rule of a triangle (exact for
+    /// quadratics). With [`Patch::gauss_weights`], the area average of a smooth function
+    /// over the patch is `Σ w·f(p)`. A quad's point `k` lies in the quarter its child `k`
+    /// covers, a triangle's in its corner child `k`.
+    pub fn gauss_points(&self) -> &[DVec3] {
+        &self.gauss[..self.sides as usize]
+    }
+
+    /// The area weights of the Gauss points (summing to 1).
+    pub fn gauss_weights(&self) -> &[f64] {
+        &self.gauss_weights[..self.sides as usize]
     }
 
     /// The corners, counter-clockwise around the front side (3 or 4).
@@ -116,13 +137,10 @@ impl Patch {
     /// per unit of `s·t`): the patch's area everywhere on a triangle and a parallelogram, so
     /// that `1/area_element` is the density of uniform `(s, t)` over the patch's area.
     pub fn area_element(&self, s: f64, t: f64) -> f64 {
-        let c = self.corners();
         if self.is_triangle() {
             return self.area;
         }
-        let along_s = (c[1] - c[0]).lerp(c[2] - c[3], t);
-        let along_t = c[3].lerp(c[2], s) - c[0].lerp(c[1], s);
-        along_s.cross(along_t).length()
+        quad_area_element(self.corners(), s, t)
     }
 
     /// The texture coordinates at parametric coordinates `(s, t)`, by the map of
@@ -556,6 +574,41 @@ fn planar_pieces(corners: &[DVec3], uvs: &[DVec2]) -> Vec<(Vec<DVec3>, Vec<DVec2
 
 /// The value at parametric `(s, t)` of per-corner values `c` (3 for a triangle, 4 for a quad)
 /// by the map of [`Patch::point_at`].
+/// [`Patch::area_element`] of the quad with corners `c` at `(s, t)`.
+fn quad_area_element(c: &[DVec3], s: f64, t: f64) -> f64 {
+    let along_s = (c[1] - c[0]).lerp(c[2] - c[3], t);
+    let along_t = c[3].lerp(c[2], s) - c[0].lerp(c[1], s);
+    along_s.cross(along_t).length()
+}
+
+/// The Gauss points of the triangle or quad with corners `c` and their area weights
+/// ([`Patch::gauss_points`]; unused entries zero).
+fn gauss_rule(c: &[DVec3]) -> ([DVec3; 4], [f64; 4]) {
+    if c.len() == 3 {
+        let (a, b) = (2.0 / 3.0, 1.0 / 6.0);
+        let points = [
+            c[0] * a + c[1] * b + c[2] * b,
+            c[0] * b + c[1] * a + c[2] * b,
+            c[0] * b + c[1] * b + c[2] * a,
+            DVec3::ZERO,
+        ];
+        return (points, [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0, 0.0]);
+    }
+    let g = 0.5 / 3f64.sqrt();
+    let st = [
+        (0.5 - g, 0.5 - g),
+        (0.5 + g, 0.5 - g),
+        (0.5 + g, 0.5 + g),
+        (0.5 - g, 0.5 + g),
+    ];
+    let elements = st.map(|(s, t)| quad_area_element(c, s, t));
+    let total: f64 = elements.iter().sum();
+    (
+        st.map(|(s, t)| parametric(c, s, t)),
+        elements.map(|e| e / total),
+    )
+}
+
 fn parametric<T>(c: &[T], s: f64, t: f64) -> T
 where
     T: Copy + std::ops::Add<Output = T> + std::ops::Mul<f64, Output = T>,
@@ -575,6 +628,45 @@ mod tests {
     use super::*;
     use crate::geometry::Transform;
     use crate::scene::{Material, Object};
+
+    #[test]
+    fn gauss_points_integrate_quadratics_exactly() {
+        // ∫ x² over the unit square is 1/3, over the triangle (0,0),(1,0),(0,1) (mean) 1/6.
+        let mean = |patch: &Patch, f: fn(DVec3) -> f64| -> f64 {
+            let weights = patch.gauss_weights();
+            assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+            patch
+                .gauss_points()
+                .iter()
+                .zip(weights)
+                .map(|(&p, w)| w * f(p))
+                .sum()
+        };
+        let square = Patch::new(
+            &[DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+            &[DVec2::ZERO; 4],
+        )
+        .unwrap();
+        let m = mean(&square, |p| p.x * p.x);
+        assert!((m - 1.0 / 3.0).abs() < 1e-14, "{m}");
+        let tri = Patch::new(&[DVec3::ZERO, DVec3::X, DVec3::Y], &[DVec2::ZERO; 3]).unwrap();
+        let m = mean(&tri, |p| p.x * p.y);
+        assert!((m - 1.0 / 12.0).abs() < 1e-14, "{m}");
+        // A trapezoid: the weights follow the area element.
+        let trapezoid = Patch::new(
+            &[
+                DVec3::ZERO,
+                DVec3::new(4.0, 0.0, 0.0),
+                DVec3::new(3.0, 1.0, 0.0),
+                DVec3::new(1.0, 1.0, 0.0),
+            ],
+            &[DVec2::ZERO; 4],
+        )
+        .unwrap();
+        let m = mean(&trapezoid, |p| p.y);
+        // Centroid height of a trapezoid with parallel sides 4 (y = 0) and 2 (y = 1): 4/9.
+        assert!((m - 4.0 / 9.0).abs() < 1e-14, "{m}");
+    }
 
     fn square() -> Patch {
         Patch::new(

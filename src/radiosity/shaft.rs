@@ -124,11 +124,16 @@ impl Shaft {
             if length.is_nan() || length <= 0.0 {
                 return;
             }
+            // Degenerate (near-parallel) candidates give a direction of no use; the
+            // supporting test below rejects those that do not bound the points. It runs on
+            // the candidate's normal as it is, the tolerance scaled to its length; only a
+            // face kept is normalised.
+            let (above, below) = points.sides(normal, normal.dot(at), tolerance * length);
+            if above && below {
+                return;
+            }
             let n = normal / length;
             let offset = n.dot(at);
-            // Degenerate (near-parallel) candidates give a direction of no use; the
-            // supporting test below rejects those that do not bound the points.
-            let (above, below) = points.sides(n, offset, tolerance);
             match (above, below) {
                 (false, true) => shaft.hull.push((n, offset)),
                 (true, false) => shaft.hull.push((-n, -offset)),

@@ -415,15 +415,21 @@ impl<'w> Visibility<'w> {
     /// edges too: a pair whose Gauss points see nothing of each other may still see itself
     /// through a gap ([`Visibility::from_points`] looks from the Gauss points only). Looks
     /// with different ray counts cast different rays; deterministic for a fixed seed.
+    /// `blockers` are what may block the pair, where known (as [`Visibility::from_points`]
+    /// found them for it).
     pub fn look(
         &self,
         mesh: &PatchMesh,
         (a, normal_a): (PatchId, DVec3),
         (b, normal_b): (PatchId, DVec3),
         rays: u32,
+        blockers: Blockers,
     ) -> VisibilityEstimate {
         let (p, q) = (mesh.patch(a), mesh.patch(b));
-        let occluders = self.occluders(p, q);
+        let occluders = match blockers.get() {
+            Some(prims) => Occluders::of(prims.to_vec()),
+            None => self.occluders(p, q),
+        };
         if matches!(occluders, Occluders::None) {
             return VisibilityEstimate::UNOCCLUDED;
         }
@@ -873,7 +879,7 @@ mod tests {
             let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
             let world = World::new(scene, AccelKind::Bvh).unwrap();
             let vis = Visibility::new(&world, fixed(4, true), 16).unwrap();
-            vis.look(&mesh, (0, na), (1, nb), rays)
+            vis.look(&mesh, (0, na), (1, nb), rays, Blockers::UNKNOWN)
         };
         let facing = (DVec3::Z, DVec3::NEG_Z);
         assert_eq!(look(None, facing, 64), VisibilityEstimate::UNOCCLUDED);
@@ -977,12 +983,7 @@ mod tests {
         let mut mesh = PatchMesh::from_scene(&scene, &options).unwrap();
         let world = World::new(scene, AccelKind::Bvh).unwrap();
         let vis = Visibility::new(&world, fixed(16, true), 16).unwrap();
-        let points_of = |mesh: &PatchMesh, p: PatchId| {
-            crate::radiosity::form_factor::gauss_points(mesh.patch(p))
-                .iter()
-                .map(|g| g.0)
-                .collect::<Vec<_>>()
-        };
+        let points_of = |mesh: &PatchMesh, p: PatchId| mesh.patch(p).gauss_points().to_vec();
         let parent = vis
             .from_points(
                 &mesh,

@@ -2,7 +2,7 @@
 //! emitter node, or the irradiance of a light that only sends.
 //!
 //! A patch link stores the transport coefficient: the area average over the smaller of the
-//! two patches (its Gauss points, [`gauss_points`]) of the point form factor to the other
+//! two patches (its Gauss points, [`Patch::gauss_points`]) of the point form factor to the other
 //! side times the share of it visible from the point ([`Visibility::from_points`]), carried
 //! to the receiver by reciprocity when the emitter is the smaller, together with the
 //! smallest and largest point form factor over the receiver's Gauss points, centroid and
@@ -28,7 +28,7 @@ use super::nodes::{node, split_node};
 use crate::color::Rgb64;
 use crate::radiosity::clip::{Facing, facing};
 use crate::radiosity::element::Side;
-use crate::radiosity::form_factor::{FactorList, gauss_points, points_to_side};
+use crate::radiosity::form_factor::{FactorList, points_to_side};
 use crate::radiosity::light_links::{SKY_DIRECTIONS_PER_AXIS, light_irradiance};
 use crate::radiosity::mesh::{Patch, PatchMesh};
 use crate::radiosity::visibility::{Blockers, Visibility};
@@ -62,8 +62,8 @@ pub enum Prior {
     /// It is part of a pair nothing can block: no rays are needed.
     Unoccluded,
     /// Its rays were all blocked so far: if the Gauss points see nothing again, look over
-    /// both patches with this many rays.
-    Blocked(u32),
+    /// both patches with this many rays; only these primitives can block it.
+    Blocked(u32, Blockers),
     /// It is part of a pair only these primitives can block.
     Within(Blockers),
 }
@@ -185,10 +185,9 @@ impl IntoIterator for Divided {
 /// [`quarter_values`] for the quarter each lies in) to the receiver. Visibility is not known
 /// from that side and is taken as even.
 fn emitter_shares(emitter: &Patch, es: Side, receiver: &Patch, rs: Side) -> [f32; 4] {
-    let gauss = gauss_points(emitter);
-    let points: SmallVec<[DVec3; 4]> = gauss.iter().map(|g| g.0).collect();
-    let factors = points_to_side(&points, es.normal(emitter), receiver, rs);
-    quadrant_shares(emitter, |i| gauss[i].1 * factors[i])
+    let factors = points_to_side(emitter.gauss_points(), es.normal(emitter), receiver, rs);
+    let weights = emitter.gauss_weights();
+    quadrant_shares(emitter, |i| weights[i] * factors[i])
 }
 
 /// Shares in proportion to `weight(i)` of Gauss point `i` of `patch` (see
@@ -267,10 +266,10 @@ impl Linker<'_> {
         let normal = rs.normal(r);
         // The range over the receiver: its Gauss points, centroid and corners (pulled in a
         // little from the edge an emitter may touch).
-        let receiver_gauss = gauss_points(r);
-        let range_points: SmallVec<[DVec3; 9]> = receiver_gauss
+        let range_points: SmallVec<[DVec3; 9]> = r
+            .gauss_points()
             .iter()
-            .map(|g| g.0)
+            .copied()
             .chain([r.centroid])
             .chain(
                 r.corners()
@@ -289,48 +288,45 @@ impl Linker<'_> {
             (e, ep, es, r, rp, rs, e.area / r.area)
         };
         let from_normal = from_side.normal(from);
-        let gauss = if scale == 1.0 {
-            receiver_gauss
-        } else {
-            gauss_points(from)
-        };
-        let points: SmallVec<[DVec3; 4]> = gauss.iter().map(|g| g.0).collect();
+        let (points, weights) = (from.gauss_points(), from.gauss_weights());
         // The receiver's Gauss points lead its range points: their factors are known.
         let point_factors: FactorList = if scale == 1.0 {
-            SmallVec::from_slice(&factors[..gauss.len()])
+            SmallVec::from_slice(&factors[..points.len()])
         } else {
-            points_to_side(&points, from_normal, to, to_side)
+            points_to_side(points, from_normal, to, to_side)
         };
         // The unoccluded mean over the receiver, `scale · Σ w F`, is at most the maximum: it
         // holds the range up where the receiver's samples all miss a small, close emitter.
         let mean = scale
-            * gauss
+            * weights
                 .iter()
                 .zip(&point_factors)
-                .map(|(g, f)| g.1 * f)
+                .map(|(w, f)| w * f)
                 .sum::<f64>();
         let f_max = factors.iter().copied().fold(mean, f64::max);
         if f_max <= 0.0 {
             return None;
         }
         let inherited = match prior {
-            Prior::Within(blockers) => blockers,
-            _ => Blockers::UNKNOWN,
+            Prior::Within(blockers) | Prior::Blocked(_, blockers) => blockers,
+            Prior::Unknown | Prior::Unoccluded => Blockers::UNKNOWN,
         };
         let seen = if prior == Prior::Unoccluded {
             None
         } else {
             self.visibility.from_points(
                 mesh,
-                (from_patch, &points, from_normal),
+                (from_patch, points, from_normal),
                 to_patch,
                 RAYS_PER_POINT,
                 inherited,
             )
         };
         let blockers = seen.as_ref().map_or(Blockers::UNKNOWN, |s| s.blockers);
-        self.form_factors
-            .fetch_add((range_points.len() + gauss.len()) as u64, Ordering::Relaxed);
+        self.form_factors.fetch_add(
+            (range_points.len() + points.len()) as u64,
+            Ordering::Relaxed,
+        );
         let any_unblocked = seen.as_ref().is_none_or(|s| s.any_unblocked);
         let seen = seen.map(|s| {
             self.rays.fetch_add(s.rays, Ordering::Relaxed);
@@ -338,28 +334,32 @@ impl Linker<'_> {
         });
         let visible_at = |i: usize| seen.as_ref().map_or(1.0, |v| v[i]);
         let mut coupling: f64 = scale
-            * gauss
+            * weights
                 .iter()
                 .enumerate()
-                .map(|(i, &(_, w))| w * point_factors[i] * visible_at(i))
+                .map(|(i, w)| w * point_factors[i] * visible_at(i))
                 .sum::<f64>();
-        let mut visible: f64 = gauss
+        let mut visible: f64 = weights
             .iter()
             .enumerate()
-            .map(|(i, &(_, w))| w * visible_at(i))
+            .map(|(i, w)| w * visible_at(i))
             .sum();
         let mut blocked_rays = 0;
         if !any_unblocked {
             // No ray from a Gauss point arrived: look over both patches, near their edges
             // too, before calling the pair blocked.
             let rays = match prior {
-                Prior::Blocked(rays) => rays,
+                Prior::Blocked(rays, _) => rays,
                 Prior::Unknown | Prior::Unoccluded | Prior::Within(_) => FIRST_LOOK_RAYS,
             };
             let to_normal = to_side.normal(to);
-            let look =
-                self.visibility
-                    .look(mesh, (from_patch, from_normal), (to_patch, to_normal), rays);
+            let look = self.visibility.look(
+                mesh,
+                (from_patch, from_normal),
+                (to_patch, to_normal),
+                rays,
+                blockers,
+            );
             self.rays.fetch_add(look.rays, Ordering::Relaxed);
             if look.visible > 0.0 {
                 (coupling, visible) = (mean * look.visible, look.visible);
@@ -371,18 +371,18 @@ impl Linker<'_> {
         // receiver, they need form factors of their own, computed once the emitter is split.
         let shares = if scale != 1.0 {
             Some(quadrant_shares(e, |i| {
-                gauss[i].1 * point_factors[i] * visible_at(i)
+                weights[i] * point_factors[i] * visible_at(i)
             }))
         } else if e.children.is_some() {
             self.form_factors
-                .fetch_add(gauss_points(e).len() as u64, Ordering::Relaxed);
+                .fetch_add(e.gauss_points().len() as u64, Ordering::Relaxed);
             Some(emitter_shares(e, es, r, rs))
         } else {
             None
         };
         let receiver_visible = |i: usize| if scale == 1.0 { visible_at(i) } else { 1.0 };
         let receiver_weights = quarter_values(r, |i| factors[i] * receiver_visible(i));
-        let partial = visible < 1.0 || (0..gauss.len()).any(|i| visible_at(i) < 1.0);
+        let partial = visible < 1.0 || (0..points.len()).any(|i| visible_at(i) < 1.0);
         let f_min = if partial {
             0.0
         } else {
@@ -422,7 +422,7 @@ impl Linker<'_> {
                 );
                 let emitter = mesh.patch(ep);
                 l.shares = Some(emitter_shares(emitter, es, mesh.patch(rp), rs));
-                if emitter.is_triangle() { 3 } else { 4 }
+                emitter.gauss_points().len() as u64
             })
             .sum();
         self.form_factors.fetch_add(evaluated, Ordering::Relaxed);
@@ -438,8 +438,8 @@ impl Linker<'_> {
         let irradiance = light_irradiance(shadows, kind, patch, rs, self.link_samples);
         let normal = rs.normal(patch);
         let mut range = (f64::INFINITY, 0.0f64);
-        let points = gauss_points(patch);
-        for p in points.iter().map(|p| p.0).chain([patch.centroid]) {
+        let points = patch.gauss_points();
+        for &p in points.iter().chain([&patch.centroid]) {
             let y = point_irradiance(shadows, kind, p, normal, SKY_DIRECTIONS_PER_AXIS).luminance();
             range = (range.0.min(y), range.1.max(y));
         }

@@ -235,7 +235,7 @@ impl Shots {
                         let prior = link.prior_for_children();
                         next.extend(children(&mut solver.mesh, e).map(|c| (r, c, prior)))
                     }
-                    Decision::Look(rays) => next.push((r, e, Prior::Blocked(rays))),
+                    Decision::Look(rays) => next.push((r, e, Prior::Blocked(rays, link.blockers))),
                 }
             }
             solver.nodes.grow(&solver.world.scene, &solver.mesh);

@@ -529,7 +529,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 }
                 Some(&Decision::Look(rays)) => {
                     applied.looked += 1;
-                    pairs.push((r, e, Prior::Blocked(rays)));
+                    pairs.push((r, e, Prior::Blocked(rays, link.blockers)));
                     false
                 }
                 Some(Decision::Keep) | None => true,
