@@ -15,7 +15,7 @@
 Needs a release build (`cargo build --release`). Prints the numbers as Markdown tables too.
 
 Usage: scripts/validation-figures.py [--strahl target/release/strahl] [--out docs/images]
-           [--reference-photons 20000000]
+           [--reference-photons 20000000] [--part all|convergence|hierarchical|line]
 """
 
 import argparse
@@ -153,47 +153,55 @@ def main():
     parser.add_argument("--strahl", default="target/release/strahl")
     parser.add_argument("--out", default="docs/images")
     parser.add_argument("--reference-photons", type=int, default=20_000_000)
+    parser.add_argument("--part", choices=["all", "convergence", "hierarchical", "line"],
+                        default="all", help="which figures to make (default: all)")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
-        convergence(args.strahl, "light-trace", "--photons",
-                    [10_000, 30_000, 100_000, 300_000, 1_000_000, 3_000_000],
-                    "photons", args.out, tmp)
-        convergence(args.strahl, "pathtrace", "--samples",
-                    [256, 1024, 4096, 16_384, 65_536, 262_144],
-                    "samples per sensor", args.out, tmp)
+        if args.part in ("all", "convergence"):
+            convergence(args.strahl, "light-trace", "--photons",
+                        [10_000, 30_000, 100_000, 300_000, 1_000_000, 3_000_000],
+                        "photons", args.out, tmp)
+            convergence(args.strahl, "pathtrace", "--samples",
+                        [256, 1024, 4096, 16_384, 65_536, 262_144],
+                        "samples per sensor", args.out, tmp)
+        if args.part in ("all", "hierarchical"):
+            hierarchical(args, tmp)
+    if args.part in ("all", "line"):
+        cornell_line(args.out)
 
-        reference, seconds = solve(
-            args.strahl, ["--solver", "light-trace", "--photons", str(args.reference_photons)], tmp)
-        ref = per_object(reference)
-        print(f"\nReference: light model, {args.reference_photons:,} photons, {seconds:.1f} s")
-        print("\n| --error | largest error | RMS error | links | leaves | seconds |")
-        print("|---|---|---|---|---|---|")
-        rows = []
-        for error in [1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5]:
-            report, seconds = solve(
-                args.strahl,
-                ["--solver", "hierarchical", "--error", str(error), "--threads", "1"], tmp)
-            got = per_object(report)
-            errs = [abs(got[k] / ref[k] - 1) for k in ref if k in got and ref[k] > 0]
-            worst = max(errs)
-            rms = math.sqrt(sum(e * e for e in errs) / len(errs))
-            links, leaves = report["stats"]["links"], report["stats"]["patches"]
-            rows.append((error, worst, rms, links, leaves, seconds))
-            print(f"| {error:g} | {100 * worst:.2f} % | {100 * rms:.2f} % | {links:,} | "
-                  f"{leaves:,} | {seconds:.2f} |")
-        plot = Plot("Cornell box: hierarchical radiosity vs light model", "--error",
-                    "relative error per object")
-        plot.add("largest error", [(e, w) for e, w, _, _, _, _ in rows], "#d62728")
-        plot.add("RMS error", [(e, r) for e, _, r, _, _, _ in rows], "#1f77b4")
-        plot.add("seconds (one thread)", [(e, s) for e, _, _, _, _, s in rows], "#7f7f7f",
-                 dashed=True)
-        plot.write(os.path.join(args.out, "validation-hierarchical.svg"))
-        plot = Plot("Cornell box: links against leaves", "leaves", "count")
-        plot.add("links", [(l, k) for _, _, _, k, l, _ in rows], "#1f77b4")
-        plot.add("leaves²", [(l, l * l) for _, _, _, _, l, _ in rows], "#7f7f7f", dashed=True)
-        plot.write(os.path.join(args.out, "validation-links.svg"))
 
-    cornell_line(args.out)
+def hierarchical(args, tmp):
+    """Hierarchical radiosity on the Cornell box against the light model, and its links."""
+    reference, seconds = solve(
+        args.strahl, ["--solver", "light-trace", "--photons", str(args.reference_photons)], tmp)
+    ref = per_object(reference)
+    print(f"\nReference: light model, {args.reference_photons:,} photons, {seconds:.1f} s")
+    print("\n| --error | largest error | RMS error | links | leaves | seconds |")
+    print("|---|---|---|---|---|---|")
+    rows = []
+    for error in [1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5]:
+        report, seconds = solve(
+            args.strahl,
+            ["--solver", "hierarchical", "--error", str(error), "--threads", "1"], tmp)
+        got = per_object(report)
+        errs = [abs(got[k] / ref[k] - 1) for k in ref if k in got and ref[k] > 0]
+        worst = max(errs)
+        rms = math.sqrt(sum(e * e for e in errs) / len(errs))
+        links, leaves = report["stats"]["links"], report["stats"]["patches"]
+        rows.append((error, worst, rms, links, leaves, seconds))
+        print(f"| {error:g} | {100 * worst:.2f} % | {100 * rms:.2f} % | {links:,} | "
+              f"{leaves:,} | {seconds:.2f} |")
+    plot = Plot("Cornell box: hierarchical radiosity vs light model", "--error",
+                "relative error per object")
+    plot.add("largest error", [(e, w) for e, w, _, _, _, _ in rows], "#d62728")
+    plot.add("RMS error", [(e, r) for e, _, r, _, _, _ in rows], "#1f77b4")
+    plot.add("seconds (one thread)", [(e, s) for e, _, _, _, _, s in rows], "#7f7f7f",
+             dashed=True)
+    plot.write(os.path.join(args.out, "validation-hierarchical.svg"))
+    plot = Plot("Cornell box: links against leaves", "leaves", "count")
+    plot.add("links", [(l, k) for _, _, _, k, l, _ in rows], "#1f77b4")
+    plot.add("leaves²", [(l, l * l) for _, _, _, _, l, _ in rows], "#7f7f7f", dashed=True)
+    plot.write(os.path.join(args.out, "validation-links.svg"))
 
 
 def cornell_line(out):
