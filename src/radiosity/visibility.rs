@@ -66,7 +66,7 @@ const INHERITED_BLOCKERS: usize = 8;
 /// for a pair, handed down to the pairs of the patches' children: a child's rays run inside
 /// the pair's convex hull, so nothing else can block them, and the children's pairs need
 /// neither a shaft of their own nor a search of the scene. Unknown when the pair had more
-/// than [`INHERITED_BLOCKERS`] or none was searched for.
+/// than eight (`INHERITED_BLOCKERS`) or none was searched for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Blockers {
     prims: [u32; INHERITED_BLOCKERS],
