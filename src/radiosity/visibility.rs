@@ -64,9 +64,9 @@ const INHERITED_BLOCKERS: usize = 8;
 
 /// The primitives that may block the rays between two patches, as shaft culling found them
 /// for a pair, handed down to the pairs of the patches' children: a child's rays run inside
-/// the pair's convex hull, so nothing else can block them, and the children's pairs need
-/// neither a shaft of their own nor a search of the scene. Unknown when the pair had more
-/// than eight (`INHERITED_BLOCKERS`) or none was searched for.
+/// the pair's convex hull, so nothing else can block them, and the children's pairs test
+/// their own shafts against these alone instead of searching the scene. Unknown when the
+/// pair had more than eight (`INHERITED_BLOCKERS`) or none was searched for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Blockers {
     prims: [u32; INHERITED_BLOCKERS],
@@ -500,7 +500,10 @@ impl<'w> Visibility<'w> {
     /// 2 × 2 rays to jittered strata of the part of `b` in front of it (by area, or by solid
     /// angle where that part is clipped or close), joined by `per_point` more rays from every point
     /// when any of those is blocked and `per_point` exceeds the probe's four. `None` when
-    /// nothing can block the pair (every share is 1). Deterministic for a fixed seed.
+    /// nothing can block the pair (every share is 1). The occluders are searched for among
+    /// `inherited` when known (those of a pair of the patches' ancestors), else in the whole
+    /// scene; what was found comes back for the pairs of the patches' children.
+    /// Deterministic for a fixed seed.
     pub fn from_points(
         &self,
         mesh: &PatchMesh,

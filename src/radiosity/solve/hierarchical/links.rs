@@ -2,9 +2,9 @@
 //! emitter node, or the irradiance of a light that only sends.
 //!
 //! A patch link stores the transport coefficient: the area average over the smaller of the
-//! two patches (its Gauss points, [`Patch::gauss_points`]) of the point form factor to the other
-//! side times the share of it visible from the point ([`Visibility::from_points`]), carried
-//! to the receiver by reciprocity when the emitter is the smaller, together with the
+//! two patches (its Gauss points, [`Patch::gauss_points`]) of the point form factor to the
+//! other side times the share of it visible from the point ([`Visibility::from_points`]),
+//! carried to the receiver by reciprocity when the emitter is the smaller, together with the
 //! smallest and largest point form factor over the receiver's Gauss points, centroid and
 //! corners (`F_min = 0` when the pair is partly occluded), which the oracles judge.
 //!
