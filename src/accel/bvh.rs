@@ -579,7 +579,7 @@ impl Builder<'_> {
         let lo = centroid_bounds.min[axis];
         let scale = nbins as f32 / extent[axis];
         let centroids = &self.centroids;
-        let mid = partition(&mut self.refs[start..end], |r| {
+        let mid = super::partition(&mut self.refs[start..end], |r| {
             (((centroids[r as usize][axis] - lo) * scale) as usize).min(nbins - 1) < split
         });
         (mid > 0 && mid < end - start).then_some(start + mid)
@@ -604,18 +604,6 @@ impl Builder<'_> {
 /// tested eight at a time.
 fn leaf_cost(n: usize) -> f32 {
     n.div_ceil(TRIANGLE_LANES) as f32
-}
-
-/// Moves the elements satisfying `pred` to the front; returns how many there are.
-fn partition(v: &mut [u32], pred: impl Fn(u32) -> bool) -> usize {
-    let mut first = 0;
-    for i in 0..v.len() {
-        if pred(v[i]) {
-            v.swap(first, i);
-            first += 1;
-        }
-    }
-    first
 }
 
 impl<P: PrimitiveSet> Accelerator<P> for Bvh {

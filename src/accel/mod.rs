@@ -34,6 +34,19 @@ impl PrimHit {
     }
 }
 
+/// Moves the indices of `items` for which `pred` holds to the front (in place, unstably);
+/// returns how many there are. Used to split primitive lists when building trees.
+pub fn partition(items: &mut [u32], pred: impl Fn(u32) -> bool) -> usize {
+    let mut first = 0;
+    for i in 0..items.len() {
+        if pred(items[i]) {
+            items.swap(first, i);
+            first += 1;
+        }
+    }
+    first
+}
+
 /// Keeps the closer of the current best hit and a candidate.
 #[inline]
 pub fn keep_closest(best: &mut Option<PrimHit>, candidate: Option<PrimHit>) {
@@ -117,5 +130,19 @@ impl AccelKind {
             AccelKind::Octree => Box::new(Octree::build(prims, &OctreeOptions::default())),
             AccelKind::Naive => Box::new(Naive::build(prims)),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn partition_moves_the_items_below_to_the_front() {
+        let mut items = [5, 1, 7, 2, 9, 3];
+        let below = partition(&mut items, |x| x < 4);
+        assert_eq!(below, 3);
+        assert!(items[..3].iter().all(|&x| x < 4));
+        assert!(items[3..].iter().all(|&x| x >= 4));
     }
 }

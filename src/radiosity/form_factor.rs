@@ -155,8 +155,8 @@ pub fn point_to_side(point: DVec3, normal: DVec3, patch: &Patch, side: Side) -> 
     }
 }
 
-/// [`point_to_side`] from each of `points` (all with the unit normal `normal`), in order,
-/// four at a time where they all lie in front of the side ([`points_to_polygon`]).
+/// [`point_to_side`] from each of `points` (all with the unit normal `normal`), in order:
+/// 0 behind the side, [`points_to_polygon`] (four at a time) for the points in front of it.
 pub fn points_to_side(points: &[DVec3], normal: DVec3, patch: &Patch, side: Side) -> FactorList {
     let plane = Plane::of_side(patch, side);
     let front: SmallVec<[usize; 9]> = (0..points.len())

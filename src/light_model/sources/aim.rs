@@ -16,7 +16,7 @@
 //! anything, each with the density of the uniform rays at least, so no estimate is worse than
 //! with uniform points.
 
-use crate::accel::PrimitiveSet;
+use crate::accel::{PrimitiveSet, partition};
 use crate::geometry::{Aabb, Frame};
 use crate::sampling::Sampler;
 use crate::sampling::warp::concentric_disk;
@@ -292,18 +292,6 @@ impl<'a> ClusterTree<'a> {
     }
 }
 
-/// Moves the items of `items` for which `below` holds to the front, returning their number.
-fn partition(items: &mut [u32], below: impl Fn(u32) -> bool) -> usize {
-    let mut count = 0;
-    for i in 0..items.len() {
-        if below(items[i]) {
-            items.swap(count, i);
-            count += 1;
-        }
-    }
-    count
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -379,14 +367,5 @@ mod tests {
         let two = [ball(0.0, 0.0, 0.0, 0.7), ball(0.5, 0.0, 0.0, 0.7)];
         assert!(AimSet::from_balls(&two, Vec3::ZERO, 1.0).is_none());
         assert!(AimSet::from_balls(&two[..1], Vec3::ZERO, 1.0).is_some());
-    }
-
-    #[test]
-    fn partition_moves_the_items_below_to_the_front() {
-        let mut items = [5, 1, 7, 2, 9, 3];
-        let below = partition(&mut items, |x| x < 4);
-        assert_eq!(below, 3);
-        assert!(items[..3].iter().all(|&x| x < 4));
-        assert!(items[3..].iter().all(|&x| x >= 4));
     }
 }
