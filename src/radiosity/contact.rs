@@ -134,14 +134,16 @@ pub fn split_at_contacts(faces: Vec<Face>) -> Vec<Face> {
     out
 }
 
-/// `piece` cut at each of `planes` in turn (pieces a plane does not cross stay whole).
+/// `piece` cut at each of `planes` in turn (pieces a plane does not cross beyond the
+/// rounding of the geometry stay whole: no sliver thinner than that is cut off).
 fn cut(piece: Face, planes: &[Plane]) -> Vec<Face> {
+    let tolerance = ROUNDING_EPSILON * extent(&piece.corners);
     let mut pieces = vec![piece];
     for plane in planes {
         pieces = pieces
             .into_iter()
             .flat_map(|piece| {
-                if !SideCounts::of(plane, &piece.corners).straddles() {
+                if !crosses(plane, &piece.corners, tolerance) {
                     return vec![piece];
                 }
                 let halves = split(plane, &piece.corners, &piece.uvs);
@@ -230,10 +232,10 @@ fn touches(toucher: &Face, face: &Face, toucher_plane: &Plane) -> bool {
     {
         return false;
     }
-    if !SideCounts::of(toucher_plane, &face.corners).straddles() {
+    let tolerance = ROUNDING_EPSILON * extent(&face.corners).max(extent(&toucher.corners));
+    if !crosses(toucher_plane, &face.corners, tolerance) {
         return false;
     }
-    let tolerance = ROUNDING_EPSILON * extent(&face.corners).max(extent(&toucher.corners));
     let contact: Vec<DVec3> = toucher
         .corners
         .iter()
@@ -241,6 +243,20 @@ fn touches(toucher: &Face, face: &Face, toucher_plane: &Plane) -> bool {
         .filter(|&p| face_plane.distance(p).abs() <= tolerance.max(f64::MIN_POSITIVE))
         .collect();
     contact.len() >= 2 && segment_overlaps(&contact, face, &face_plane, tolerance)
+}
+
+/// True when `plane` cuts `corners` into two pieces each reaching farther than `tolerance`
+/// (scene units) from it. A plane that passes within the rounding of the geometry of a corner
+/// (the neighbouring facets of a tessellated sphere, whose pole corners differ by a few 10⁻⁸)
+/// would cut off a sliver with an edge shorter than that rounding: no cut.
+fn crosses(plane: &Plane, corners: &[DVec3], tolerance: f64) -> bool {
+    let (lo, hi) = corners
+        .iter()
+        .map(|&p| plane.distance(p))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| {
+            (lo.min(d), hi.max(d))
+        });
+    SideCounts::of(plane, corners).straddles() && lo < -tolerance && hi > tolerance
 }
 
 /// The largest coordinate magnitude of `points` (the scale of the configuration).
@@ -440,6 +456,42 @@ mod tests {
         // The walls stand on the floor but are not cut by it (the floor's plane only touches
         // them), and walls meeting at corners do not cut each other.
         assert_eq!(out.iter().filter(|f| f.object == 1).count(), 4);
+    }
+
+    #[test]
+    fn a_plane_passing_within_the_rounding_of_a_corner_cuts_off_no_sliver() {
+        // A wall standing on the floor 10⁻⁸ inside the floor's edge (as the facets of a
+        // tessellated sphere around its pole do, in single precision): cutting there would
+        // leave a sliver 10⁻⁸ wide.
+        let floor = face(
+            &[
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 0.0, 1.0],
+                [1.0, 0.0, 0.0],
+            ],
+            0,
+        );
+        let x = 1e-8;
+        let wall = face(
+            &[[x, 0.0, 0.0], [x, 0.0, 1.0], [x, 1.0, 1.0], [x, 1.0, 0.0]],
+            1,
+        );
+        let out = split_at_contacts(vec![floor.clone(), wall]);
+        let pieces: Vec<&Face> = out.iter().filter(|f| f.object == 0).collect();
+        assert_eq!(pieces, [&floor]);
+        // One clearly inside cuts.
+        let wall = face(
+            &[
+                [0.25, 0.0, 0.0],
+                [0.25, 0.0, 1.0],
+                [0.25, 1.0, 1.0],
+                [0.25, 1.0, 0.0],
+            ],
+            1,
+        );
+        let out = split_at_contacts(vec![floor, wall]);
+        assert_eq!(out.iter().filter(|f| f.object == 0).count(), 2);
     }
 
     #[test]

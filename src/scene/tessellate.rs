@@ -128,14 +128,18 @@ fn unit_sphere(segments: u32) -> PolygonMesh {
     for ring in 0..=rings {
         let v = ring as f32 / rings as f32;
         let theta = PI * (1.0 - v);
+        // sin(π) is 8.7·10⁻⁸ in single precision: the poles are set exactly, so the facets
+        // around a pole meet in one point.
+        let (sin_theta, cos_theta) = match ring {
+            0 => (0.0, -1.0),
+            r if r == rings => (0.0, 1.0),
+            _ => theta.sin_cos(),
+        };
         for seg in 0..=segments {
             let u = seg as f32 / segments as f32;
-            let phi = 2.0 * PI * (u - 0.5);
-            let p = Vec3::new(
-                theta.sin() * phi.cos(),
-                theta.cos(),
-                theta.sin() * phi.sin(),
-            );
+            // The seam's last column is the first one again (at the same point; u = 1).
+            let phi = 2.0 * PI * ((seg % segments) as f32 / segments as f32 - 0.5);
+            let p = Vec3::new(sin_theta * phi.cos(), cos_theta, sin_theta * phi.sin());
             mesh.positions.push(p);
             mesh.normals.as_mut().unwrap().push(p);
             mesh.uvs.as_mut().unwrap().push(Vec2::new(u, v));
@@ -265,6 +269,27 @@ mod tests {
         assert_eq!(mesh.face_count(), 6);
         assert!((total_area(&mesh) - 22.0).abs() < 1e-5);
         assert!(outward(&mesh, Vec3::new(0.5, 1.0, 1.5)));
+    }
+
+    #[test]
+    fn a_sphere_closes_at_its_poles_and_its_seam() {
+        // Facets meeting at a pole share it exactly (sin π is not 0 in single precision), and
+        // the seam's last column lies on its first: no sliver for the radiosity mesh to cut.
+        let sphere = Shape::Sphere {
+            center: Vec3::new(0.3, 1.7, -0.2),
+            radius: 0.4,
+        };
+        let segments = 16;
+        let m = sphere.to_mesh(segments).unwrap();
+        let row = segments as usize + 1;
+        let rings = m.positions.len() / row;
+        for ring in [0, rings - 1] {
+            let pole = &m.positions[ring * row..(ring + 1) * row];
+            assert!(pole.iter().all(|&p| p == pole[0]), "{pole:?}");
+        }
+        for ring in 0..rings {
+            assert_eq!(m.positions[ring * row], m.positions[ring * row + row - 1]);
+        }
     }
 
     #[test]

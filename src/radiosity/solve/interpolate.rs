@@ -5,9 +5,17 @@
 //! interpolated linearly along every edge is then continuous across quadtree levels: no
 //! cracks.
 //!
-//! Vertices are shared only between leaves of the same object lying in the same plane
-//! (coplanar faces of one object count as one surface); corners between different surfaces
-//! (a wall meeting the floor) keep separate values.
+//! Vertices are shared between leaves of the same object whose normals differ by less than
+//! a crease angle of 45°: the facets of a tessellated sphere, cylinder or cone are shaded
+//! smoothly across their edges (and T-vertices where a finer facet meets a coarser one are
+//! fixed as on a plane), while a box's faces or a wall meeting the floor keep separate
+//! values at their common corners. Different objects never share a vertex.
+//!
+//! The work is linear in the leaves: an edge is followed into its midpoints only while it is
+//! longer than a few weld cells and its midpoint is a vertex other than its ends, so every
+//! lookup along one edge either fails or finds a new vertex ([`SmoothCorners::midpoint_lookups`]
+//! counts them). An edge shorter than the weld grid (a sliver of an imported mesh) has no
+//! midpoint vertex of its own.
 
 use crate::color::Rgb64;
 use crate::radiosity::{Patch, PatchId, PatchMesh};
@@ -16,52 +24,53 @@ use std::collections::HashMap;
 
 /// Relative size (to the scene's extent) of the grid vertices are welded on.
 const WELD_RELATIVE: f64 = 1e-7;
-/// Normals are compared after rounding to this many steps per unit.
-const NORMAL_STEPS: f64 = 1e4;
+/// Cosine of the crease angle (45°): leaves of one object meeting at a point share a vertex
+/// there when their normals are closer than this.
+const CREASE_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// Deepest chain of midpoints followed along one edge.
 const MAX_EDGE_DEPTH: u32 = 24;
+/// Shortest edge, in weld cells, whose midpoint may be a vertex of its own: the midpoint then
+/// lies at least two cells from either end, farther than rounding to the grid moves a point
+/// (√3/2 of a cell), so it never welds to an end.
+const MIN_EDGE_CELLS: f64 = 4.0;
+
+/// A weld cell of one object: object index and position on the weld grid.
+type WeldCell = (u32, [i64; 3]);
 
 /// Values at a leaf's corners, in corner order (the fourth unused for triangles).
 pub type CornerValues = [Rgb64; 4];
 
-/// Vertex key: surface group and welded position.
-type VertexKey = (u32, [i64; 3]);
+/// The smooth corner values of a set of leaves and the work it took.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SmoothCorners {
+    /// Values at the corners of every leaf, in the order of the leaves given.
+    pub corners: Vec<CornerValues>,
+    /// Midpoints looked up along the leaves' edges: one per edge and two more per vertex
+    /// found on an edge, so at most a small multiple of the corners.
+    pub midpoint_lookups: u64,
+}
 
 /// Smooth corner values of every leaf `leaves[k]` from the per-leaf `values[k]` (flat
 /// radiosity), as the module describes.
-pub fn vertex_radiosity(
-    mesh: &PatchMesh,
-    leaves: &[PatchId],
-    values: &[Rgb64],
-) -> Vec<CornerValues> {
+pub fn vertex_radiosity(mesh: &PatchMesh, leaves: &[PatchId], values: &[Rgb64]) -> SmoothCorners {
     let patches: Vec<&Patch> = leaves.iter().map(|&id| mesh.patch(id)).collect();
     let extent = patches
         .iter()
         .flat_map(|p| p.corners().iter())
         .fold(0.0f64, |m, c| m.max(c.abs().max_element()));
     let weld = (extent * WELD_RELATIVE).max(f64::MIN_POSITIVE);
-    let mut groups: HashMap<(u32, [i64; 3]), u32> = HashMap::new();
-    let group_of: Vec<u32> = patches
-        .iter()
-        .map(|p| {
-            let n = (p.normal * NORMAL_STEPS).round();
-            let key = (p.object, [n.x as i64, n.y as i64, n.z as i64]);
-            let next = groups.len() as u32;
-            *groups.entry(key).or_insert(next)
-        })
-        .collect();
-    let key = |group: u32, p: DVec3| -> VertexKey {
-        let q = (p / weld).round();
-        (group, [q.x as i64, q.y as i64, q.z as i64])
+    let mut index = VertexIndex {
+        weld,
+        cells: HashMap::new(),
+        count: 0,
     };
-    let mut index: HashMap<VertexKey, usize> = HashMap::new();
     let mut sums: Vec<(Rgb64, f64)> = Vec::new();
     for (k, p) in patches.iter().enumerate() {
         for &c in p.corners() {
-            let v = *index.entry(key(group_of[k], c)).or_insert_with(|| {
+            let v = index.find_or_insert(p, c);
+            if v == sums.len() {
                 sums.push((Rgb64::BLACK, 0.0));
-                sums.len() - 1
-            });
+            }
             let (sum, weight) = &mut sums[v];
             *sum += values[k] * p.area;
             *weight += p.area;
@@ -77,55 +86,155 @@ pub fn vertex_radiosity(
             }
         })
         .collect();
+    let mut edge = EdgeWalk {
+        min_length: MIN_EDGE_CELLS * weld,
+        lookups: 0,
+    };
     let mut order: Vec<usize> = (0..patches.len()).collect();
     order.sort_by_key(|&k| patches[k].depth);
     for k in order {
-        let c = patches[k].corners();
+        let patch = patches[k];
+        let c = patch.corners();
+        let corner = |p: DVec3| index.find(patch, p).expect("every corner has a vertex");
         for e in 0..c.len() {
             let (a, b) = (c[e], c[(e + 1) % c.len()]);
-            let ends = (index[&key(group_of[k], a)], index[&key(group_of[k], b)]);
-            let lookup = |p: DVec3| index.get(&key(group_of[k], p)).copied();
-            fix_edge(&lookup, &mut vertex, (a, b), ends, MAX_EDGE_DEPTH);
+            let lookup = |p: DVec3| index.find(patch, p);
+            edge.fix(
+                &lookup,
+                &mut vertex,
+                (a, b),
+                (corner(a), corner(b)),
+                MAX_EDGE_DEPTH,
+            );
         }
     }
-    patches
+    let corners = patches
         .iter()
-        .enumerate()
-        .map(|(k, p)| {
+        .map(|p| {
             let mut out = [Rgb64::BLACK; 4];
             for (slot, &c) in out.iter_mut().zip(p.corners()) {
-                *slot = vertex[index[&key(group_of[k], c)]];
+                *slot = vertex[index.find(p, c).expect("every corner has a vertex")];
             }
             out
         })
-        .collect()
+        .collect();
+    SmoothCorners {
+        corners,
+        midpoint_lookups: edge.lookups,
+    }
 }
 
-/// Sets every vertex found at the midpoints along the edge `a`–`b` (recursively) to the
-/// linear interpolation of the edge's end values.
-fn fix_edge(
-    lookup: &impl Fn(DVec3) -> Option<usize>,
-    vertex: &mut [Rgb64],
-    (a, b): (DVec3, DVec3),
-    (va, vb): (usize, usize),
-    depth: u32,
-) {
-    if depth == 0 {
-        return;
+/// The vertices by object and welded position, each with the normal of the first leaf that
+/// made it (a handful per position at most: one per crease).
+struct VertexIndex {
+    /// Size of a weld cell, scene units.
+    weld: f64,
+    /// Vertices (normal, index) at each object's welded positions.
+    cells: HashMap<WeldCell, Vec<(DVec3, usize)>>,
+    /// Vertices made so far.
+    count: usize,
+}
+
+impl VertexIndex {
+    fn cell(&self, patch: &Patch, p: DVec3) -> WeldCell {
+        let q = (p / self.weld).round();
+        (patch.object, [q.x as i64, q.y as i64, q.z as i64])
     }
-    let m = (a + b) * 0.5;
-    let Some(vm) = lookup(m) else {
-        return;
-    };
-    vertex[vm] = (vertex[va] + vertex[vb]) * 0.5;
-    fix_edge(lookup, vertex, (a, m), (va, vm), depth - 1);
-    fix_edge(lookup, vertex, (m, b), (vm, vb), depth - 1);
+
+    /// The vertex `patch` shares at `p`, if there is one.
+    fn find(&self, patch: &Patch, p: DVec3) -> Option<usize> {
+        self.cells
+            .get(&self.cell(patch, p))?
+            .iter()
+            .find(|(normal, _)| normal.dot(patch.normal) > CREASE_COS)
+            .map(|&(_, v)| v)
+    }
+
+    /// The vertex `patch` shares at `p`, made (numbered next) when there is none yet.
+    fn find_or_insert(&mut self, patch: &Patch, p: DVec3) -> usize {
+        if let Some(v) = self.find(patch, p) {
+            return v;
+        }
+        let cell = self.cell(patch, p);
+        let v = self.count;
+        self.cells.entry(cell).or_default().push((patch.normal, v));
+        self.count += 1;
+        v
+    }
+}
+
+/// The walk along leaf edges that sets their T-vertices.
+struct EdgeWalk {
+    /// Shortest edge followed into its midpoint, scene units.
+    min_length: f64,
+    /// Midpoints looked up so far.
+    lookups: u64,
+}
+
+impl EdgeWalk {
+    /// Sets every vertex found at the midpoints along the edge `a`–`b` (recursively) to the
+    /// linear interpolation of the edge's end values.
+    fn fix(
+        &mut self,
+        lookup: &impl Fn(DVec3) -> Option<usize>,
+        vertex: &mut [Rgb64],
+        (a, b): (DVec3, DVec3),
+        (va, vb): (usize, usize),
+        depth: u32,
+    ) {
+        if depth == 0 || a.distance(b) < self.min_length {
+            return;
+        }
+        let m = (a + b) * 0.5;
+        self.lookups += 1;
+        let Some(vm) = lookup(m).filter(|&vm| vm != va && vm != vb) else {
+            return;
+        };
+        vertex[vm] = (vertex[va] + vertex[vb]) * 0.5;
+        self.fix(lookup, vertex, (a, m), (va, vm), depth - 1);
+        self.fix(lookup, vertex, (m, b), (vm, vb), depth - 1);
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use glam::DVec2;
+
+    #[test]
+    fn an_edge_shorter_than_the_weld_grid_is_not_followed() {
+        // A sliver with an edge of 10⁻¹² (its midpoint welds to both ends) beside a square:
+        // its edges cost one lookup each, not 2²⁴.
+        let mut mesh = PatchMesh::default();
+        let square = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let sliver = [
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(2.0, 0.5, 0.0),
+            DVec3::new(1.0, 1e-12, 0.0),
+        ];
+        for corners in [&square[..], &sliver[..]] {
+            let patch = Patch::new(corners, &[DVec2::ZERO; 4][..corners.len()]).unwrap();
+            mesh.patches.push(patch);
+        }
+        mesh.roots = vec![0, 1];
+        let leaves = mesh.leaves();
+        let values = [Rgb64::splat(1.0), Rgb64::splat(3.0)];
+        let smooth = vertex_radiosity(&mesh, &leaves, &values);
+        assert_eq!(
+            smooth.midpoint_lookups, 6,
+            "one per edge longer than the grid"
+        );
+        // The corner the two share, (1, 0) with (1, 10⁻¹²) welded to it, is their area-weighted
+        // mean: the square's value up to the sliver's area of 5·10⁻¹³.
+        let shared = smooth.corners[1][0][0];
+        assert!(shared > 1.0 && shared - 1.0 < 1e-11, "{shared}");
+        assert_eq!(smooth.corners[1][2][0], shared);
+    }
 
     #[test]
     fn t_vertex_takes_the_coarse_edge_interpolation() {
@@ -152,7 +261,7 @@ mod tests {
         assert_eq!(leaves.len(), 5);
         // Left square 1, right children 2, 4, 6, 8 (any distinct values).
         let values: Vec<Rgb64> = (0..5).map(|k| Rgb64::splat((1 + 2 * k) as f64)).collect();
-        let corners = vertex_radiosity(&mesh, &leaves, &values);
+        let corners = vertex_radiosity(&mesh, &leaves, &values).corners;
         let at = |p: DVec3| {
             leaves.iter().enumerate().find_map(|(k, &id)| {
                 let i = mesh.patch(id).corners().iter().position(|&c| c == p)?;

@@ -24,7 +24,7 @@ pub enum Shading {
 
 crate::choice::named_values!(Shading {
     Shading::Flat = "flat", "One colour per leaf patch";
-    Shading::Smooth = "smooth", "Radiosity interpolated to the patch corners";
+    Shading::Smooth = "smooth", "Radiosity interpolated to the patch corners, smooth across the facets of curved shapes";
 });
 
 /// The leaf patches as triangles: quads as the two triangles (0,1,2) and (0,2,3).
@@ -103,7 +103,7 @@ impl ElementValues {
                 let per_leaf: Vec<Rgb64> = (0..system.leaves.len())
                     .map(|k| values[RadiositySystem::element(k, side)])
                     .collect();
-                vertex_radiosity(&system.mesh, &system.leaves, &per_leaf)
+                vertex_radiosity(&system.mesh, &system.leaves, &per_leaf).corners
             }
             Shading::Flat => Vec::new(),
         });

@@ -17,7 +17,7 @@ mod system;
 mod unshot_progress;
 
 pub use display::{DisplaySettings, LinkDisplay, render_solution};
-pub use interpolate::{CornerValues, vertex_radiosity};
+pub use interpolate::{CornerValues, SmoothCorners, vertex_radiosity};
 pub use lookup::{LeafHit, RadiosityLookup, Shading};
 pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};

@@ -255,7 +255,7 @@ impl Solution {
             let values: Vec<Rgb64> = (0..system.leaves.len())
                 .map(|k| display[RadiositySystem::element(k, side)])
                 .collect();
-            let corners = vertex_radiosity(&system.mesh, &system.leaves, &values);
+            let corners = vertex_radiosity(&system.mesh, &system.leaves, &values).corners;
             for (k, values) in corners.iter().enumerate() {
                 let patch = system.mesh.patch(system.leaves[k]);
                 let n = patch.corners().len();

@@ -1,0 +1,368 @@
+//! Radiosity solutions on curved (tessellated) shapes, by every solver: displayed flat and
+//! smooth, exported and final-gathered, with the work of the smooth corner values bounded and
+//! the results checked.
+//!
+//! The smooth values once followed the midpoints of a sliver's edge shorter than the weld
+//! grid down 24 levels, 2²⁴ lookups per edge: `render spheres --method radiosity` never
+//! finished. [`check_solution`] bounds the lookups by the corners, not by wall time.
+
+use std::path::Path;
+use strahl::accel::AccelKind;
+use strahl::color::Rgb64;
+use strahl::final_gather::FinalGather;
+use strahl::image::ToneMapping;
+use strahl::measure::Film;
+use strahl::progress::{Cancel, NoProgress};
+use strahl::radiosity::MeshOptions;
+use strahl::radiosity::solve::hierarchical::{
+    HierarchicalSettings, solve_hierarchical, solve_hierarchical_shooting,
+};
+use strahl::radiosity::solve::{
+    DisplaySettings, LinkDisplay, MatrixSettings, RadiosityLookup, RadiositySystem, Shading,
+    ShootingSettings, Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
+    vertex_radiosity,
+};
+use strahl::radiosity::{MeshSize, Side};
+use strahl::report::export_lit_mesh;
+use strahl::sampling::SequenceKind;
+use strahl::scene::{Scene, builtin};
+use strahl::trace::{
+    AntialiasMode, PathTracer, ProgressiveSettings, RenderSettings, render, render_progressive,
+};
+use strahl::world::World;
+
+/// Image side, pixels.
+const SIZE: u32 = 32;
+
+#[derive(Clone, Copy, Debug)]
+enum Solver {
+    Matrix,
+    Progressive,
+    Hierarchical,
+    HierarchicalShooting,
+}
+
+const SOLVERS: [Solver; 4] = [
+    Solver::Matrix,
+    Solver::Progressive,
+    Solver::Hierarchical,
+    Solver::HierarchicalShooting,
+];
+
+/// Settings that keep one solve of a test scene within a second or two.
+#[derive(Clone, Copy)]
+struct Coarse {
+    /// Segments around curved shapes.
+    segments: u32,
+    /// Initial levels of the flat solvers.
+    levels: u32,
+    /// Stop of the shooting solvers (fraction of the emitted power left unshot).
+    tolerance: f64,
+}
+
+fn solve<'w>(world: &'w World, solver: Solver, coarse: Coarse) -> (RadiositySystem<'w>, Solution) {
+    let flat = matches!(solver, Solver::Matrix | Solver::Progressive);
+    let options = SystemOptions {
+        mesh: MeshOptions {
+            segments: coarse.segments,
+            size: MeshSize::Levels(if flat { coarse.levels } else { 0 }),
+            ..MeshOptions::default()
+        },
+        ..SystemOptions::default()
+    };
+    let hierarchical = HierarchicalSettings {
+        error: 1e-3,
+        ..HierarchicalSettings::default()
+    };
+    let shooting = ShootingSettings {
+        tolerance: coarse.tolerance,
+        ..ShootingSettings::default()
+    };
+    let (progress, cancel) = (&NoProgress, &Cancel::new());
+    match solver {
+        Solver::Hierarchical => {
+            solve_hierarchical(world, options, &hierarchical, progress, cancel).unwrap()
+        }
+        Solver::HierarchicalShooting => {
+            solve_hierarchical_shooting(world, options, &hierarchical, &shooting, progress, cancel)
+                .unwrap()
+        }
+        Solver::Matrix | Solver::Progressive => {
+            let system = RadiositySystem::new(world, options).unwrap();
+            let solution = if let Solver::Matrix = solver {
+                solve_matrix(&system, &MatrixSettings::default(), progress, cancel)
+            } else {
+                solve_progressive(&system, &shooting, progress, cancel)
+            }
+            .unwrap();
+            (system, solution)
+        }
+    }
+}
+
+fn world(scene: Scene) -> World {
+    World::new(scene, AccelKind::Bvh).unwrap()
+}
+
+fn builtin_world(name: &str) -> World {
+    world(builtin::load(name).unwrap().unwrap())
+}
+
+fn file_world(file: &str) -> World {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    world(strahl::scene::load(&dir.join(file)).unwrap())
+}
+
+/// Per-channel `(min, max)` of `values`.
+fn range(values: impl IntoIterator<Item = [f64; 3]>) -> ([f64; 3], [f64; 3]) {
+    values.into_iter().fold(
+        ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+        |(lo, hi), v| {
+            (
+                std::array::from_fn(|c| lo[c].min(v[c])),
+                std::array::from_fn(|c| hi[c].max(v[c])),
+            )
+        },
+    )
+}
+
+fn within(v: [f64; 3], (lo, hi): ([f64; 3], [f64; 3]), slack: f64) -> bool {
+    (0..3).all(|c| v[c] >= lo[c] - slack * hi[c].abs() && v[c] <= hi[c] + slack * hi[c].abs())
+}
+
+fn pixels(film: &Film) -> impl Iterator<Item = [f64; 3]> + '_ {
+    film.pixels()
+        .iter()
+        .map(|p| [f64::from(p.r), f64::from(p.g), f64::from(p.b)])
+}
+
+fn display(system: &RadiositySystem, solution: &Solution, world: &World, shading: Shading) -> Film {
+    let settings = DisplaySettings {
+        width: SIZE,
+        height: SIZE,
+        shading,
+        wireframe: false,
+        samples_per_axis: 1,
+        links: LinkDisplay::None,
+    };
+    render_solution(
+        system,
+        solution,
+        &world.scene.camera,
+        &settings,
+        &NoProgress,
+        &Cancel::new(),
+    )
+    .unwrap()
+}
+
+/// Final gather of `solution` at [`SIZE`]², 4 samples per pixel.
+fn final_gather(system: &RadiositySystem, solution: &Solution, world: &World) -> Film {
+    let gather = FinalGather {
+        reflected: RadiosityLookup::new(
+            system,
+            solution.reflected_radiosity(system),
+            Shading::Smooth,
+        )
+        .with_texture_detail(solution.display_irradiance(), false),
+        light_samples: 4,
+        gather_rays: 16,
+    };
+    let settings = RenderSettings {
+        width: SIZE,
+        height: SIZE,
+        antialias: AntialiasMode::Stochastic,
+        samples_per_pixel: 4,
+        adaptive_threshold: 0.05,
+        seed: 3,
+        sequence: SequenceKind::Random,
+    };
+    render(world, &gather, &settings, &NoProgress, &Cancel::new())
+        .unwrap()
+        .film
+}
+
+/// Mean luminance of `film`.
+fn mean(film: &Film) -> f64 {
+    film.pixels()
+        .iter()
+        .map(|p| f64::from(p.luminance()))
+        .sum::<f64>()
+        / film.pixels().len() as f64
+}
+
+/// Checks one solution as the module describes and returns its final gather.
+fn check_solution(world: &World, solver: Solver, coarse: Coarse, label: &str) -> Film {
+    let (system, solution) = solve(world, solver, coarse);
+    let label = format!("{label}, {solver:?}");
+    let values = solution.display_radiosity(&system);
+    let corners: usize = system
+        .leaves
+        .iter()
+        .map(|&id| system.mesh.patch(id).corners().len())
+        .sum();
+    // The smooth corner values of each side: bounded work, and each corner within the range
+    // of the flat values of its object (a corner value is a mean of leaf values and their
+    // linear interpolations).
+    for side in Side::BOTH {
+        let per_leaf: Vec<Rgb64> = (0..system.leaves.len())
+            .map(|k| values[RadiositySystem::element(k, side)])
+            .collect();
+        let smooth = vertex_radiosity(&system.mesh, &system.leaves, &per_leaf);
+        // One lookup per edge and two per vertex found on an edge; a vertex lies inside the
+        // edges of at most two leaves, so at most 5 lookups per corner.
+        assert!(
+            smooth.midpoint_lookups <= 5 * corners as u64,
+            "{label}: {} midpoint lookups for {corners} corners",
+            smooth.midpoint_lookups
+        );
+        let objects = world.scene.objects.len();
+        let mut by_object = vec![Vec::new(); objects];
+        for (k, &id) in system.leaves.iter().enumerate() {
+            by_object[system.mesh.patch(id).object as usize].push(per_leaf[k].to_array());
+        }
+        let ranges: Vec<_> = by_object.into_iter().map(range).collect();
+        for (k, &id) in system.leaves.iter().enumerate() {
+            let patch = system.mesh.patch(id);
+            for value in &smooth.corners[k][..patch.corners().len()] {
+                assert!(
+                    within(value.to_array(), ranges[patch.object as usize], 1e-9),
+                    "{label}: corner {value:?} outside its object's range"
+                );
+            }
+        }
+    }
+    // Displays (one ray per pixel): finite, and every pixel that shows a leaf (the
+    // background is black) within the range of the leaves' radiance.
+    let leaf_range = range(
+        values
+            .iter()
+            .map(|v| v.map(|x| x / std::f64::consts::PI).to_array()),
+    );
+    let flat = display(&system, &solution, world, Shading::Flat);
+    let smooth = display(&system, &solution, world, Shading::Smooth);
+    for (name, film) in [("flat", &flat), ("smooth", &smooth)] {
+        assert!(
+            pixels(film).all(|p| p.iter().all(|x| x.is_finite())),
+            "{label}: {name} display has non-finite pixels"
+        );
+        assert!(
+            pixels(film)
+                .filter(|p| p.iter().any(|&x| x > 0.0))
+                .all(|p| within(p, leaf_range, 1e-5)),
+            "{label}: {name} display outside the range of the leaves"
+        );
+    }
+    // Both show the same surfaces: the pixels lit in one are lit in the other (a smooth value
+    // is black only where every leaf around it is).
+    let lit =
+        |film: &Film| -> Vec<bool> { pixels(film).map(|p| p.iter().any(|&x| x > 0.0)).collect() };
+    let (flat_lit, smooth_lit) = (lit(&flat), lit(&smooth));
+    assert!(
+        flat_lit.contains(&true),
+        "{label}: the flat display is black"
+    );
+    let differing = flat_lit
+        .iter()
+        .zip(&smooth_lit)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(
+        differing * 100 <= flat_lit.len(),
+        "{label}: {differing} pixels lit in one display and black in the other"
+    );
+    // Export: every vertex colour finite and within the leaves' range, written as glTF.
+    let lit = solution.lit_mesh(&system, false);
+    assert!(!lit.polygons.is_empty(), "{label}: nothing exported");
+    assert!(
+        lit.radiosity.iter().all(|v| within(
+            v.to_array(),
+            range(values.iter().map(|v| v.to_array())),
+            1e-9
+        )),
+        "{label}: exported vertex colour outside the leaves' range"
+    );
+    let path = std::env::temp_dir().join(format!(
+        "strahl-curved-{}-{}.glb",
+        std::process::id(),
+        label.replace([' ', ',', ':'], "-")
+    ));
+    export_lit_mesh(&lit, &world.scene.textures, &ToneMapping::default(), &path).unwrap();
+    assert!(std::fs::metadata(&path).unwrap().len() > 0);
+    std::fs::remove_file(&path).unwrap();
+    // Final gather: finite.
+    let gathered = final_gather(&system, &solution, world);
+    assert!(
+        pixels(&gathered).all(|p| p.iter().all(|x| x.is_finite() && *x >= 0.0)),
+        "{label}: final gather has negative or non-finite pixels"
+    );
+    gathered
+}
+
+/// The path tracer's image of `world` at [`SIZE`]², 1024 paths per pixel.
+fn path_traced(world: &World) -> Film {
+    let tracer = PathTracer::new(world, u32::MAX, 1);
+    let settings = ProgressiveSettings {
+        width: SIZE,
+        height: SIZE,
+        samples_per_pixel: 1024,
+        seed: 1,
+        time_limit: None,
+    };
+    render_progressive(world, &tracer, &settings, &NoProgress, &Cancel::new())
+        .unwrap()
+        .film
+}
+
+/// Every solver on a diffuse room file; each final gather's mean within `tolerance` of the
+/// path tracer's.
+fn room_against_the_path_tracer(file: &str, tolerance: f64) {
+    let world = file_world(file);
+    let reference = mean(&path_traced(&world));
+    let coarse = Coarse {
+        segments: 8,
+        levels: 1,
+        tolerance: 1e-3,
+    };
+    for solver in SOLVERS {
+        let gathered = mean(&check_solution(&world, solver, coarse, file));
+        let difference = gathered / reference - 1.0;
+        eprintln!("{file}, {solver:?}: final gather mean {difference:+.4} vs the path tracer");
+        assert!(
+            difference.abs() < tolerance,
+            "{file}, {solver:?}: final gather mean {gathered} vs path tracer {reference}"
+        );
+    }
+}
+
+#[test]
+fn a_sphere_on_a_floor_by_every_solver() {
+    room_against_the_path_tracer("sphere_on_floor.toml", 0.03);
+}
+
+#[test]
+fn cylinders_and_cones_by_every_solver() {
+    room_against_the_path_tracer("cylinders_and_cones.toml", 0.03);
+}
+
+#[test]
+fn the_built_in_spheres_by_every_solver() {
+    // Glossy spheres under point lights: radiosity counts their glossy part as absorbed, so
+    // the final gather is checked only to be finite (inside `check_solution`). The flat
+    // solvers get four segments (eight facets a sphere) to keep their n² cheap.
+    for name in ["spheres:5", "spheres"] {
+        let world = builtin_world(name);
+        for solver in SOLVERS {
+            let segments = match solver {
+                Solver::Matrix | Solver::Progressive | Solver::HierarchicalShooting => 4,
+                Solver::Hierarchical => 8,
+            };
+            let coarse = Coarse {
+                segments,
+                levels: 0,
+                tolerance: 1e-2,
+            };
+            check_solution(&world, solver, coarse, name);
+        }
+    }
+}
