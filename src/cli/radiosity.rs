@@ -54,8 +54,9 @@ pub enum Linking {
     next_help_heading = "Radiosity (--solver matrix|progressive|hierarchical|hierarchical-shooting)"
 )]
 pub struct RadiosityArgs {
-    /// Initial patch size: `levels:N` (2ᴺ × 2ᴺ patches per face) or the longest patch edge
-    /// in scene units [default: levels:3; hierarchical: levels:0, it refines by itself].
+    /// Initial patch size: `levels:N` (2ᴺ × 2ᴺ patches per face; the facets of a curved
+    /// shape get patches of 1/2ᴺ of the shape's size) or the longest patch edge in scene
+    /// units [default: levels:3; hierarchical: levels:0, it refines by itself].
     #[arg(long)]
     pub mesh_size: Option<MeshSize>,
     /// Segments around the axis when curved shapes are meshed.

@@ -44,11 +44,13 @@ pub struct Face {
     pub face: u32,
     /// Material.
     pub material: u32,
-    /// Longest edge of the face this one was cut from (itself when uncut), scene units: what
-    /// a uniform subdivision by levels measures its patches against.
+    /// Size of the surface this face is part of, scene units: the longest edge of the face
+    /// it was cut from (itself when uncut), or the size of the curved shape it is a facet
+    /// of. What a uniform subdivision by levels measures the patches of a part against.
     pub source_edge: f64,
-    /// True for a piece cut from a larger face.
-    pub cut: bool,
+    /// True for part of a larger surface: a piece cut from a face, or a facet of a curved
+    /// shape.
+    pub part: bool,
 }
 
 impl Face {
@@ -153,7 +155,7 @@ fn cut(piece: Face, planes: &[Plane]) -> Vec<Face> {
                     .map(|p| Face {
                         corners: p.corners,
                         uvs: p.uvs,
-                        cut: true,
+                        part: true,
                         ..piece.clone()
                     })
                     .collect()
@@ -393,7 +395,7 @@ mod tests {
             face: 0,
             material: 0,
             source_edge: 1.0,
-            cut: false,
+            part: false,
         }
     }
 

@@ -218,7 +218,10 @@ fn area_centroid(corners: &[DVec3]) -> DVec3 {
 /// The initial uniform subdivision of every root patch (`--mesh-size`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MeshSize {
-    /// Split every root this many quadtree levels (`2ᴺ × 2ᴺ` leaves per quad root).
+    /// Split every root this many quadtree levels (`2ᴺ × 2ᴺ` leaves per quad root). A piece
+    /// cut from a face is split to the patch size of the whole face, and a facet of a curved
+    /// shape to `1/2ᴺ` of the shape's size (the longest of its bounding box's sides and its
+    /// facets' edges).
     Levels(u32),
     /// Split every patch until its longest edge is at most this length (scene units).
     MaxEdge(f64),
@@ -347,22 +350,32 @@ impl PatchMesh {
             let polygons = object.shape.to_mesh(options.segments).map_err(error)?;
             polygons.validate().map_err(error)?;
             let to_world = |p: Vec3| object.transform.point(p).as_dvec3();
-            faces.extend(world_faces(
+            let mut object_faces = world_faces(
                 &polygons,
                 index as u32,
                 object.material,
                 to_world,
                 object.transform.flips_orientation(),
-            ));
+            );
+            if object.shape.is_curved() {
+                // The facets are parts of one surface as large as the shape.
+                let size = shape_size(&object_faces);
+                for face in &mut object_faces {
+                    face.source_edge = size;
+                    face.part = true;
+                }
+            }
+            faces.extend(object_faces);
         }
         if options.contact_splits {
             faces = split_at_contacts(faces);
         }
         for face in faces {
             // A piece cut from a face is subdivided to the patch size the whole face would
-            // have had, not by as many levels again.
+            // have had, not by as many levels again; a facet of a curved shape to that of a
+            // face as large as the shape.
             let size = match options.size {
-                MeshSize::Levels(n) if face.cut => MeshSize::MaxEdge(
+                MeshSize::Levels(n) if face.part => MeshSize::MaxEdge(
                     face.source_edge / f64::from(1u32 << n.min(MAX_UNIFORM_DEPTH)),
                 ),
                 size => size,
@@ -512,7 +525,7 @@ fn world_faces(
             let corners: Vec<DVec3> = order.iter().map(|&i| world[i]).collect();
             Face {
                 source_edge: Face::longest_edge(&corners),
-                cut: false,
+                part: false,
                 corners,
                 uvs: order
                     .iter()
@@ -534,6 +547,21 @@ fn world_faces(
             }
         })
         .collect()
+}
+
+/// The size of a curved shape from its facets, scene units: the longest of its bounding
+/// box's sides and its facets' edges (a cone's slant is longer than its height).
+fn shape_size(facets: &[Face]) -> f64 {
+    let (lo, hi) = facets
+        .iter()
+        .flat_map(|f| f.corners.iter())
+        .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &c| {
+            (lo.min(c), hi.max(c))
+        });
+    facets
+        .iter()
+        .map(|f| Face::longest_edge(&f.corners))
+        .fold((hi - lo).max_element(), f64::max)
 }
 
 /// Default texture coordinates of corner `k` of an `n`-gon without any: the unit square for
@@ -778,6 +806,32 @@ mod tests {
             let p = mesh.patch(r);
             assert!((p.centroid - DVec3::splat(0.5)).dot(p.normal) > 0.49);
         }
+    }
+
+    #[test]
+    fn levels_cut_a_curved_shape_to_a_share_of_its_size_not_of_each_facet() {
+        // A ball of diameter 0.8 at levels:3: patches of at most 0.1, so each of its 128
+        // facets (edges about 0.16) is split once, not 3 levels (8,192 patches).
+        let mut scene = Scene::empty("t");
+        let m = scene.add_material(Material::default());
+        scene.add_object(
+            "ball",
+            Shape::Sphere {
+                center: Vec3::ZERO,
+                radius: 0.4,
+            },
+            m,
+        );
+        let options = MeshOptions {
+            segments: 16,
+            size: MeshSize::Levels(3),
+            ..MeshOptions::default()
+        };
+        let mesh = PatchMesh::from_scene(&scene, &options).unwrap();
+        assert_eq!(mesh.roots.len(), 128);
+        let leaves = mesh.leaves();
+        assert_eq!(leaves.len(), 4 * 128);
+        assert!(leaves.iter().all(|&l| mesh.patch(l).longest_edge() <= 0.1));
     }
 
     #[test]
