@@ -271,25 +271,27 @@ fn check_solution(world: &World, solver: Solver, coarse: Coarse, label: &str) ->
         differing * 100 <= flat_lit.len(),
         "{label}: {differing} pixels lit in one display and black in the other"
     );
-    // Export: every vertex colour finite and within the leaves' range, written as glTF.
+    // Export: every vertex colour within the leaves' range (so finite), written as glTF and
+    // PLY.
     let lit = solution.lit_mesh(&system, false);
     assert!(!lit.polygons.is_empty(), "{label}: nothing exported");
+    let value_range = range(values.iter().map(|v| v.to_array()));
     assert!(
-        lit.radiosity.iter().all(|v| within(
-            v.to_array(),
-            range(values.iter().map(|v| v.to_array())),
-            1e-9
-        )),
+        lit.radiosity
+            .iter()
+            .all(|v| within(v.to_array(), value_range, 1e-9)),
         "{label}: exported vertex colour outside the leaves' range"
     );
-    let path = std::env::temp_dir().join(format!(
-        "strahl-curved-{}-{}.glb",
-        std::process::id(),
-        label.replace([' ', ',', ':'], "-")
-    ));
-    export_lit_mesh(&lit, &world.scene.textures, &ToneMapping::default(), &path).unwrap();
-    assert!(std::fs::metadata(&path).unwrap().len() > 0);
-    std::fs::remove_file(&path).unwrap();
+    for extension in ["glb", "ply"] {
+        let path = std::env::temp_dir().join(format!(
+            "strahl-curved-{}-{}.{extension}",
+            std::process::id(),
+            label.replace([' ', ',', ':'], "-")
+        ));
+        export_lit_mesh(&lit, &world.scene.textures, &ToneMapping::default(), &path).unwrap();
+        assert!(std::fs::metadata(&path).unwrap().len() > 0);
+        std::fs::remove_file(&path).unwrap();
+    }
     // Final gather: finite.
     let gathered = final_gather(&system, &solution, world);
     assert!(
