@@ -4,11 +4,8 @@
 
 #![no_main]
 
-#[allow(dead_code)]
-#[path = "../../src/cli/mod.rs"]
-mod cli;
-
 use clap::Parser;
+use strahl_cli as cli;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

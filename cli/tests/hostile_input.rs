@@ -369,7 +369,7 @@ fn textures_beyond_max_texels_are_refused_naming_the_flag() {
     assert_refused(
         &[
             "solve",
-            "tests/data/example.toml",
+            "../tests/data/example.toml",
             "-q",
             "--max-texels",
             "3",
@@ -378,7 +378,7 @@ fn textures_beyond_max_texels_are_refused_naming_the_flag() {
     );
     let o = strahl(&[
         "solve",
-        "tests/data/example.toml",
+        "../tests/data/example.toml",
         "-q",
         "--photons",
         "1000",

@@ -58,7 +58,7 @@ const SPHERE: &str = "[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\n";
 /// `tests/data/tiny.gltf` with its image replaced by `image` (JSON).
 fn tiny_gltf_with_image(image: &str) -> Vec<u8> {
     let mut gltf: serde_json::Value =
-        serde_json::from_slice(&std::fs::read("tests/data/tiny.gltf").unwrap()).unwrap();
+        serde_json::from_slice(&std::fs::read("../tests/data/tiny.gltf").unwrap()).unwrap();
     gltf["images"][0] = serde_json::from_str(image).unwrap();
     serde_json::to_vec(&gltf).unwrap()
 }

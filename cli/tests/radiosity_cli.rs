@@ -1,0 +1,120 @@
+//! The radiosity solvers through the command line: a solve with its report and export, and a render.
+
+#[test]
+fn command_line_solves_reports_exports_and_renders() {
+    let dir = std::env::temp_dir().join(format!("strahl-radiosity-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    let report = dir.join("cornell.json");
+    let export = dir.join("cornell.glb");
+    run(&[
+        "solve",
+        "cornell",
+        "--solver",
+        "progressive",
+        "--mesh-size",
+        "levels:1",
+        "--linking",
+        "normal",
+        "--overshoot",
+        "-q",
+        "--report",
+        report.to_str().unwrap(),
+        "--export",
+        export.to_str().unwrap(),
+    ]);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["solver"], "progressive");
+    // 20 faces of 2 × 2 patches, each with two sides.
+    assert_eq!(json["stats"]["patches"], 80);
+    assert_eq!(json["stats"]["elements"], 160);
+    assert_eq!(json["stats"]["converged"], true);
+    assert_eq!(json["objects"].as_array().unwrap().len(), 8);
+    assert!(gltf::Gltf::open(&export).is_ok());
+    let image = dir.join("cornell.png");
+    run(&[
+        "render",
+        "cornell",
+        "--method",
+        "radiosity",
+        "--solver",
+        "matrix",
+        "--mesh-size",
+        "levels:1",
+        "--wireframe",
+        "--width",
+        "32",
+        "--height",
+        "32",
+        "-q",
+        "-o",
+        image.to_str().unwrap(),
+    ]);
+    assert!(image.exists());
+    let gathered = dir.join("gathered.png");
+    run(&[
+        "render",
+        "cornell",
+        "--method",
+        "final-gather",
+        "--solver",
+        "hierarchical",
+        "--error",
+        "1e-3",
+        "--gather-rays",
+        "4",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "-q",
+        "-o",
+        gathered.to_str().unwrap(),
+    ]);
+    assert!(gathered.exists());
+    run(&[
+        "render",
+        "cornell",
+        "--method",
+        "radiosity",
+        "--solver",
+        "hierarchical",
+        "--error",
+        "1e-3",
+        "--links",
+        "light",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "-q",
+        "-o",
+        image.to_str().unwrap(),
+    ]);
+    let refused = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args([
+            "render",
+            "cornell",
+            "--method",
+            "final-gather",
+            "--gather-rays",
+            "0",
+        ])
+        .args(["-o", gathered.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--gather-rays"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
