@@ -81,7 +81,8 @@ pub struct RadiosityArgs {
     /// Test every visibility ray against the whole scene instead of culling by shafts.
     #[arg(long)]
     pub no_shaft_culling: bool,
-    /// Receiver points per axis for the links from point, spot and directional lights.
+    /// Receiver points per axis for the links from point (isotropic or Lambertian), spot and
+    /// directional lights and the sky.
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..))]
     pub link_samples: u32,
     /// matrix: the iteration scheme.

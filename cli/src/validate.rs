@@ -29,8 +29,8 @@ pub struct ValidateArgs {
     /// --quick, else 2²⁰).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub samples: Option<u32>,
-    /// Error threshold of hierarchical radiosity and hierarchical shooting, relative to the
-    /// brightest emitter.
+    /// Error threshold of hierarchical radiosity and hierarchical shooting, relative to all
+    /// power emitted in the scene.
     #[arg(long)]
     pub error: Option<f64>,
     /// Seed of all random numbers.

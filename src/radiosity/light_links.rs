@@ -1,6 +1,6 @@
-//! Emitter-only links (seed 000 §9.3.1): the irradiance that point, spot and directional
-//! lights and the sky send to one side of a patch. These lights only send; nothing is sent
-//! back to them.
+//! Emitter-only links (seed 000 §9.3.1): the irradiance that point (isotropic or
+//! Lambertian), spot and directional lights and the sky send to one side of a patch. These
+//! lights only send; nothing is sent back to them.
 //!
 //! The irradiance (W·m⁻²) is the mean over the patch side:
 //! - point and spot lights: `I·Ω/A` times the visible, falloff-weighted share of the patch,

@@ -1,6 +1,7 @@
 //! Radiosity geometry: the patch mesh (quadtrees over every planar face), form factors,
 //! the facing test and support-plane split, visibility by stratified rays with shaft
-//! culling, and the emitter-only links from point, spot and directional lights.
+//! culling, and the emitter-only links from point (isotropic or Lambertian), spot and
+//! directional lights and the sky.
 //!
 //! All radiosity geometry is `f64` (`glam::DVec3`) in world space and scene units.
 

@@ -1,6 +1,6 @@
-//! Light sources that are not surfaces: point, spot, directional and sky. (Every emissive
-//! surface is an area light; see [`super::Material::emission`].) These lights only send
-//! light; they never receive it.
+//! Light sources that are not surfaces: point (isotropic or Lambertian), spot, directional
+//! and sky. (Every emissive surface is an area light; see [`super::Material::emission`].)
+//! These lights only send light; they never receive it.
 
 use crate::color::Rgb;
 use glam::Vec3;
@@ -65,7 +65,8 @@ pub enum LightKind {
     },
 }
 
-/// Light arriving at a point from a point, spot or directional light.
+/// Light arriving at a point from a point (isotropic or Lambertian), spot or directional
+/// light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Incidence {
     /// Unit direction from the point toward the light.
@@ -78,8 +79,9 @@ pub struct Incidence {
 }
 
 impl LightKind {
-    /// How a point, spot or directional light reaches point `x` (ignoring occluders):
-    /// `I/d²` (times the spot falloff) or the directional irradiance. `None` for the sky, for
+    /// How a point (isotropic or Lambertian), spot or directional light reaches point `x`
+    /// (ignoring occluders): `I/d²` (times the spot or cosine falloff) or the directional
+    /// irradiance. `None` for the sky, for
     /// a point at the light's position, or for a spot pointing away.
     pub fn incidence(&self, x: Vec3) -> Option<Incidence> {
         let from_point = |position: Vec3, intensity: Rgb| {
@@ -143,8 +145,9 @@ impl LightKind {
         }
     }
 
-    /// Power (W) a point, spot or directional light sends into a scene bounded by a sphere of
-    /// `scene_radius`: 4π·I, π·I₀ for a Lambertian one, I times the spot's solid angle, E·πR².
+    /// Power (W) a point (isotropic or Lambertian), spot or directional light sends into a
+    /// scene bounded by a sphere of `scene_radius`: 4π·I, π·I₀ for a Lambertian one, I times
+    /// the spot's solid angle, E·πR².
     /// `None` for the sky, whose power depends on how it is sampled.
     pub fn power(&self, scene_radius: f32) -> Option<Rgb> {
         match *self {

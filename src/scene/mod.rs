@@ -42,15 +42,16 @@ pub struct Scene {
     pub textures: Vec<Texture>,
     /// All objects.
     pub objects: Vec<Object>,
-    /// Point, spot, directional and sky lights (emissive surfaces are lights too).
+    /// Point (isotropic or Lambertian), spot, directional and sky lights (emissive surfaces
+    /// are lights too).
     pub lights: Vec<Light>,
     /// Measuring points (they neither block nor reflect light).
     pub sensors: Vec<Sensor>,
 }
 
 impl Scene {
-    /// True when something in the scene sends light: a point, spot, directional or sky light,
-    /// or an object whose material emits.
+    /// True when something in the scene sends light: a point (isotropic or Lambertian), spot,
+    /// directional or sky light, or an object whose material emits.
     pub fn has_light(&self) -> bool {
         !self.lights.is_empty()
             || self.objects.iter().any(|o| {

@@ -73,8 +73,8 @@ pub struct Effort {
     /// Points per emitting surface for each sensor's direct light, and cosine-distributed
     /// rays per sensor for its indirect light (ray tracers).
     pub samples: u32,
-    /// Hierarchical radiosity's error threshold (`--error`), relative to the brightest
-    /// emitter.
+    /// Hierarchical radiosity's error threshold (`--error`), relative to all power emitted
+    /// in the scene.
     pub error: f64,
     /// Whether the quick variants of the cases are run (leaving out the slowest).
     pub quick: bool,

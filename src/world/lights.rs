@@ -1,5 +1,5 @@
 //! The lights of a scene as the algorithms see them: area lights (emissive objects, sampled
-//! by area), point, spot and directional lights, and the sky.
+//! by area), point (isotropic or Lambertian), spot and directional lights, and the sky.
 
 use super::SceneGeometry;
 use super::surface_material::emitted_toward;
@@ -56,7 +56,7 @@ pub struct AreaSample {
 pub struct LightSet {
     /// Emissive objects.
     pub area: Vec<AreaLight>,
-    /// Point, spot and directional lights.
+    /// Point (isotropic or Lambertian), spot and directional lights.
     pub delta: Vec<LightKind>,
     /// Sky radiance, if the scene has a sky.
     pub sky: Option<Rgb>,

@@ -1,8 +1,8 @@
 //! Radiosity solvers on the leaf patches of the mesh: the full matrix with Jacobi or
 //! Gauss-Seidel sweeps and progressive refinement (seed 000 ch. 5), both with the
-//! emitter-only links of point, spot and directional lights; display of a solution (flat or
-//! smooth, with wireframe), and what a solution hands on: its power per reported surface,
-//! its statistics and its lit mesh.
+//! emitter-only links of point (isotropic or Lambertian), spot and directional lights and the
+//! sky; display of a solution (flat or smooth, with wireframe), and what a solution hands
+//! on: its power per reported surface, its statistics and its lit mesh.
 
 mod display;
 pub mod hierarchical;

@@ -50,7 +50,7 @@ pub enum Oracle {
 
 crate::choice::named_values!(Oracle {
     Oracle::Lischinski = "lischinski",
-        "Error bound on the transported irradiance, relative to the brightest emitter";
+        "Error bound on the power a link brings, relative to all power emitted in the scene";
     Oracle::Bfa = "bfa", "The seed's B·F·A criterion (depends on the scene's size)";
 });
 
