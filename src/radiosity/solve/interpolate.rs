@@ -64,13 +64,20 @@ pub fn vertex_radiosity(mesh: &PatchMesh, leaves: &[PatchId], values: &[Rgb64]) 
         cells: HashMap::new(),
         count: 0,
     };
-    let mut sums: Vec<(Rgb64, f64)> = Vec::new();
-    for (k, p) in patches.iter().enumerate() {
-        for &c in p.corners() {
-            let v = index.find_or_insert(p, c);
-            if v == sums.len() {
-                sums.push((Rgb64::BLACK, 0.0));
+    // Each leaf's corner vertices, found once.
+    let ids: Vec<[usize; 4]> = patches
+        .iter()
+        .map(|p| {
+            let mut ids = [0; 4];
+            for (slot, &c) in ids.iter_mut().zip(p.corners()) {
+                *slot = index.find_or_insert(p, c);
             }
+            ids
+        })
+        .collect();
+    let mut sums = vec![(Rgb64::BLACK, 0.0); index.count];
+    for (k, p) in patches.iter().enumerate() {
+        for &v in &ids[k][..p.corners().len()] {
             let (sum, weight) = &mut sums[v];
             *sum += values[k] * p.area;
             *weight += p.area;
@@ -94,28 +101,25 @@ pub fn vertex_radiosity(mesh: &PatchMesh, leaves: &[PatchId], values: &[Rgb64]) 
     order.sort_by_key(|&k| patches[k].depth);
     for k in order {
         let patch = patches[k];
-        let c = patch.corners();
-        let corner = |p: DVec3| index.find(patch, p).expect("every corner has a vertex");
-        for e in 0..c.len() {
-            let (a, b) = (c[e], c[(e + 1) % c.len()]);
-            let lookup = |p: DVec3| index.find(patch, p);
+        let (c, n) = (patch.corners(), patch.corners().len());
+        let lookup = |p: DVec3| index.find(patch, p);
+        for e in 0..n {
+            let ends = (ids[k][e], ids[k][(e + 1) % n]);
             edge.fix(
                 &lookup,
                 &mut vertex,
-                (a, b),
-                (corner(a), corner(b)),
+                (c[e], c[(e + 1) % n]),
+                ends,
                 MAX_EDGE_DEPTH,
             );
         }
     }
     let corners = patches
         .iter()
-        .map(|p| {
-            let mut out = [Rgb64::BLACK; 4];
-            for (slot, &c) in out.iter_mut().zip(p.corners()) {
-                *slot = vertex[index.find(p, c).expect("every corner has a vertex")];
-            }
-            out
+        .zip(&ids)
+        .map(|(p, ids)| {
+            let n = p.corners().len();
+            std::array::from_fn(|i| if i < n { vertex[ids[i]] } else { Rgb64::BLACK })
         })
         .collect();
     SmoothCorners {
