@@ -2,16 +2,17 @@
 //! a sun), 100,000 photons per iteration (photons per second is the figure to read).
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use std::sync::Arc;
 use strahl::accel::AccelKind;
-use strahl::light_model::{LightTraceSettings, trace_light};
-use strahl::progress::Cancel;
-use strahl::progress::NoProgress;
+use strahl::light_model::LightTraceSettings;
+use strahl::method::{Method, run};
+use strahl::progress::{Cancel, NoProgress};
 use strahl::scene::builtin;
 use strahl::world::World;
 
 fn light_model(c: &mut Criterion) {
     let canopy = builtin::load("canopy").expect("built-in").expect("valid");
-    let world = World::new(canopy, AccelKind::Bvh).expect("valid scene");
+    let world = Arc::new(World::new(canopy, AccelKind::Bvh).expect("valid scene"));
     let settings = LightTraceSettings {
         photons: 100_000,
         seed: 1,
@@ -21,7 +22,8 @@ fn light_model(c: &mut Criterion) {
     group.sample_size(10);
     group.throughput(Throughput::Elements(settings.photons));
     group.bench_function("canopy_10000_leaves", |b| {
-        b.iter(|| trace_light(&world, &settings, &NoProgress, &Cancel::new()).expect("lights"))
+        let method = Method::LightTrace(settings.clone());
+        b.iter(|| run(&world, &method, &NoProgress, &Cancel::new()).expect("lights"))
     });
     group.finish();
 }

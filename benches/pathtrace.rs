@@ -5,44 +5,35 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
-use strahl::progress::Cancel;
-use strahl::progress::NoProgress;
+use strahl::method::{ImageSize, Method, PathTraceSettings, run};
+use strahl::progress::{Cancel, NoProgress};
 use strahl::scene::builtin;
-use strahl::trace::PathTracer;
-use strahl::trace::{ProgressiveSettings, render_progressive};
 use strahl::world::World;
 
 fn cornell(c: &mut Criterion) {
     let scene = builtin::load("cornell")
         .expect("cornell is built in")
         .expect("cornell builds");
-    let world = World::new(scene, AccelKind::Bvh).expect("cornell flattens");
-    let tracer = PathTracer::new(&world, u32::MAX, 1);
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).expect("cornell flattens"));
     let mut sizes = vec![(48, 4)];
     if std::env::var_os("STRAHL_BENCH_FULL").is_some() {
         sizes.push((256, 64));
     }
     let cancel = Cancel::new();
     for (size, spp) in sizes {
-        let settings = ProgressiveSettings {
-            width: size,
-            height: size,
+        let method = Method::PathTrace(PathTraceSettings {
+            size: ImageSize {
+                width: Some(size),
+                height: Some(size),
+            },
             samples_per_pixel: spp,
-            seed: 0,
-            time_limit: None,
-        };
+            ..PathTraceSettings::default()
+        });
         let name = format!("pathtrace cornell {size}x{size} {spp}spp");
         c.bench_function(&name, |b| {
-            b.iter(|| {
-                black_box(render_progressive(
-                    &world,
-                    &tracer,
-                    &settings,
-                    &NoProgress,
-                    &cancel,
-                ))
-            })
+            b.iter(|| black_box(run(&world, &method, &NoProgress, &cancel).expect("renders")))
         });
     }
 }

@@ -4,12 +4,12 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
+use strahl::method::{RadiositySettings, solve_radiosity};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
-use strahl::radiosity::solve::{
-    RadiositySystem, ShootingSettings, SystemOptions, solve_progressive,
-};
+use strahl::radiosity::solve::SolverKind;
 use strahl::radiosity::{
     Facing, FormFactorOptions, MeshOptions, MeshSize, PatchId, PatchMesh, Side, VisRays,
     Visibility, VisibilityOptions, facing, form_factor,
@@ -49,7 +49,7 @@ fn bench(c: &mut Criterion) {
         },
     )
     .expect("mesh");
-    let world = World::new(scene, AccelKind::Bvh).expect("world");
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).expect("world"));
     let pairs = facing_pairs(&mesh);
     let ff = FormFactorOptions::default();
     let mut group = c.benchmark_group("radiosity");
@@ -124,29 +124,18 @@ fn solve_cornell(c: &mut Criterion) {
     let scene = builtin::load("cornell")
         .expect("built-in scene")
         .expect("valid scene");
-    let world = World::new(scene, AccelKind::Bvh).expect("world");
-    let options = SystemOptions {
-        mesh: MeshOptions {
-            segments: 16,
-            size: MeshSize::Levels(levels),
-            ..MeshOptions::default()
-        },
-        ..SystemOptions::default()
-    };
-    let settings = ShootingSettings {
-        tolerance: 0.01,
-        ..ShootingSettings::default()
-    };
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).expect("world"));
+    let mut settings = RadiositySettings::new(SolverKind::Progressive);
+    settings.system.mesh.size = MeshSize::Levels(levels);
+    settings.shooting.tolerance = 0.01;
     let mut group = c.benchmark_group("radiosity_solve");
     group.sample_size(10);
     group.bench_function(name, |b| {
         b.iter(|| {
-            let system = RadiositySystem::new(&world, options).expect("mesh");
-            let cancel = Cancel::new();
-            let solution =
-                solve_progressive(&system, &settings, &NoProgress, &cancel).expect("solve");
-            assert!(solution.converged);
-            black_box(solution.radiosity.len())
+            let solved =
+                solve_radiosity(&world, &settings, &NoProgress, &Cancel::new()).expect("solve");
+            assert!(solved.solution.converged);
+            black_box(solved.solution.radiosity.len())
         })
     });
     group.finish();

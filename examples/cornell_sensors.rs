@@ -7,15 +7,15 @@
 //! Run: `cargo run --release --example cornell_sensors [SENSORS]` (default 26).
 
 use glam::Vec3;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb64;
-use strahl::light_model::{LightTraceSettings, trace_light};
+use strahl::light_model::LightTraceSettings;
 use strahl::measure::SensorReading;
+use strahl::method::{Method, MethodKind, SensorTraceSettings, run};
 use strahl::progress::{Cancel, NoProgress};
-use strahl::radiosity::solve::SystemOptions;
-use strahl::radiosity::solve::hierarchical::{HierarchicalSettings, solve_hierarchical};
+use strahl::radiosity::solve::SolverKind;
 use strahl::scene::{Sensor, builtin};
-use strahl::trace::{PathTracer, SensorSettings, sensor_readings};
 use strahl::world::World;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -32,29 +32,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             normal: Vec3::Y,
         });
     }
-    let world = World::new(scene, AccelKind::Bvh)?;
-    let cancel = Cancel::new();
-    let settings = SensorSettings {
+    let world = Arc::new(World::new(scene, AccelKind::Bvh)?);
+    let sensors = |method: &Method| -> Result<Vec<SensorReading>, Box<dyn std::error::Error>> {
+        Ok(run(&world, method, &NoProgress, &Cancel::new())?
+            .sensors()
+            .to_vec())
+    };
+    let paths = sensors(&Method::SensorTrace(SensorTraceSettings {
         samples: 1 << 16,
         paths: 1 << 16,
+        path_tracing: true,
         seed: 1,
-    };
-    let tracer = PathTracer::new(&world, 1000, 1);
-    let paths = sensor_readings(&world, Some(&tracer), &settings);
-    let photons = LightTraceSettings {
+    }))?;
+    let light = sensors(&Method::LightTrace(LightTraceSettings {
         photons: 10_000_000,
         seed: 1,
         ..LightTraceSettings::default()
-    };
-    let light = trace_light(&world, &photons, &NoProgress, &cancel)?.sensors;
-    let (system, solution) = solve_hierarchical(
-        &world,
-        SystemOptions::default(),
-        &HierarchicalSettings::default(),
-        &NoProgress,
-        &cancel,
-    )?;
-    let radiosity = solution.measurement(&system).sensors;
+    }))?;
+    let radiosity = sensors(&MethodKind::Radiosity(SolverKind::Hierarchical).with_defaults())?;
     let lux = |e: Rgb64| 683.0 * e.luminance();
     let error = |r: &SensorReading| r.standard_error.map_or(0.0, lux);
     println!("x,pathtrace,pathtrace_se,light_trace,light_trace_se,hierarchical");

@@ -17,10 +17,20 @@
 //!    other;
 //! 7. [`final_gather`] — images from two algorithms together (ray-traced direct light,
 //!    indirect light from radiosity);
-//! 8. [`image`], then [`report`] — files made from what was measured;
-//! 9. [`validate`] — the analytic validation suite, which runs the algorithms on scenes
-//!    with closed-form answers.
+//! 8. [`method`] — every method named with its settings and run by one call: the API the
+//!    command line, the validation suite and embedding programs use;
+//! 9. [`image`], then [`report`] — files made from what was measured;
+//! 10. [`validate`] — the analytic validation suite, which runs the methods on scenes with
+//!     closed-form answers.
 
+//! # Embedding
+//!
+//! Programs run strahl through [`method`]: build or [open](scene::open) a scene, compile it
+//! into a [`world::World`] shared by [`std::sync::Arc`], and [`method::run`] any method on
+//! it; the outcome is owned (image, per-surface measurement, radiosity solution). The
+//! example `examples/embed.rs`, run here as a test:
+//!
+#![doc = concat!("```\n", include_str!("../examples/embed.rs"), "\n```")]
 #![warn(missing_docs)]
 
 pub mod accel;
@@ -32,6 +42,7 @@ pub mod image;
 pub mod lanes;
 pub mod light_model;
 pub mod measure;
+pub mod method;
 pub mod progress;
 pub mod radiosity;
 pub mod report;

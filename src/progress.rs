@@ -6,6 +6,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Receives progress of long work. Calls may come from several threads at once.
 pub trait ProgressListener: Sync {
+    /// The next work to start is the phase `name` (`"refining"`, `"rendering"`, …), for
+    /// listeners that show one bar per phase; ignored by default.
+    fn phase(&self, _name: &str) {}
     /// Work of `total` units starts.
     fn start(&self, total: u64);
     /// `units` more units are done.

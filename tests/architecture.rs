@@ -1,7 +1,9 @@
 //! The layering of `docs/ARCHITECTURE.md`, checked on the source: every module of the library
 //! imports only the modules this table allows (the layers below it), the three algorithms
-//! never import each other, and the library neither names nor depends on the command line's
-//! crates (argument parser, progress bars, Ctrl-C handler, `anyhow`).
+//! never import each other, the library neither names nor depends on the command line's
+//! crates (argument parser, progress bars, Ctrl-C handler, `anyhow`), and the command line
+//! reaches the library only through the method API and the scene, report, image and
+//! validation modules.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -21,7 +23,9 @@ const ALLOWED: &[(&str, &[&str])] = &[
     // The scene compiled for ray queries.
     (
         "world",
-        &["accel", "color", "geometry", "lanes", "sampling", "scene"],
+        &[
+            "accel", "choice", "color", "geometry", "lanes", "sampling", "scene",
+        ],
     ),
     // What the algorithms fill.
     ("measure", &["color", "geometry", "scene", "world"]),
@@ -41,26 +45,33 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "world",
         ],
     ),
-    // Files made from what was measured.
-    ("image", &["choice", "color", "measure"]),
-    ("report", &["color", "image", "measure", "scene"]),
-    // The validation suite, over the algorithms.
+    // The method API: every method named with its settings and run by one call.
     (
-        "validate",
+        "method",
         &[
             "accel",
             "choice",
-            "color",
+            "final_gather",
             "light_model",
             "measure",
             "progress",
             "radiosity",
+            "sampling",
             "scene",
             "trace",
             "world",
         ],
     ),
+    // Files made from what was measured.
+    ("image", &["choice", "color", "measure"]),
+    ("report", &["color", "image", "measure", "scene"]),
+    // The validation suite, over the method API.
+    ("validate", &["color", "method", "scene"]),
 ];
+
+/// The library modules the command line (`cli/src`) may import: the method API and the
+/// scene, report, image and validation modules.
+const FRONT_END_MODULES: &[&str] = &["image", "method", "report", "scene", "validate"];
 
 /// What every algorithm may import: everything below the algorithms.
 const ALGORITHM_BASE: &[&str] = &[
@@ -214,6 +225,28 @@ fn the_library_knows_no_command_line() {
             "the library depends on {name}"
         );
     }
+}
+
+/// The library modules a piece of the command line names through `strahl::` paths.
+fn library_modules(code: &str) -> BTreeSet<String> {
+    crate_modules(&code.replace("strahl::", "crate::"))
+}
+
+#[test]
+fn the_command_line_uses_only_the_method_api_and_the_file_modules() {
+    let cli = Path::new(env!("CARGO_MANIFEST_DIR")).join("cli/src");
+    let mut files = Vec::new();
+    rust_files(&cli, &mut files);
+    assert!(!files.is_empty(), "no sources in {}", cli.display());
+    let mut violations = Vec::new();
+    for file in &files {
+        for used in library_modules(&code(file)) {
+            if !FRONT_END_MODULES.contains(&used.as_str()) {
+                violations.push(format!("{} imports strahl::{used}", file.display()));
+            }
+        }
+    }
+    assert!(violations.is_empty(), "{}", violations.join("\n"));
 }
 
 #[test]

@@ -5,6 +5,7 @@
 //! for: growing far slower than the square of the number of surfaces.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::{Cancel, NoProgress};
@@ -15,17 +16,17 @@ use strahl::report::Report;
 use strahl::scene::builtin;
 use strahl::world::World;
 
-fn world(name: &str) -> World {
-    World::new(builtin::load(name).unwrap().unwrap(), AccelKind::Bvh).unwrap()
+fn world(name: &str) -> Arc<World> {
+    Arc::new(World::new(builtin::load(name).unwrap().unwrap(), AccelKind::Bvh).unwrap())
 }
 
 /// Per object name, the luminance of the absorbed power, W; and the links of the solution.
-fn solve(world: &World, clustering: bool) -> (HashMap<String, f64>, usize) {
+fn solve(world: &Arc<World>, clustering: bool) -> (HashMap<String, f64>, usize) {
     solve_at(world, clustering, HierarchicalSettings::default().error)
 }
 
 /// [`solve`] at the error `error`.
-fn solve_at(world: &World, clustering: bool, error: f64) -> (HashMap<String, f64>, usize) {
+fn solve_at(world: &Arc<World>, clustering: bool, error: f64) -> (HashMap<String, f64>, usize) {
     let options = SystemOptions {
         mesh: MeshOptions {
             size: MeshSize::Levels(0),

@@ -7,20 +7,17 @@
 //! finished. [`check_solution`] bounds the lookups by the corners, not by wall time.
 
 use std::path::Path;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb64;
 use strahl::final_gather::FinalGather;
 use strahl::image::ToneMapping;
 use strahl::measure::Film;
+use strahl::method::{RadiositySettings, solve_radiosity};
 use strahl::progress::{Cancel, NoProgress};
-use strahl::radiosity::MeshOptions;
-use strahl::radiosity::solve::hierarchical::{
-    HierarchicalSettings, solve_hierarchical, solve_hierarchical_shooting,
-};
 use strahl::radiosity::solve::{
-    DisplaySettings, LinkDisplay, MatrixSettings, RadiosityLookup, RadiositySystem, Shading,
-    ShootingSettings, Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
-    vertex_radiosity,
+    DisplaySettings, LinkDisplay, RadiosityLookup, RadiositySystem, Shading, Solution, SolverKind,
+    render_solution, vertex_radiosity,
 };
 use strahl::radiosity::{MeshSize, Side};
 use strahl::report::export_lit_mesh;
@@ -34,19 +31,11 @@ use strahl::world::World;
 /// Image side, pixels.
 const SIZE: u32 = 32;
 
-#[derive(Clone, Copy, Debug)]
-enum Solver {
-    Matrix,
-    Progressive,
-    Hierarchical,
-    HierarchicalShooting,
-}
-
-const SOLVERS: [Solver; 4] = [
-    Solver::Matrix,
-    Solver::Progressive,
-    Solver::Hierarchical,
-    Solver::HierarchicalShooting,
+const SOLVERS: [SolverKind; 4] = [
+    SolverKind::Matrix,
+    SolverKind::Progressive,
+    SolverKind::Hierarchical,
+    SolverKind::HierarchicalShooting,
 ];
 
 /// Settings that keep one solve of a test scene within a second or two.
@@ -60,55 +49,27 @@ struct Coarse {
     tolerance: f64,
 }
 
-fn solve<'w>(world: &'w World, solver: Solver, coarse: Coarse) -> (RadiositySystem<'w>, Solution) {
-    let flat = matches!(solver, Solver::Matrix | Solver::Progressive);
-    let options = SystemOptions {
-        mesh: MeshOptions {
-            segments: coarse.segments,
-            size: MeshSize::Levels(if flat { coarse.levels } else { 0 }),
-            ..MeshOptions::default()
-        },
-        ..SystemOptions::default()
-    };
-    let hierarchical = HierarchicalSettings {
-        error: 1e-3,
-        ..HierarchicalSettings::default()
-    };
-    let shooting = ShootingSettings {
-        tolerance: coarse.tolerance,
-        ..ShootingSettings::default()
-    };
-    let (progress, cancel) = (&NoProgress, &Cancel::new());
-    match solver {
-        Solver::Hierarchical => {
-            solve_hierarchical(world, options, &hierarchical, progress, cancel).unwrap()
-        }
-        Solver::HierarchicalShooting => {
-            solve_hierarchical_shooting(world, options, &hierarchical, &shooting, progress, cancel)
-                .unwrap()
-        }
-        Solver::Matrix | Solver::Progressive => {
-            let system = RadiositySystem::new(world, options).unwrap();
-            let solution = if let Solver::Matrix = solver {
-                solve_matrix(&system, &MatrixSettings::default(), progress, cancel)
-            } else {
-                solve_progressive(&system, &shooting, progress, cancel)
-            }
-            .unwrap();
-            (system, solution)
-        }
+fn solve(world: &Arc<World>, solver: SolverKind, coarse: Coarse) -> (RadiositySystem, Solution) {
+    let mut settings = RadiositySettings::new(solver);
+    settings.system.mesh.segments = coarse.segments;
+    if !solver.is_hierarchical() {
+        settings.system.mesh.size = MeshSize::Levels(coarse.levels);
     }
+    settings.hierarchical.error = 1e-3;
+    settings.shooting.tolerance = coarse.tolerance;
+    let solved = solve_radiosity(world, &settings, &NoProgress, &Cancel::new()).unwrap();
+    (solved.system, solved.solution)
 }
 
-fn world(scene: Scene) -> World {
-    World::new(scene, AccelKind::Bvh).unwrap()
+fn world(scene: Scene) -> Arc<World> {
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
-fn builtin_world(name: &str) -> World {
+fn builtin_world(name: &str) -> Arc<World> {
     world(builtin::load(name).unwrap().unwrap())
 }
 
-fn file_world(file: &str) -> World {
+fn file_world(file: &str) -> Arc<World> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
     world(strahl::scene::load(&dir.join(file)).unwrap())
 }
@@ -136,7 +97,12 @@ fn pixels(film: &Film) -> impl Iterator<Item = [f64; 3]> + '_ {
         .map(|p| [f64::from(p.r), f64::from(p.g), f64::from(p.b)])
 }
 
-fn display(system: &RadiositySystem, solution: &Solution, world: &World, shading: Shading) -> Film {
+fn display(
+    system: &RadiositySystem,
+    solution: &Solution,
+    world: &Arc<World>,
+    shading: Shading,
+) -> Film {
     let settings = DisplaySettings {
         width: SIZE,
         height: SIZE,
@@ -157,7 +123,7 @@ fn display(system: &RadiositySystem, solution: &Solution, world: &World, shading
 }
 
 /// Final gather of `solution` at [`SIZE`]², 4 samples per pixel.
-fn final_gather(system: &RadiositySystem, solution: &Solution, world: &World) -> Film {
+fn final_gather(system: &RadiositySystem, solution: &Solution, world: &Arc<World>) -> Film {
     let gather = FinalGather {
         reflected: RadiosityLookup::new(
             system,
@@ -192,7 +158,7 @@ fn mean(film: &Film) -> f64 {
 }
 
 /// Checks one solution as the module describes and returns its final gather.
-fn check_solution(world: &World, solver: Solver, coarse: Coarse, label: &str) -> Film {
+fn check_solution(world: &Arc<World>, solver: SolverKind, coarse: Coarse, label: &str) -> Film {
     let (system, solution) = solve(world, solver, coarse);
     let label = format!("{label}, {solver:?}");
     let values = solution.display_radiosity(&system);
@@ -302,7 +268,7 @@ fn check_solution(world: &World, solver: Solver, coarse: Coarse, label: &str) ->
 }
 
 /// The path tracer's image of `world` at [`SIZE`]², 1024 paths per pixel.
-fn path_traced(world: &World) -> Film {
+fn path_traced(world: &Arc<World>) -> Film {
     let tracer = PathTracer::new(world, u32::MAX, 1);
     let settings = ProgressiveSettings {
         width: SIZE,
@@ -356,8 +322,10 @@ fn the_built_in_spheres_by_every_solver() {
         let world = builtin_world(name);
         for solver in SOLVERS {
             let segments = match solver {
-                Solver::Matrix | Solver::Progressive | Solver::HierarchicalShooting => 4,
-                Solver::Hierarchical => 8,
+                SolverKind::Matrix | SolverKind::Progressive | SolverKind::HierarchicalShooting => {
+                    4
+                }
+                SolverKind::Hierarchical => 8,
             };
             let coarse = Coarse {
                 segments,

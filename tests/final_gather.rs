@@ -6,6 +6,7 @@
 //! the pixels that do not show the light (a few very bright pixels whose antialiasing alone
 //! would dominate any per-pixel figure).
 
+use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::final_gather::FinalGather;
 use strahl::measure::Film;
@@ -63,7 +64,8 @@ fn difference(image: &Film, reference: &Film) -> (f64, f64) {
 /// The differences (see [`difference`]) of final gather and of the hierarchical display from
 /// the path tracer on built-in scene `name`, at the default settings.
 fn against_the_path_tracer(name: &str) -> ((f64, f64), (f64, f64)) {
-    let world = World::new(builtin::load(name).unwrap().unwrap(), AccelKind::Bvh).unwrap();
+    let world =
+        Arc::new(World::new(builtin::load(name).unwrap().unwrap(), AccelKind::Bvh).unwrap());
     let tracer = PathTracer::new(&world, u32::MAX, 1);
     let settings = ProgressiveSettings {
         width: SIZE,

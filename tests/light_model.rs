@@ -19,7 +19,7 @@ use strahl::world::World;
 /// Traces `photons` photons with `seed` and returns the report.
 fn solve(scene: Scene, photons: u64, seed: u64) -> Report {
     let name = scene.name.clone();
-    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
     let settings = LightTraceSettings {
         photons,
         seed,
@@ -535,7 +535,7 @@ impl strahl::progress::ProgressListener for StopAtFirstBatch<'_> {
 
 #[test]
 fn cancelled_run_keeps_its_photons_scaled_to_the_full_count() {
-    let world = World::new(furnace(0.5), AccelKind::Bvh).unwrap();
+    let world = Arc::new(World::new(furnace(0.5), AccelKind::Bvh).unwrap());
     let settings = LightTraceSettings {
         photons: 1_000_000,
         seed: 1,
@@ -639,7 +639,7 @@ fn a_one_sided_surface_absorbs_what_reaches_its_back_as_radiosity_counts_it() {
     // solvers' back element of a one-sided material (reflectance 0) has it.
     assert_eq!(floor.reflected_power, Rgb64::BLACK);
     assert_eq!(floor.absorbed_power, floor.incident_power);
-    let world = World::new(one_sided_floor_lit_from_behind(), AccelKind::Bvh).unwrap();
+    let world = Arc::new(World::new(one_sided_floor_lit_from_behind(), AccelKind::Bvh).unwrap());
     let (system, solution) = strahl::radiosity::solve::hierarchical::solve_hierarchical(
         &world,
         strahl::radiosity::solve::SystemOptions::default(),

@@ -13,6 +13,7 @@
 
 use glam::{DVec2, DVec3};
 use std::collections::HashMap;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb;
 use strahl::progress::{Cancel, NoProgress};
@@ -71,7 +72,7 @@ fn tiles() -> Vec<Tile> {
     tiles
 }
 
-fn scene() -> World {
+fn scene() -> Arc<World> {
     let mut scene = Scene::empty("occluder");
     let black = scene.add_material(Material::diffuse("black", Rgb::splat(0.0)));
     let glow = scene.add_material(Material::emitter("glow", Rgb::splat(0.0), Rgb::splat(1.0)));
@@ -100,7 +101,7 @@ fn scene() -> World {
             black,
         );
     }
-    World::new(scene, AccelKind::Bvh).unwrap()
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
 /// Lambert's contour integral: the form factor from a point with unit normal `n` to a

@@ -10,6 +10,7 @@
 
 use std::collections::HashMap;
 use std::f64::consts::PI;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
@@ -30,7 +31,7 @@ fn path_traced_radiance_times_pi_is_the_light_models_radiosity() {
     // A wider view than the published camera, so the side walls are seen whole.
     let mut scene = builtin::load("cornell").unwrap().unwrap();
     scene.camera.fov_degrees = 60.0;
-    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
     let (w, h) = (256u32, 256u32);
     let settings = ProgressiveSettings {
         width: w,

@@ -2,6 +2,7 @@
 //! Jacobi against Gauss-Seidel, light links, the report, display and export.
 
 use glam::Vec3;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::color::{Rgb, Rgb64};
 use strahl::image::{ToneMap, ToneMapping};
@@ -42,13 +43,13 @@ fn unit_cube_faces() -> [Shape; 6] {
 }
 
 /// The unit cube as six parallelograms facing inwards, all emitting `L` with reflectance ρ.
-fn furnace() -> World {
+fn furnace() -> Arc<World> {
     let mut scene = Scene::empty("furnace");
     let m = scene.add_material(Material::emitter("glow", Rgb::splat(RHO), Rgb::splat(L)));
     for (k, shape) in unit_cube_faces().into_iter().enumerate() {
         scene.add_object(&format!("face{k}"), shape, m);
     }
-    World::new(scene, AccelKind::Bvh).unwrap()
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
 fn options(levels: u32) -> SystemOptions {
@@ -138,9 +139,9 @@ fn furnace_report_balances_emission_and_absorption() {
     assert_eq!(report.stats.extra["patches"], 24);
 }
 
-fn cornell() -> World {
+fn cornell() -> Arc<World> {
     let scene = builtin::load("cornell").unwrap().unwrap();
-    World::new(scene, AccelKind::Bvh).unwrap()
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
 #[test]
@@ -208,7 +209,7 @@ fn gauss_seidel_needs_fewer_sweeps_than_jacobi() {
 }
 
 /// A grey unit floor (y = 0, facing up) lit by `light` alone.
-fn floor_under(light: LightKind) -> World {
+fn floor_under(light: LightKind) -> Arc<World> {
     let mut scene = Scene::empty("lamp");
     let m = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
     scene.add_object(
@@ -224,7 +225,7 @@ fn floor_under(light: LightKind) -> World {
         name: None,
         kind: light,
     });
-    World::new(scene, AccelKind::Bvh).unwrap()
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
 #[test]
@@ -292,7 +293,7 @@ fn lambertian_point_light_link_matches_the_form_factor() {
 
 /// The display of `solution` through the scene's camera.
 fn display(
-    world: &World,
+    world: &Arc<World>,
     system: &RadiositySystem,
     solution: &Solution,
     settings: &DisplaySettings,
@@ -446,18 +447,18 @@ fn exports_parse_as_gltf_and_ply() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-fn hierarchical<'w>(
-    world: &'w World,
+fn hierarchical(
+    world: &Arc<World>,
     settings: &HierarchicalSettings,
-) -> (RadiositySystem<'w>, Solution) {
+) -> (RadiositySystem, Solution) {
     hierarchical_with(world, options(0), settings)
 }
 
-fn hierarchical_with<'w>(
-    world: &'w World,
+fn hierarchical_with(
+    world: &Arc<World>,
     options: SystemOptions,
     settings: &HierarchicalSettings,
-) -> (RadiositySystem<'w>, Solution) {
+) -> (RadiositySystem, Solution) {
     solve_hierarchical(world, options, settings, &NoProgress, &Cancel::new()).unwrap()
 }
 
@@ -544,7 +545,7 @@ fn hierarchical_mesh_does_not_change_when_the_scene_or_the_light_is_scaled() {
         m.emission *= 100.0;
     }
     let counts = |scene: Scene| {
-        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
         let settings = HierarchicalSettings {
             error: 3e-4,
             ..HierarchicalSettings::default()
@@ -578,7 +579,7 @@ fn hierarchical_results_do_not_depend_on_the_thread_count() {
 }
 
 /// The unit cube with one emitting face (a small lamp in its middle when `lamp`), inwards.
-fn closed_box(lamp: bool) -> World {
+fn closed_box(lamp: bool) -> Arc<World> {
     let mut scene = Scene::empty("box");
     let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(RHO)));
     let glow = scene.add_material(Material::emitter("glow", Rgb::splat(RHO), Rgb::splat(L)));
@@ -597,7 +598,7 @@ fn closed_box(lamp: bool) -> World {
             glow,
         );
     }
-    World::new(scene, AccelKind::Bvh).unwrap()
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
 #[test]
@@ -625,7 +626,7 @@ fn hierarchical_closed_box_absorbs_what_it_emits() {
 /// A black unit floor under a black plate a centimetre above it that leaves only the strip
 /// `x > 0.9` open, lit by a large emitter overhead that ends at `x = 1`: every Gauss point
 /// of the floor is in shadow, its edge is not.
-fn floor_lit_only_at_its_edge() -> World {
+fn floor_lit_only_at_its_edge() -> Arc<World> {
     let mut scene = Scene::empty("strip");
     let black = scene.add_material(Material::diffuse("black", Rgb::BLACK));
     let glow = scene.add_material(Material::emitter("glow", Rgb::BLACK, Rgb::splat(L)));
@@ -639,7 +640,7 @@ fn floor_lit_only_at_its_edge() -> World {
     scene.add_object("plate", plate, black);
     let sky = quad(Vec3::new(-2.0, 1.0, -1.0), Vec3::X * 3.0, Vec3::Z * 3.0);
     scene.add_object("emitter", sky, glow);
-    World::new(scene, AccelKind::Bvh).unwrap()
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
 #[test]
@@ -693,7 +694,7 @@ fn hierarchical_refines_next_to_an_emitter_until_its_light_is_right() {
         edge_v: Vec3::Z * 0.1,
     };
     scene.add_object("lamp", lamp, glow);
-    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
     let (system, solution) = hierarchical(&world, &HierarchicalSettings::default());
     // Leaves under the lamp are far smaller than those at the floor's corners.
     let floor_leaves: Vec<&strahl::radiosity::Patch> = system
@@ -754,7 +755,7 @@ fn contact_splits_keep_every_faces_area() {
 
 /// A white ball of radius ½ resting on a white 2 × 2 quad, lit by a small lamp above: the
 /// ball's pole touches the quad's centroid, and the ball's facets meet the quad edge-on.
-fn ball_on_quad() -> World {
+fn ball_on_quad() -> Arc<World> {
     let mut scene = Scene::empty("ball-on-quad");
     let white = scene.add_material(Material::diffuse("white", Rgb::splat(0.7)));
     let lamp = scene.add_material(Material::emitter("lamp", Rgb::splat(0.5), Rgb::splat(5.0)));
@@ -775,7 +776,7 @@ fn ball_on_quad() -> World {
         edge_v: Vec3::Z * 0.4,
     };
     scene.add_object("lamp", light, lamp);
-    World::new(scene, AccelKind::Bvh).unwrap()
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
 /// Luminance of the absorbed power per object name.
@@ -788,7 +789,7 @@ fn absorbed(report: &Report) -> std::collections::HashMap<String, f64> {
 }
 
 /// The light model's report of `world` at `photons` photons from seed `seed`.
-fn light_model_report(world: &World, photons: u64, seed: u64) -> Report {
+fn light_model_report(world: &Arc<World>, photons: u64, seed: u64) -> Report {
     let settings = LightTraceSettings {
         photons,
         seed,

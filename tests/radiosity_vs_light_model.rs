@@ -6,6 +6,7 @@
 //! (0.6 % on the small light, measured against 4·10⁸ photons).
 
 use std::collections::HashMap;
+use std::sync::Arc;
 use std::sync::OnceLock;
 use strahl::accel::AccelKind;
 use strahl::light_model::{LightTraceSettings, trace_light};
@@ -22,8 +23,8 @@ use strahl::report::Report;
 use strahl::scene::builtin;
 use strahl::world::World;
 
-fn cornell() -> World {
-    World::new(builtin::load("cornell").unwrap().unwrap(), AccelKind::Bvh).unwrap()
+fn cornell() -> Arc<World> {
+    Arc::new(World::new(builtin::load("cornell").unwrap().unwrap(), AccelKind::Bvh).unwrap())
 }
 
 /// Incident power (green channel) per object name.
@@ -40,7 +41,7 @@ fn incident_of(system: &RadiositySystem, solution: &Solution) -> HashMap<String,
     incident(&Report::new("cornell", &solution.measurement(system)))
 }
 
-fn radiosity_at(world: &World, levels: u32) -> HashMap<String, f64> {
+fn radiosity_at(world: &Arc<World>, levels: u32) -> HashMap<String, f64> {
     let options = SystemOptions {
         mesh: MeshOptions {
             size: MeshSize::Levels(levels),

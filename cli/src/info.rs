@@ -1,13 +1,11 @@
 //! `strahl info`: validate a scene and print its statistics.
 
 use super::choice::choice;
-use super::source;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::collections::BTreeMap;
-use strahl::accel::AccelKind;
+use strahl::method::{AccelKind, World};
 use strahl::scene::LightKind;
-use strahl::world::World;
 
 /// Arguments of `strahl info`.
 #[derive(Debug, Args)]
@@ -21,7 +19,7 @@ pub struct InfoArgs {
 
 /// Runs `strahl info`.
 pub fn run(args: &InfoArgs) -> Result<()> {
-    let scene = source::load(&args.scene, &strahl::scene::LoadOptions::default())?;
+    let scene = strahl::scene::open(&args.scene, &strahl::scene::LoadOptions::default())?;
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
     let scene = &world.scene;
     let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();

@@ -9,7 +9,6 @@ mod progress;
 mod radiosity;
 mod render;
 mod solve;
-mod source;
 mod tone;
 mod validate;
 

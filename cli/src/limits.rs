@@ -6,7 +6,7 @@
 
 use anyhow::{Result, bail};
 use clap::Args;
-use strahl::measure::usable_memory_bytes;
+use strahl::method::usable_memory_bytes;
 use strahl::scene::LoadOptions;
 
 /// The bounds on how much work one command may ask for.

@@ -1,20 +1,29 @@
 //! Progress bars on the terminal, Ctrl-C handling and the memory watch.
 
 use indicatif::{ProgressBar, ProgressStyle};
-use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Mutex, OnceLock};
 use std::time::Duration;
-use strahl::measure::resident_bytes;
-use strahl::progress::{Cancel, ProgressListener};
+use strahl::method::{Cancel, ProgressListener, resident_bytes};
 
-/// A progress bar on standard error (hidden with `--quiet`).
+/// A progress bar on standard error (hidden with `--quiet`), a new one for each phase of
+/// the work.
 pub struct Bar {
-    bar: ProgressBar,
+    bar: Mutex<ProgressBar>,
+    quiet: bool,
 }
 
 impl Bar {
-    /// A bar labelled `label`; hidden when `quiet`.
+    /// A bar labelled `label` until a phase names itself; hidden when `quiet`.
     pub fn new(label: &str, quiet: bool) -> Self {
+        Bar {
+            bar: Mutex::new(Self::labelled(label, quiet)),
+            quiet,
+        }
+    }
+
+    /// A fresh bar labelled `label`.
+    fn labelled(label: &str, quiet: bool) -> ProgressBar {
         let bar = if quiet {
             ProgressBar::hidden()
         } else {
@@ -28,20 +37,38 @@ impl Bar {
             .progress_chars("=> "),
         );
         bar.set_message(label.to_string());
-        Bar { bar }
+        bar
+    }
+
+    /// The bar of the current phase.
+    fn current(&self) -> ProgressBar {
+        match self.bar.lock() {
+            Ok(bar) => bar.clone(),
+            Err(poisoned) => poisoned.into_inner().clone(),
+        }
     }
 }
 
 impl ProgressListener for Bar {
+    fn phase(&self, name: &str) {
+        let fresh = Self::labelled(name, self.quiet);
+        let mut bar = match self.bar.lock() {
+            Ok(bar) => bar,
+            Err(poisoned) => poisoned.into_inner(),
+        };
+        bar.finish_and_clear();
+        *bar = fresh;
+    }
     fn start(&self, total: u64) {
-        self.bar.set_length(total);
-        self.bar.set_position(0);
+        let bar = self.current();
+        bar.set_length(total);
+        bar.set_position(0);
     }
     fn advance(&self, units: u64) {
-        self.bar.inc(units);
+        self.current().inc(units);
     }
     fn finish(&self) {
-        self.bar.finish_and_clear();
+        self.current().finish_and_clear();
     }
 }
 

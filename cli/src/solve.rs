@@ -1,28 +1,28 @@
 //! `strahl solve`: compute the light on every object of a scene and report it per object
 //! (or per face) as JSON or CSV.
 
-use super::choice::choice;
+use super::choice::{choice, choice_among};
 use super::limits::LimitArgs;
-use super::radiosity::{RadiosityArgs, RunOptions, Solver, print_convergence};
+use super::radiosity::{self, RadiosityArgs, method_error, print_convergence};
 use super::tone::ToneArgs;
-use super::{progress, radiosity, source, with_threads};
+use super::{progress, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::PathBuf;
-use strahl::accel::AccelKind;
-use strahl::light_model::{LightTraceSettings, trace_light};
+use std::sync::Arc;
+use strahl::method::World;
+use strahl::method::{AccelKind, LightTraceSettings, Method, MethodKind};
 use strahl::report::{ExportFormat, ObjectReport, Report, ReportFormat, write_report};
-use strahl::world::World;
 
 /// Options of the light-trace solver.
 #[derive(Debug, Args)]
 #[command(next_help_heading = "Light tracing (--solver light-trace)")]
 pub struct LightTraceArgs {
     /// Photons to trace.
-    #[arg(long, default_value_t = 1_000_000, value_parser = clap::value_parser!(u64).range(1..))]
+    #[arg(long, default_value_t = LightTraceSettings::default().photons, value_parser = clap::value_parser!(u64).range(1..))]
     pub photons: u64,
     /// Scattering events after which a photon is absorbed where it is.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, default_value_t = LightTraceSettings::default().max_bounces)]
     pub max_bounces: u32,
 }
 
@@ -32,8 +32,8 @@ pub struct SolveArgs {
     /// Scene: a built-in name (see `strahl scenes`), a .toml scene file or a mesh file.
     pub scene: String,
     /// Which solver computes the light.
-    #[arg(long, value_enum, default_value_t = Solver::LightTrace)]
-    pub solver: Solver,
+    #[arg(long, value_parser = choice_among(MethodKind::SURFACE_SOLVERS), default_value_t = MethodKind::LightTrace)]
+    pub solver: MethodKind,
     /// Per-object report: .json (full report) or .csv (one row per object). Without it the
     /// JSON report goes to standard output.
     #[arg(long)]
@@ -78,25 +78,39 @@ impl SolveArgs {
         if let Some(path) = &self.radiosity.export {
             ExportFormat::from_path(path)?;
         }
-        if self.solver == Solver::LightTrace {
-            if self.radiosity.export.is_some() {
-                bail!(
-                    "--export writes a radiosity solution's mesh: it needs --solver matrix, \
-                     progressive, hierarchical or hierarchical-shooting"
-                );
-            }
-        } else {
-            self.radiosity
-                .system_options(self.solver, self.seed, &self.limits)?;
-        }
+        self.method()?;
         Ok(())
+    }
+
+    /// The method these arguments ask for, checked.
+    pub fn method(&self) -> Result<Method> {
+        let method = match self.solver {
+            MethodKind::Radiosity(solver) => {
+                Method::Radiosity(self.radiosity.settings(solver, self.seed, &self.limits)?)
+            }
+            _ => {
+                if self.radiosity.export.is_some() {
+                    bail!(
+                        "--export writes a radiosity solution's mesh: it needs --solver matrix, \
+                         progressive, hierarchical or hierarchical-shooting"
+                    );
+                }
+                Method::LightTrace(LightTraceSettings {
+                    photons: self.light_trace.photons,
+                    seed: self.seed,
+                    max_bounces: self.light_trace.max_bounces,
+                })
+            }
+        };
+        method.check().map_err(|e| method_error(e.into()))?;
+        Ok(method)
     }
 }
 
 /// Runs `strahl solve`.
 pub fn run(args: &SolveArgs) -> Result<()> {
     args.check()?;
-    let scene = source::load(&args.scene, &args.limits.load_options())?;
+    let scene = strahl::scene::open(&args.scene, &args.limits.load_options())?;
     if scene.objects.is_empty() {
         bail!(
             "'{}' has no objects: there is nothing to take light",
@@ -114,52 +128,44 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     if let Some(warning) = world.scale_warning().filter(|_| !args.quiet) {
         eprintln!("warning: {warning}");
     }
+    let method = args.method()?;
+    if method.radiosity().is_some() {
+        radiosity::warn_non_diffuse(&world.scene);
+    }
+    let world = Arc::new(world);
     let cancel = progress::cancel_flag();
-    let report = match args.solver {
-        Solver::LightTrace => {
-            let settings = LightTraceSettings {
-                photons: args.light_trace.photons,
-                seed: args.seed,
-                max_bounces: args.light_trace.max_bounces,
-            };
-            let bar = progress::Bar::new("photons", args.quiet);
-            let out = with_threads(args.threads, || {
-                trace_light(&world, &settings, &bar, cancel)
-            })??;
-            if !args.quiet {
-                eprintln!(
-                    "{name}: light-trace, {} of {} photons, {} rays in {:.2} s{}",
-                    out.photons_traced,
-                    out.photons,
-                    out.rays,
-                    out.seconds,
-                    if out.complete() {
-                        ""
-                    } else {
-                        " (interrupted: report scaled to the full photon count)"
-                    }
-                );
-            }
-            Report::new(&name, &out.measurement())
-        }
-        Solver::Matrix
-        | Solver::Progressive
-        | Solver::Hierarchical
-        | Solver::HierarchicalShooting => {
-            let run = RunOptions {
-                seed: args.seed,
-                threads: args.threads,
-                quiet: args.quiet,
-                tone_mapping: &args.tone.mapping(),
-                limits: &args.limits,
-            };
-            let (system, solution) = radiosity::solve(&world, &args.radiosity, args.solver, &run)?;
+    let bar = progress::Bar::new("solving", args.quiet);
+    let outcome = with_threads(args.threads, || {
+        strahl::method::run(&world, &method, &bar, cancel)
+    })?
+    .map_err(method_error)?;
+    match &outcome.radiosity {
+        Some(solved) => {
+            radiosity::finish_solve(
+                solved,
+                args.radiosity.export.as_deref(),
+                &args.tone.mapping(),
+                args.quiet,
+            )?;
             if args.verbose {
-                print_convergence(&solution);
+                print_convergence(&solved.solution);
             }
-            Report::new(&name, &solution.measurement(&system))
         }
-    };
+        None if !args.quiet => eprintln!(
+            "{name}: {}{}",
+            outcome.summary,
+            if outcome.complete {
+                ""
+            } else {
+                " (interrupted: report scaled to the full photon count)"
+            }
+        ),
+        None => {}
+    }
+    let measured = outcome
+        .measurement
+        .context("the solver measured no surfaces")?;
+    let report = Report::new(&name, &measured);
     if let Some((entry, field)) = report.first_non_finite() {
         anyhow::bail!(
             "the {} solution has a non-finite {field} for {entry}: a numerical failure, so no \
@@ -186,7 +192,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     }
     if args.verbose {
         print_table(&report);
-        if let Some(bytes) = strahl::measure::peak_resident_bytes() {
+        if let Some(bytes) = strahl::method::peak_resident_bytes() {
             eprintln!(
                 "peak memory {:.1} MiB (bound {})",
                 bytes as f64 / f64::from(1 << 20),

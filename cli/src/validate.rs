@@ -2,13 +2,13 @@
 //! through every method, a table of expected and computed figures, a non-zero exit when any
 //! check fails.
 
-use super::choice::choice;
+use super::choice::choice_among;
 use super::{progress, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::PathBuf;
-use strahl::choice::Choice;
-use strahl::validate::{Effort, Method, Row, STANDARD_ERRORS, TOLERANCE, run_suite};
+use strahl::method::MethodKind;
+use strahl::validate::{Effort, Row, STANDARD_ERRORS, SUITE, TOLERANCE, run_suite};
 
 /// Arguments of `strahl validate`.
 #[derive(Debug, Args)]
@@ -17,8 +17,8 @@ pub struct ValidateArgs {
     #[arg(long)]
     pub quick: bool,
     /// Only these methods (comma-separated; default: all).
-    #[arg(long, value_delimiter = ',', value_parser = choice::<Method>())]
-    pub method: Vec<Method>,
+    #[arg(long, value_delimiter = ',', value_parser = choice_among(SUITE))]
+    pub method: Vec<MethodKind>,
     /// Also write the table as JSON.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -44,10 +44,7 @@ pub struct ValidateArgs {
 /// Runs `strahl validate`.
 pub fn run(args: &ValidateArgs) -> Result<()> {
     let methods = if args.method.is_empty() {
-        Method::VALUES
-            .iter()
-            .map(|&(method, _, _)| method)
-            .collect()
+        SUITE.to_vec()
     } else {
         args.method.clone()
     };

@@ -6,6 +6,7 @@ mod common;
 
 use common::{strahl, temp};
 use glam::Vec3;
+use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::{Cancel, NoProgress};
@@ -97,7 +98,7 @@ fn sensors_and_grids_are_read_from_the_scene_file() {
 
 /// The Cornell box with a sensor facing up at `at` on the floor and, when `with_patch`, a
 /// black 4 × 4 cm patch named `probe` just under it.
-fn cornell_with_probe(at: Vec3, with_patch: bool) -> World {
+fn cornell_with_probe(at: Vec3, with_patch: bool) -> Arc<World> {
     let mut scene = builtin::load("cornell").unwrap().unwrap();
     scene.sensors.push(Sensor {
         name: "probe".to_string(),
@@ -117,7 +118,7 @@ fn cornell_with_probe(at: Vec3, with_patch: bool) -> World {
             black,
         );
     }
-    World::new(scene, AccelKind::Bvh).unwrap()
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
 
 #[test]
@@ -169,7 +170,7 @@ fn a_sensor_reads_what_a_small_patch_at_its_place_receives() {
 #[test]
 fn light_model_standard_errors_match_the_spread_of_independent_runs() {
     let scene = load_str(SENSOR_SCENE, "sensors.toml", std::path::Path::new(".")).unwrap();
-    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
     let runs: Vec<_> = (0..12)
         .map(|seed| {
             let settings = LightTraceSettings {
@@ -295,7 +296,7 @@ fn a_sensor_at_the_coordinate_origin_on_a_floor_is_not_shadowed_by_the_floor() {
     let text = &text[..text.find("[[unused]]").unwrap()];
     let scene = load_str(text, "origin.toml", std::path::Path::new(".")).unwrap();
     assert_eq!(scene.sensors[0].position, Vec3::ZERO);
-    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
     let f = strahl::validate::closed_forms::parallel_rectangle((-0.25, 0.25), (-0.25, 0.25), 1.0);
     let expected = std::f64::consts::PI * 10.0 * f;
     let settings = LightTraceSettings {

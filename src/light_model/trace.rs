@@ -31,7 +31,7 @@ const MAX_BATCH: u64 = 1 << 18;
 const TALLY_BUDGET: usize = 256 << 20;
 
 /// Settings of a light-tracing run.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct LightTraceSettings {
     /// Photons to trace.
     pub photons: u64,

@@ -37,6 +37,7 @@ use rand_pcg::Pcg64Mcg;
 use std::f64::consts::PI;
 use std::fmt;
 use std::str::FromStr;
+use std::sync::Arc;
 
 /// Rays per axis for each unit of `√A_max / d` in adaptive mode.
 const ADAPTIVE_RAYS_PER_RATIO: f64 = 4.0;
@@ -255,8 +256,8 @@ struct Cluster {
 }
 
 /// Visibility queries against the surfaces of a patch mesh.
-pub struct Visibility<'w> {
-    world: &'w World,
+pub struct Visibility {
+    world: Arc<World>,
     /// `world` with its curved shapes as polygon meshes, when it has any.
     faceted: Option<World>,
     clusters: Vec<Cluster>,
@@ -289,14 +290,14 @@ impl Occluders {
     }
 }
 
-impl<'w> Visibility<'w> {
+impl Visibility {
     /// Prepares visibility queries on the surfaces of `world`'s patch mesh, whose curved
     /// shapes have `segments` segments around the axis.
     pub fn new(
-        world: &'w World,
+        world: &Arc<World>,
         options: VisibilityOptions,
         segments: u32,
-    ) -> Result<Visibility<'w>, GeometryError> {
+    ) -> Result<Visibility, GeometryError> {
         let faceted = world.faceted(segments)?;
         let geometry = &faceted.as_ref().unwrap_or(world).geometry;
         let mut clusters: Vec<Cluster> = Vec::new();
@@ -325,7 +326,7 @@ impl<'w> Visibility<'w> {
             }
         }
         Ok(Visibility {
-            world,
+            world: Arc::clone(world),
             faceted,
             clusters,
             bounds: bounds_of,
@@ -336,7 +337,7 @@ impl<'w> Visibility<'w> {
     /// The world the rays are traced in: the scene with curved shapes as the polygon meshes
     /// the patches lie on.
     pub fn world(&self) -> &World {
-        self.faceted.as_ref().unwrap_or(self.world)
+        self.faceted.as_ref().unwrap_or(&self.world)
     }
 
     /// The options in use.
@@ -842,7 +843,7 @@ mod tests {
 
     fn visibility_of(scene: Scene, options: VisibilityOptions) -> f64 {
         let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
-        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
         let vis = Visibility::new(&world, options, 16).unwrap();
         let v = vis.between(&mesh, 0, 1);
         assert_eq!(v, vis.between(&mesh, 1, 0), "symmetric");
@@ -880,7 +881,7 @@ mod tests {
         let look = |blocker, (na, nb): (DVec3, DVec3), rays| {
             let scene = pair_scene(blocker, 1.0);
             let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
-            let world = World::new(scene, AccelKind::Bvh).unwrap();
+            let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
             let vis = Visibility::new(&world, fixed(4, true), 16).unwrap();
             vis.look(&mesh, (0, na), (1, nb), rays, Blockers::UNKNOWN)
         };
@@ -917,7 +918,7 @@ mod tests {
             let scene = pair_scene(None, scale);
             PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap()
         };
-        let world = World::new(pair_scene(None, 1.0), AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(pair_scene(None, 1.0), AccelKind::Bvh).unwrap());
         let vis = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         let (small, large) = (build(1.0), build(1000.0));
         let m_small = vis.rays_per_axis(small.patch(0), small.patch(1));
@@ -950,7 +951,7 @@ mod tests {
             ..MeshOptions::default()
         };
         let mesh = PatchMesh::from_scene(&scene, &options).unwrap();
-        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
         let x = DVec3::new(0.2, 0.1, 0.0);
         let top = mesh.patch(1).corners().to_vec();
         let seen: Vec<DVec3> = top
@@ -984,7 +985,7 @@ mod tests {
             ..MeshOptions::default()
         };
         let mut mesh = PatchMesh::from_scene(&scene, &options).unwrap();
-        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
         let vis = Visibility::new(&world, fixed(16, true), 16).unwrap();
         let points_of = |mesh: &PatchMesh, p: PatchId| mesh.patch(p).gauss_points().to_vec();
         let parent = vis
@@ -1041,13 +1042,13 @@ mod tests {
     fn shaft_keeps_the_blocker_and_drops_the_patches_own_planes() {
         let scene = pair_scene(Some((2.5, 3.0)), 1.0);
         let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
-        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
         let vis = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         // The plate at x ∈ [2.5, 3] is outside the shaft between the squares.
         let survivors = vis.candidates(mesh.patch(0), mesh.patch(1)).unwrap();
         assert!(survivors.is_empty(), "{survivors:?}");
         let scene = pair_scene(Some((0.2, 0.3)), 1.0);
-        let world = World::new(scene, AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
         let vis = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         let survivors = vis.candidates(mesh.patch(0), mesh.patch(1)).unwrap();
         let owners: Vec<u32> = survivors

@@ -1,5 +1,6 @@
 //! The scene model: objects with shapes, transforms and materials; textures; lights; the
-//! camera. Scenes come from TOML files ([`load`]) or are built in ([`builtin`]).
+//! camera. Scenes come from TOML files ([`load`]), bare mesh files ([`load_mesh_file`]) or
+//! are built in ([`builtin`]); [`open`] takes any of them by the name a user gives.
 
 pub mod builtin;
 mod camera;
@@ -9,17 +10,19 @@ mod light;
 mod material;
 mod mesh;
 mod object;
+mod open;
 pub(crate) mod polygon;
 mod sensor;
 mod tessellate;
 mod texture;
 
 pub use camera::{Camera, CameraRays};
-pub use file::{LoadOptions, SceneError, load, load_str, load_str_with, load_with};
+pub use file::{LoadOptions, SceneError, load, load_mesh_file, load_str, load_str_with, load_with};
 pub use light::{Incidence, Light, LightKind};
 pub use material::{Material, MaterialId};
 pub use mesh::PolygonMesh;
 pub use object::{AnalyticKind, Object, Shape};
+pub use open::{OpenError, is_mesh_file, open};
 pub use sensor::{MAX_SENSORS, Sensor};
 pub use tessellate::{polygon_area, polygon_normal};
 pub use texture::{

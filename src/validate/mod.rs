@@ -8,20 +8,21 @@
 //! of single-precision geometry). The expected values are computed here from the formulas
 //! ([`closed_forms`]), never copied from a table.
 //!
-//! The suite sits above the algorithms: it builds scenes, runs the ray tracers' sensor
-//! readings, the light model and the radiosity solvers on them, and compares.
+//! The suite sits above the method API: it builds scenes, runs the ray tracers' sensor
+//! readings, the light model and the radiosity solvers on them ([`crate::method::run`]), and
+//! compares.
 
 pub mod cases;
 pub mod closed_forms;
 mod methods;
 
 pub use cases::{Case, Check, Quantity};
-pub use methods::{Effort, Method, Outcome, RunError};
+pub use methods::{Effort, SUITE, suite_method};
 
 use crate::color::{LUMINOUS_EFFICACY, Rgb64};
-use crate::progress::Cancel;
-use crate::world::World;
+use crate::method::{AccelKind, Cancel, MethodError, MethodKind, NoProgress, Outcome, World};
 use serde::Serialize;
+use std::sync::Arc;
 
 /// Relative tolerance of every check.
 pub const TOLERANCE: f64 = 0.01;
@@ -65,7 +66,7 @@ pub enum SuiteError {
         /// The case.
         case: String,
         /// The cause.
-        source: crate::world::GeometryError,
+        source: crate::method::GeometryError,
     },
     /// A method refused a case.
     #[error("case {case}, method {method}: {source}")]
@@ -75,15 +76,16 @@ pub enum SuiteError {
         /// The method.
         method: String,
         /// The cause.
-        source: RunError,
+        source: MethodError,
     },
 }
 
 /// Runs every case of the suite (the quick variants when `effort` asks) through every
-/// method of `methods` that applies to it, with the work `effort` gives each, calling `row` for each result as it comes;
-/// `cancel` stops between runs. Returns all rows.
+/// method of `methods` that applies to it (the kinds not in [`SUITE`] are left out), with the
+/// work `effort` gives each, calling `row` for each result as it comes; `cancel` stops
+/// between runs. Returns all rows.
 pub fn run_suite(
-    methods: &[Method],
+    methods: &[MethodKind],
     effort: Effort,
     seed: u64,
     cancel: &Cancel,
@@ -91,12 +93,11 @@ pub fn run_suite(
 ) -> Result<Vec<Row>, SuiteError> {
     let mut rows = Vec::new();
     for case in cases::all(effort.quick) {
-        let world =
-            World::new(case.scene.clone(), crate::accel::AccelKind::Bvh).map_err(|source| {
-                SuiteError::Scene {
-                    case: case.name.clone(),
-                    source,
-                }
+        let world = World::new(case.scene.clone(), AccelKind::Bvh)
+            .map(Arc::new)
+            .map_err(|source| SuiteError::Scene {
+                case: case.name.clone(),
+                source,
             })?;
         for &method in methods {
             if cancel.is_requested() {
@@ -106,12 +107,21 @@ pub fn run_suite(
             if checks.is_empty() {
                 continue;
             }
-            let outcome = methods::run(&world, method, (effort, seed), case.flat_mesh_levels)
-                .map_err(|source| SuiteError::Method {
-                    case: case.name.clone(),
-                    method: method.to_string(),
-                    source,
+            let Some(run) = suite_method(method, (effort, seed), case.flat_mesh_levels) else {
+                continue;
+            };
+            let outcome =
+                crate::method::run(&world, &run, &NoProgress, cancel).map_err(|source| {
+                    SuiteError::Method {
+                        case: case.name.clone(),
+                        method: method.to_string(),
+                        source,
+                    }
                 })?;
+            if cancel.is_requested() {
+                // Stopped inside the run: its figures are partial.
+                return Ok(rows);
+            }
             for check in checks {
                 let r = compare(&case, check, method, &outcome);
                 row(&r);
@@ -125,11 +135,11 @@ pub fn run_suite(
 /// Whether `check` applies to `method`: sensors to every method (the direct-light ray
 /// tracer only where the case gives the direct light), surface totals to the methods that
 /// report surfaces, the indirect mean to the light model (the one that tells it apart).
-fn applies(check: &Check, method: Method) -> bool {
+fn applies(check: &Check, method: MethodKind) -> bool {
     match check.quantity {
         Quantity::Sensor(_) => method.counts_reflections() || check.expected_direct.is_some(),
         Quantity::TotalFlux | Quantity::MeanIlluminance => method.reports_surfaces(),
-        Quantity::MeanIndirect => method == Method::LightTrace,
+        Quantity::MeanIndirect => method == MethodKind::LightTrace,
     }
 }
 
@@ -139,7 +149,7 @@ fn luminous(v: Rgb64) -> f64 {
 }
 
 /// The row of `check` for `method`'s `outcome` on `case`.
-fn compare(case: &Case, check: &Check, method: Method, outcome: &Outcome) -> Row {
+fn compare(case: &Case, check: &Check, method: MethodKind, outcome: &Outcome) -> Row {
     let (expected, computed, standard_error) = measured(check, method, outcome);
     let relative_error = (computed - expected) / expected;
     let within_tolerance = relative_error.abs() <= TOLERANCE;
@@ -165,10 +175,10 @@ fn compare(case: &Case, check: &Check, method: Method, outcome: &Outcome) -> Row
 }
 
 /// Expected value, computed value and standard error of `check` in `outcome`.
-fn measured(check: &Check, method: Method, outcome: &Outcome) -> (f64, f64, Option<f64>) {
+fn measured(check: &Check, method: MethodKind, outcome: &Outcome) -> (f64, f64, Option<f64>) {
     match check.quantity {
         Quantity::Sensor(k) => {
-            let reading = &outcome.sensors[k];
+            let reading = &outcome.sensors()[k];
             let se = reading.standard_error.map(luminous);
             match check.expected_direct {
                 Some(direct) if !method.counts_reflections() => {
@@ -178,7 +188,7 @@ fn measured(check: &Check, method: Method, outcome: &Outcome) -> (f64, f64, Opti
             }
         }
         Quantity::TotalFlux | Quantity::MeanIlluminance | Quantity::MeanIndirect => {
-            let Some(power) = &outcome.power else {
+            let Some(power) = outcome.measurement.as_ref().map(|m| &m.power) else {
                 return (check.expected, f64::NAN, None);
             };
             let table = power.table();
@@ -204,7 +214,7 @@ fn measured(check: &Check, method: Method, outcome: &Outcome) -> (f64, f64, Opti
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::SensorReading;
+    use crate::method::{SensorReading, SolverKind};
     use crate::scene::Sensor;
     use glam::Vec3;
 
@@ -212,7 +222,13 @@ mod tests {
     fn outcome(lux: f64, se: Option<f64>) -> Outcome {
         let w = |v: f64| Rgb64::splat(v / LUMINOUS_EFFICACY);
         Outcome {
-            sensors: vec![SensorReading {
+            image: None,
+            subdivisions: Vec::new(),
+            measurement: None,
+            radiosity: None,
+            summary: String::new(),
+            complete: true,
+            sensor_readings: vec![SensorReading {
                 sensor: Sensor {
                     name: "s".into(),
                     position: Vec3::ZERO,
@@ -222,7 +238,6 @@ mod tests {
                 indirect: Rgb64::BLACK,
                 standard_error: se.map(w),
             }],
-            power: None,
             seconds: 0.0,
         }
     }
@@ -243,13 +258,13 @@ mod tests {
             expected_direct: Some(100.0),
         };
         let row = |method, lux, se| compare(&case, &check, method, &outcome(lux, se));
-        assert!(row(Method::Hierarchical, 100.9, None).pass);
-        assert!(!row(Method::Hierarchical, 101.1, None).pass);
+        assert!(row(MethodKind::Radiosity(SolverKind::Hierarchical), 100.9, None).pass);
+        assert!(!row(MethodKind::Radiosity(SolverKind::Hierarchical), 101.1, None).pass);
         // Monte Carlo: within 1 % and within three standard errors.
-        assert!(row(Method::LightTrace, 100.5, Some(0.2)).pass);
-        assert!(!row(Method::LightTrace, 100.5, Some(0.1)).pass);
-        assert!(!row(Method::LightTrace, 101.5, Some(1.0)).pass);
-        let r = row(Method::PathTrace, 99.0, Some(1.0));
+        assert!(row(MethodKind::LightTrace, 100.5, Some(0.2)).pass);
+        assert!(!row(MethodKind::LightTrace, 100.5, Some(0.1)).pass);
+        assert!(!row(MethodKind::LightTrace, 101.5, Some(1.0)).pass);
+        let r = row(MethodKind::PathTrace, 99.0, Some(1.0));
         assert!((r.relative_error + 0.01).abs() < 1e-12 && r.pass);
     }
 }

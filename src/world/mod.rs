@@ -14,6 +14,7 @@
 mod light_at_point;
 mod lights;
 pub mod optics;
+mod ray_bench;
 mod scene_geometry;
 mod surface_material;
 
@@ -21,6 +22,9 @@ pub use light_at_point::{
     non_surface_irradiance, point_irradiance, sees_light, sees_point, sky_share,
 };
 pub use lights::{AreaLight, AreaSample, LightSet};
+pub use ray_bench::{
+    PRIMARY_WIDTH, QueryTiming, RANDOM_RAYS, RayBench, RaySet, RaySetError, bench_rays, ray_set,
+};
 pub use scene_geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
 

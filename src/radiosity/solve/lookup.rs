@@ -140,7 +140,7 @@ struct TextureDetail {
 
 /// A value per element of a solved system (a radiosity, W·m⁻²), found along rays.
 pub struct RadiosityLookup<'s> {
-    system: &'s RadiositySystem<'s>,
+    system: &'s RadiositySystem,
     triangles: LeafTriangles,
     accel: Box<dyn Accelerator<LeafTriangles>>,
     values: ElementValues,
@@ -151,7 +151,7 @@ pub struct RadiosityLookup<'s> {
 impl<'s> RadiosityLookup<'s> {
     /// The lookup of `values` (one per element of `system`, in element order) shown by
     /// `shading`.
-    pub fn new(system: &'s RadiositySystem<'s>, values: Vec<Rgb64>, shading: Shading) -> Self {
+    pub fn new(system: &'s RadiositySystem, values: Vec<Rgb64>, shading: Shading) -> Self {
         let triangles = LeafTriangles::new(system);
         let accel = AccelKind::Bvh.build(&triangles);
         RadiosityLookup {

@@ -5,7 +5,8 @@
 //! light not yet reflected, so the measure matches the progressive solver's unshot power.
 
 use super::SolveError;
-use super::solution::{Solution, SolverKind, power_fraction};
+use super::solution::{Solution, power_fraction};
+use super::solver_kind::SolverKind;
 use super::system::{Couplings, RadiositySystem};
 use crate::color::Rgb64;
 use crate::progress::{Cancel, ProgressListener};
@@ -71,7 +72,8 @@ pub fn solve_matrix(
             limit: MAX_MATRIX_ENTRIES,
         });
     }
-    let mut solution = Solution::start(system, SolverKind::Matrix(settings.iteration));
+    let mut solution =
+        Solution::start(system, SolverKind::Matrix, settings.iteration.solver_name());
     let start = Instant::now();
     progress.start(n as u64);
     let rows: Vec<Option<Couplings>> = (0..n)

@@ -13,6 +13,7 @@ mod matrix;
 mod progressive;
 mod sensors;
 mod solution;
+mod solver_kind;
 mod system;
 mod unshot_progress;
 
@@ -22,8 +23,9 @@ pub use lookup::{LeafHit, RadiosityLookup, Shading};
 pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};
 pub use solution::{
-    CONVERGENCE_ROWS, LinkSegment, PhaseTimes, Solution, SolverKind, power_fraction, source_power,
+    CONVERGENCE_ROWS, LinkSegment, PhaseTimes, Solution, power_fraction, source_power,
 };
+pub use solver_kind::SolverKind;
 pub use system::{Couplings, RadiositySystem, SystemOptions};
 
 use super::MeshError;

@@ -13,9 +13,11 @@
 //! no form factors.
 
 use super::SolveError;
-use super::solution::{Solution, SolverKind, power_fraction};
+use super::solution::{Solution, power_fraction};
+use super::solver_kind::SolverKind;
 use super::system::{Couplings, RadiositySystem};
 use super::unshot_progress::UnshotProgress;
+use crate::choice::Choice;
 use crate::color::Rgb64;
 use crate::progress::{Cancel, ProgressListener};
 use std::time::Instant;
@@ -55,7 +57,11 @@ pub fn solve_progressive(
     cancel: &Cancel,
 ) -> Result<Solution, SolveError> {
     let n = system.len();
-    let mut solution = Solution::start(system, SolverKind::Progressive);
+    let mut solution = Solution::start(
+        system,
+        SolverKind::Progressive,
+        SolverKind::Progressive.name(),
+    );
     let mut unshot: Vec<Rgb64> = solution.radiosity.clone();
     let mut cache: Vec<Option<Couplings>> = vec![None; n];
     let mut cached_bytes = 0usize;

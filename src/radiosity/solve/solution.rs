@@ -12,53 +12,16 @@
 //! (`Σ A_i H_light,i`), and the escaped power is what is emitted but not absorbed by any
 //! patch (light leaving an open scene, plus the small imbalance of the discretisation).
 
-use super::hierarchical::{Oracle, RoundStats};
+use super::hierarchical::RoundStats;
 use super::interpolate::vertex_radiosity;
 use super::lightmap;
-use super::matrix::Iteration;
+use super::solver_kind::SolverKind;
 use super::system::RadiositySystem;
 use crate::color::Rgb64;
 use crate::measure::{LitMesh, Measurement, Stats, SurfacePower, SurfaceTable};
 use crate::radiosity::element::Side;
 use glam::DVec3;
 use glam::{Vec2, Vec3};
-
-/// Which solver produced a solution.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SolverKind {
-    /// The full matrix, iterated by the given scheme.
-    Matrix(Iteration),
-    /// Progressive refinement (shooting).
-    Progressive,
-    /// Hierarchical radiosity, refined by the given oracle.
-    Hierarchical(Oracle),
-    /// Hierarchical shooting, receivers refined by the given oracle.
-    HierarchicalShooting(Oracle),
-}
-
-impl SolverKind {
-    /// The solver's name in reports: `matrix-jacobi`, `matrix-gauss-seidel`, `progressive`,
-    /// `hierarchical`, `hierarchical-shooting`.
-    pub fn name(self) -> &'static str {
-        match self {
-            SolverKind::Matrix(Iteration::Jacobi) => "matrix-jacobi",
-            SolverKind::Matrix(Iteration::GaussSeidel) => "matrix-gauss-seidel",
-            SolverKind::Progressive => "progressive",
-            SolverKind::Hierarchical(_) => "hierarchical",
-            SolverKind::HierarchicalShooting(_) => "hierarchical-shooting",
-        }
-    }
-
-    /// What the convergence history measures: the `residual` of a sweep or the `unshot`
-    /// power after a shot.
-    pub fn convergence_measure(self) -> &'static str {
-        match self {
-            SolverKind::Matrix(_) => "residual",
-            SolverKind::Progressive | SolverKind::HierarchicalShooting(_) => "unshot",
-            SolverKind::Hierarchical(_) => "change",
-        }
-    }
-}
 
 /// Wall-clock seconds per phase of a solve.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -71,17 +34,14 @@ pub struct PhaseTimes {
     pub iterations: f64,
 }
 
-impl std::fmt::Display for SolverKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
 /// The result of a radiosity solver, per element of its [`RadiositySystem`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solution {
     /// The solver that produced it.
     pub solver: SolverKind,
+    /// The solver's name in reports: `matrix-jacobi`, `matrix-gauss-seidel`, `progressive`,
+    /// `hierarchical`, `hierarchical-shooting`.
+    pub solver_name: &'static str,
     /// Radiosity `B` per element (one side of a leaf), W·m⁻².
     pub radiosity: Vec<Rgb64>,
     /// Irradiance `H` gathered per element (light links included), W·m⁻².
@@ -159,7 +119,7 @@ impl Solution {
     /// its statistics, under the solver's name.
     pub fn measurement(&self, system: &RadiositySystem) -> Measurement {
         Measurement {
-            solver: self.solver.name(),
+            solver: self.solver_name,
             power: self.surface_power(system),
             sensors: self.sensor_readings(system),
             stats: self.stats(system),
@@ -284,9 +244,14 @@ impl Solution {
     }
 
     /// The initial state: radiosity = source term, irradiance = light-link irradiance.
-    pub(super) fn start(system: &RadiositySystem, solver: SolverKind) -> Solution {
+    pub(super) fn start(
+        system: &RadiositySystem,
+        solver: SolverKind,
+        solver_name: &'static str,
+    ) -> Solution {
         Solution {
             solver,
+            solver_name,
             radiosity: (0..system.len()).map(|k| system.source(k)).collect(),
             irradiance: system.light_irradiance.clone(),
             direct_irradiance: None,

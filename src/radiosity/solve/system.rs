@@ -30,6 +30,7 @@ use crate::radiosity::{
 };
 use crate::world::World;
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
@@ -78,8 +79,8 @@ impl Couplings {
 
 /// The radiosity system of one scene: the two sides of its leaf patches with their areas,
 /// emission, reflectance and light-link irradiance, and the couplings computed on demand.
-pub struct RadiositySystem<'w> {
-    world: &'w World,
+pub struct RadiositySystem {
+    world: Arc<World>,
     /// The patch mesh (all quadtree nodes).
     pub mesh: PatchMesh,
     /// The leaf patches; leaf index `k` is patch `leaves[k]`.
@@ -102,16 +103,16 @@ pub struct RadiositySystem<'w> {
     pub setup_seconds: f64,
     /// Per element: the largest distance from its patch's centroid to a corner.
     radius: Vec<f64>,
-    visibility: Visibility<'w>,
+    visibility: Visibility,
     options: SystemOptions,
     form_factors: AtomicU64,
     visibility_rays: AtomicU64,
 }
 
-impl<'w> RadiositySystem<'w> {
+impl RadiositySystem {
     /// Meshes `world`'s scene, averages emission and reflectance over each side of each leaf
     /// and gathers the light-link irradiance (in parallel over elements).
-    pub fn new(world: &'w World, options: SystemOptions) -> Result<Self, SolveError> {
+    pub fn new(world: &Arc<World>, options: SystemOptions) -> Result<Self, SolveError> {
         let start = Instant::now();
         let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
         let mut system = Self::from_mesh(world, mesh, options, None)?;
@@ -123,7 +124,7 @@ impl<'w> RadiositySystem<'w> {
     /// irradiance per element is `linked` when given (a solver that linked the lights
     /// itself), else gathered here.
     pub fn from_mesh(
-        world: &'w World,
+        world: &Arc<World>,
         mesh: PatchMesh,
         options: SystemOptions,
         linked: Option<Vec<Rgb64>>,
@@ -180,7 +181,7 @@ impl<'w> RadiositySystem<'w> {
                 .collect()
         });
         Ok(RadiositySystem {
-            world,
+            world: Arc::clone(world),
             leaves,
             elements,
             area,
@@ -199,8 +200,8 @@ impl<'w> RadiositySystem<'w> {
     }
 
     /// The world the system was built from.
-    pub fn world(&self) -> &'w World {
-        self.world
+    pub fn world(&self) -> &World {
+        &self.world
     }
 
     /// The options it was built with.
@@ -209,7 +210,7 @@ impl<'w> RadiositySystem<'w> {
     }
 
     /// The visibility between patches (and from points), with the world its rays meet.
-    pub fn visibility(&self) -> &Visibility<'w> {
+    pub fn visibility(&self) -> &Visibility {
         &self.visibility
     }
 

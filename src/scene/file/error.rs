@@ -14,6 +14,14 @@ pub enum SceneError {
         /// What went wrong.
         reason: String,
     },
+    /// A mesh file loaded as a scene on its own could not be read or holds no faces.
+    #[error("{path}: {message}")]
+    Mesh {
+        /// The mesh file as named by the caller.
+        path: String,
+        /// What went wrong (naming the file where the importer does).
+        message: String,
+    },
     /// The file is not valid TOML, does not follow the format, or describes an invalid scene
     /// (including mesh and texture files that cannot be read).
     #[error("{file}:{line}:{column}: {field}: {message}")]

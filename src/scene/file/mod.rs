@@ -1,6 +1,7 @@
 //! The TOML scene file format (specified in `docs/scene-format.md`): parsing, validation and
 //! building a [`Scene`], with errors that name the file, line, column and field.
 
+mod bare_mesh;
 mod build;
 mod camera;
 mod error;
@@ -17,6 +18,7 @@ mod textures;
 mod transform;
 mod value;
 
+pub use bare_mesh::load_mesh_file;
 pub use error::SceneError;
 
 use super::Scene;

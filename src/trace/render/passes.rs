@@ -128,7 +128,9 @@ pub fn render_progressive(
         width: w,
     };
     let start = Instant::now();
-    let deadline = settings.time_limit.map(|limit| start + limit);
+    let deadline = settings
+        .time_limit
+        .and_then(|limit| start.checked_add(limit));
     let target = settings.samples_per_pixel.max(1);
     let mut sums = vec![Rgb::BLACK; w as usize * h as usize];
     let mut done = 0u32;

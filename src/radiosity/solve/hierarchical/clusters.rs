@@ -559,6 +559,7 @@ mod tests {
     use crate::scene::{Material, Scene};
     use crate::world::World;
     use glam::Vec3;
+    use std::sync::Arc;
 
     /// Two grids of `k × k` squares of side `side`, one at y = 0 facing up and one at
     /// y = `height` facing down, centred on the y axis.
@@ -618,7 +619,7 @@ mod tests {
     fn a_link_within_a_cluster_splits_into_every_ordered_pair_of_its_children() {
         let scene = grids(1, 0.1, 1.0);
         let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
-        let world = World::new(scene.clone(), AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(scene.clone(), AccelKind::Bvh).unwrap());
         let visibility = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         let tree = ClusterTree::new(&scene, &mesh).unwrap();
         let root = tree.root();
@@ -645,7 +646,7 @@ mod tests {
     fn grid_transport(k: usize, side: f32, height: f32) -> (f64, f64) {
         let scene = grids(k, side, height);
         let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
-        let world = World::new(scene.clone(), AccelKind::Bvh).unwrap();
+        let world = Arc::new(World::new(scene.clone(), AccelKind::Bvh).unwrap());
         let visibility = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         let tree = ClusterTree::new(&scene, &mesh).unwrap();
         let low: Vec<PatchId> = (0..mesh.roots.len() as PatchId).step_by(2).collect();

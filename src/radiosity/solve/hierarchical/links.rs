@@ -234,7 +234,7 @@ pub struct Linker<'a> {
     /// The scene's world.
     pub world: &'a World,
     /// The visibility estimator.
-    pub visibility: &'a Visibility<'a>,
+    pub visibility: &'a Visibility,
     /// Receiver points per axis of the light links' mean irradiance.
     pub link_samples: u32,
     /// Rays cast so far.

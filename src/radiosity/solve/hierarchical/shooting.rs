@@ -35,20 +35,21 @@ use crate::radiosity::solve::{
     PhaseTimes, RadiositySystem, ShootingSettings, Solution, SolveError, SolverKind, SystemOptions,
 };
 use crate::world::World;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Solves `world`'s scene by hierarchical shooting: the oracle, error and minimum area come
 /// from `settings`, the tolerance and the most shots from `shooting` (overshooting is not
 /// used). `progress` advances on a log scale of the unshot power; `cancel` stops after the
 /// current shot and keeps the state reached.
-pub fn solve_hierarchical_shooting<'w>(
-    world: &'w World,
+pub fn solve_hierarchical_shooting(
+    world: &Arc<World>,
     options: SystemOptions,
     settings: &HierarchicalSettings,
     shooting: &ShootingSettings,
     progress: &dyn ProgressListener,
     cancel: &Cancel,
-) -> Result<(RadiositySystem<'w>, Solution), SolveError> {
+) -> Result<(RadiositySystem, Solution), SolveError> {
     let start = Instant::now();
     let (mesh, visibility) = prepare(world, &options)?;
     let light_settings = HierarchicalSettings {
@@ -96,7 +97,7 @@ pub fn solve_hierarchical_shooting<'w>(
     // the light share of the irradiance consistent for the report.
     solver.nodes.push_pull(&solver.mesh);
     let converged = fraction <= shooting.tolerance;
-    let kind = SolverKind::HierarchicalShooting(settings.oracle);
+    let kind = SolverKind::HierarchicalShooting;
     solver.into_solution(
         kind,
         options,

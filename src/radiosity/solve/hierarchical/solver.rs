@@ -6,6 +6,7 @@ use super::links::{LightLink, Link, Linker, Prior};
 use super::nodes::{Nodes, node, split_node};
 use super::oracle::{Decision, Limits, decide, decide_light};
 use super::{HierarchicalSettings, RefinePass};
+use crate::choice::Choice;
 use crate::color::Rgb64;
 use crate::measure::peak_resident_bytes;
 use crate::progress::{Cancel, ProgressListener};
@@ -18,6 +19,7 @@ use crate::radiosity::surface::is_textured;
 use crate::radiosity::visibility::Visibility;
 use crate::world::World;
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
@@ -76,7 +78,7 @@ struct Applied {
 /// The state of a solve (shared with hierarchical shooting, which uses the nodes, the light
 /// links and the linker but keeps no patch links).
 pub(super) struct Solver<'w, 'v> {
-    pub(super) world: &'w World,
+    pub(super) world: &'w Arc<World>,
     pub(super) mesh: PatchMesh,
     pub(super) nodes: Nodes,
     links: Vec<Link>,
@@ -90,10 +92,10 @@ pub(super) struct Solver<'w, 'v> {
 
 /// The root patches of `world`'s scene meshed by `options`, and the visibility estimator
 /// for links between their nodes.
-pub(super) fn prepare<'w>(
-    world: &'w World,
+pub(super) fn prepare(
+    world: &Arc<World>,
     options: &SystemOptions,
-) -> Result<(PatchMesh, Visibility<'w>), SolveError> {
+) -> Result<(PatchMesh, Visibility), SolveError> {
     let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
     if mesh.roots.is_empty() {
         return Err(SolveError::NoPatches);
@@ -106,13 +108,13 @@ pub(super) fn prepare<'w>(
 /// initial subdivision) and the visibility and light-link settings come from `options`.
 /// `progress` counts rounds; `cancel` stops after the current gather or refinement pass and
 /// keeps the state reached. Returns the system on the final leaves and its solution.
-pub fn solve_hierarchical<'w>(
-    world: &'w World,
+pub fn solve_hierarchical(
+    world: &Arc<World>,
     options: SystemOptions,
     settings: &HierarchicalSettings,
     progress: &dyn ProgressListener,
     cancel: &Cancel,
-) -> Result<(RadiositySystem<'w>, Solution), SolveError> {
+) -> Result<(RadiositySystem, Solution), SolveError> {
     let start = Instant::now();
     let (mesh, visibility) = prepare(world, &options)?;
     let mut solver = Solver::new(world, mesh, &visibility, &options, settings);
@@ -160,7 +162,7 @@ pub fn solve_hierarchical<'w>(
         times.iterations += r.seconds_gather + r.seconds_push_pull;
     }
     let convergence = rounds.iter().map(|r| r.residual).collect();
-    let kind = SolverKind::Hierarchical(settings.oracle);
+    let kind = SolverKind::Hierarchical;
     solver.into_solution(
         kind,
         options,
@@ -175,9 +177,9 @@ pub fn solve_hierarchical<'w>(
 impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// A solver on the root patches `mesh` with no links yet; its limits are set.
     pub(super) fn new(
-        world: &'w World,
+        world: &'w Arc<World>,
         mesh: PatchMesh,
-        visibility: &'v Visibility<'v>,
+        visibility: &'v Visibility,
         options: &SystemOptions,
         settings: &HierarchicalSettings,
     ) -> Self {
@@ -569,7 +571,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         converged: bool,
         interrupted: bool,
         rounds: Vec<RoundStats>,
-    ) -> Result<(RadiositySystem<'w>, Solution), SolveError> {
+    ) -> Result<(RadiositySystem, Solution), SolveError> {
         let leaves = self.mesh.leaves();
         let per_element = |values: &Vec<Rgb64>| -> Vec<Rgb64> {
             leaves
@@ -619,10 +621,10 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         system.count_work(form_factors, rays);
         let solution = Solution {
             solver: kind,
+            solver_name: kind.name(),
             radiosity,
             irradiance,
-            direct_irradiance: matches!(kind, SolverKind::Hierarchical(_))
-                .then_some(direct_irradiance),
+            direct_irradiance: (kind == SolverKind::Hierarchical).then_some(direct_irradiance),
             ambient: Rgb64::BLACK,
             convergence,
             converged,

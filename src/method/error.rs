@@ -1,0 +1,51 @@
+//! Why a method could not run.
+
+use crate::light_model::LightTraceError;
+use crate::radiosity::solve::SolveError;
+
+/// A setting outside its range, named as the command line names it (`min-area`,
+/// `time-limit`): displays as `min-area must lie between 0 and 1 (got 0)`.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{setting} {problem}")]
+pub struct SettingError {
+    /// The setting, in kebab case.
+    pub setting: &'static str,
+    /// What is wrong with its value.
+    pub problem: String,
+}
+
+impl SettingError {
+    /// `setting` has a value that `problem` describes.
+    pub fn new(setting: &'static str, problem: impl Into<String>) -> Self {
+        SettingError {
+            setting,
+            problem: problem.into(),
+        }
+    }
+}
+
+/// An error of [`super::run`].
+#[derive(Debug, thiserror::Error)]
+pub enum MethodError {
+    /// A setting is out of range ([`super::Method::check`]).
+    #[error(transparent)]
+    Setting(#[from] SettingError),
+    /// The camera cannot make rays (look_at at the position, up along the view, or a field
+    /// of view outside 0–180°).
+    #[error("the camera is degenerate")]
+    DegenerateCamera,
+    /// A radiosity image was asked to draw the links of an object the scene does not have.
+    #[error("links: no object named '{name}' (objects: {})", .objects.join(", "))]
+    NoSuchObject {
+        /// The name asked for.
+        name: String,
+        /// The names the scene's objects have.
+        objects: Vec<String>,
+    },
+    /// The light model refused the scene.
+    #[error(transparent)]
+    LightTrace(#[from] LightTraceError),
+    /// A radiosity solver refused the scene.
+    #[error(transparent)]
+    Radiosity(#[from] SolveError),
+}

@@ -1,0 +1,339 @@
+//! Running a method: the one entry point every front end calls.
+
+use super::outcome::{Outcome, SolvedRadiosity};
+use super::settings::{
+    Antialias, FinalGatherSettings, ImageSize, LinkSelection, PathTraceSettings,
+    RadiosityImageSettings, RadiositySettings, RayTraceSettings, SensorTraceSettings,
+};
+use super::{Method, MethodError};
+use crate::choice::Choice;
+use crate::final_gather::FinalGather;
+use crate::light_model::{LightTraceSettings, trace_light};
+use crate::progress::{Cancel, ProgressListener};
+use crate::radiosity::solve::hierarchical::{solve_hierarchical, solve_hierarchical_shooting};
+use crate::radiosity::solve::{
+    DisplaySettings, LinkDisplay, RadiosityLookup, RadiositySystem, SolverKind, solve_matrix,
+    solve_progressive,
+};
+use crate::sampling::SequenceKind;
+use crate::trace::{
+    Integrator, PathTracer, ProgressiveSettings, RenderOutput, RenderSettings, SensorSettings,
+    StandardRayTracer, render, render_progressive, sensor_readings,
+};
+use crate::world::World;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// Runs `method` on `world` in the current rayon thread pool (install the run in a pool of
+/// N threads to use N; the result is the same for any number). `progress` hears each phase
+/// and its units of work, from several threads; `cancel`, set from any thread, stops the
+/// work within one unit and keeps what is done (the outcome is then marked incomplete).
+pub fn run(
+    world: &Arc<World>,
+    method: &Method,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Outcome, MethodError> {
+    method.check()?;
+    let start = Instant::now();
+    let mut outcome = match method {
+        Method::RayTrace(s) => ray_trace(world, s, progress, cancel)?,
+        Method::PathTrace(s) => path_trace(world, s, progress, cancel)?,
+        Method::RadiosityImage(s) => radiosity_image(world, s, progress, cancel)?,
+        Method::FinalGather(s) => final_gather(world, s, progress, cancel)?,
+        Method::SensorTrace(s) => sensor_trace(world, s),
+        Method::LightTrace(s) => light_trace(world, s, progress, cancel)?,
+        Method::Radiosity(s) => {
+            let solved = solve_radiosity(world, s, progress, cancel)?;
+            Outcome {
+                measurement: Some(solved.measurement()),
+                summary: solved.summary(),
+                complete: !solved.solution.interrupted,
+                radiosity: Some(solved),
+                ..empty()
+            }
+        }
+    };
+    outcome.seconds = start.elapsed().as_secs_f64();
+    Ok(outcome)
+}
+
+/// An outcome with nothing in it yet.
+fn empty() -> Outcome {
+    Outcome {
+        image: None,
+        subdivisions: Vec::new(),
+        measurement: None,
+        sensor_readings: Vec::new(),
+        radiosity: None,
+        summary: String::new(),
+        complete: true,
+        seconds: 0.0,
+    }
+}
+
+/// Meshes and solves `world` by the radiosity solver of `settings` (progress phases
+/// `refining`, `shooting` or `form factors`); cancelling keeps the state reached.
+pub fn solve_radiosity(
+    world: &Arc<World>,
+    settings: &RadiositySettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<SolvedRadiosity, MethodError> {
+    settings.check()?;
+    let options = settings.system;
+    let (system, solution) = match settings.solver {
+        SolverKind::Hierarchical => {
+            progress.phase("refining");
+            solve_hierarchical(world, options, &settings.hierarchical, progress, cancel)?
+        }
+        SolverKind::HierarchicalShooting => {
+            progress.phase("shooting");
+            solve_hierarchical_shooting(
+                world,
+                options,
+                &settings.hierarchical,
+                &settings.shooting,
+                progress,
+                cancel,
+            )?
+        }
+        SolverKind::Matrix => {
+            let system = RadiositySystem::new(world, options)?;
+            progress.phase("form factors");
+            let solution = solve_matrix(&system, &settings.matrix, progress, cancel)?;
+            (system, solution)
+        }
+        SolverKind::Progressive => {
+            let system = RadiositySystem::new(world, options)?;
+            progress.phase("shooting");
+            let solution = solve_progressive(&system, &settings.shooting, progress, cancel)?;
+            (system, solution)
+        }
+    };
+    Ok(SolvedRadiosity { system, solution })
+}
+
+/// The image size asked for, refusing a degenerate camera.
+fn image_size(world: &World, size: ImageSize) -> Result<(u32, u32), MethodError> {
+    let (width, height) = size.resolve(&world.scene.camera);
+    match world.scene.camera.with_resolution(width, height).rays() {
+        Some(_) if width > 0 && height > 0 => Ok((width, height)),
+        _ => Err(MethodError::DegenerateCamera),
+    }
+}
+
+/// Renders `integrator` in tiles.
+fn render_tiles(
+    world: &World,
+    integrator: &dyn Integrator,
+    (size, seed, antialias): (ImageSize, u64, &Antialias),
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<RenderOutput, MethodError> {
+    let (width, height) = image_size(world, size)?;
+    let settings = RenderSettings {
+        width,
+        height,
+        antialias: antialias.mode,
+        samples_per_pixel: antialias.samples_per_pixel,
+        adaptive_threshold: antialias.threshold,
+        seed,
+        sequence: SequenceKind::Random,
+    };
+    progress.phase("rendering");
+    render(world, integrator, &settings, progress, cancel).ok_or(MethodError::DegenerateCamera)
+}
+
+/// The standard ray tracer's image.
+fn ray_trace(
+    world: &World,
+    s: &RayTraceSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Outcome, MethodError> {
+    let integrator = StandardRayTracer {
+        max_depth: s.max_depth,
+        light_samples: s.light_samples,
+        shadows: s.shadows,
+    };
+    let output = render_tiles(
+        world,
+        &integrator,
+        (s.size, s.seed, &s.antialias),
+        progress,
+        cancel,
+    )?;
+    Ok(Outcome {
+        image: Some(output.film),
+        subdivisions: output.subdivisions,
+        summary: format!("{} camera samples", output.samples_traced),
+        complete: output.complete,
+        ..empty()
+    })
+}
+
+/// The path tracer's image in progressive passes.
+fn path_trace(
+    world: &World,
+    s: &PathTraceSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Outcome, MethodError> {
+    let (width, height) = image_size(world, s.size)?;
+    let integrator = PathTracer::new(world, s.max_depth, s.first_hit_paths);
+    let settings = ProgressiveSettings {
+        width,
+        height,
+        samples_per_pixel: s.samples_per_pixel,
+        seed: s.seed,
+        // A limit beyond what a duration holds is no limit.
+        time_limit: s
+            .time_limit
+            .map(|t| Duration::try_from_secs_f64(t).unwrap_or(Duration::MAX)),
+    };
+    progress.phase("rendering");
+    let output = render_progressive(world, &integrator, &settings, progress, cancel)
+        .ok_or(MethodError::DegenerateCamera)?;
+    Ok(Outcome {
+        image: Some(output.film),
+        summary: format!(
+            "{} paths per pixel in {} passes",
+            output.samples_per_pixel, output.passes
+        ),
+        complete: output.complete,
+        ..empty()
+    })
+}
+
+/// A radiosity solution shown through the camera.
+fn radiosity_image(
+    world: &Arc<World>,
+    s: &RadiosityImageSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Outcome, MethodError> {
+    let (width, height) = image_size(world, s.size)?;
+    let links = match &s.links {
+        LinkSelection::None => LinkDisplay::None,
+        LinkSelection::All => LinkDisplay::All,
+        LinkSelection::Object(name) => {
+            let objects = &world.scene.objects;
+            let index = objects
+                .iter()
+                .position(|o| o.name.as_deref() == Some(name))
+                .ok_or_else(|| MethodError::NoSuchObject {
+                    name: name.clone(),
+                    objects: objects.iter().filter_map(|o| o.name.clone()).collect(),
+                })?;
+            LinkDisplay::Object(index as u32)
+        }
+    };
+    let solved = solve_radiosity(world, &s.radiosity, progress, cancel)?;
+    let settings = DisplaySettings {
+        links,
+        width,
+        height,
+        shading: s.shading,
+        wireframe: s.wireframe,
+        samples_per_axis: (s.samples_per_pixel.max(1) as f64).sqrt().ceil() as u32,
+    };
+    progress.phase("rendering");
+    let film = solved
+        .render(&world.scene.camera, &settings, progress, cancel)
+        .ok_or(MethodError::DegenerateCamera)?;
+    Ok(Outcome {
+        image: Some(film),
+        summary: format!(
+            "{} patches by {} ({} iterations)",
+            solved.system.leaves.len(),
+            solved.solution.solver_name,
+            solved.solution.iterations()
+        ),
+        complete: !solved.solution.interrupted && !cancel.is_requested(),
+        radiosity: Some(solved),
+        ..empty()
+    })
+}
+
+/// Direct light ray-traced, indirect light gathered from the radiosity solution.
+fn final_gather(
+    world: &Arc<World>,
+    s: &FinalGatherSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Outcome, MethodError> {
+    image_size(world, s.size)?;
+    let solved = solve_radiosity(world, &s.radiosity, progress, cancel)?;
+    let (system, solution) = (&solved.system, &solved.solution);
+    let integrator = FinalGather {
+        reflected: RadiosityLookup::new(system, solution.reflected_radiosity(system), s.shading)
+            .with_texture_detail(solution.display_irradiance(), false),
+        light_samples: s.light_samples,
+        gather_rays: s.gather_rays,
+    };
+    let output = render_tiles(
+        world,
+        &integrator,
+        (s.size, s.seed, &s.antialias),
+        progress,
+        cancel,
+    )?;
+    let summary = format!(
+        "{} camera samples, indirect light from {} patches by {}",
+        output.samples_traced,
+        system.leaves.len(),
+        solution.solver_name
+    );
+    let complete = output.complete && !solution.interrupted;
+    drop(integrator);
+    Ok(Outcome {
+        image: Some(output.film),
+        subdivisions: output.subdivisions,
+        summary,
+        complete,
+        radiosity: Some(solved),
+        ..empty()
+    })
+}
+
+/// The sensors' irradiance by rays from each sensor.
+fn sensor_trace(world: &World, s: &SensorTraceSettings) -> Outcome {
+    let settings = SensorSettings {
+        samples: s.samples,
+        paths: s.paths,
+        seed: s.seed,
+    };
+    let tracer = PathTracer::new(world, 1000, 1);
+    let integrator = s.path_tracing.then_some(&tracer as &dyn Integrator);
+    let readings = sensor_readings(world, integrator, &settings);
+    Outcome {
+        summary: format!("{} sensors", readings.len()),
+        sensor_readings: readings,
+        ..empty()
+    }
+}
+
+/// The light model.
+fn light_trace(
+    world: &World,
+    s: &LightTraceSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Outcome, MethodError> {
+    progress.phase("photons");
+    let out = trace_light(world, s, progress, cancel)?;
+    Ok(Outcome {
+        measurement: Some(out.measurement()),
+        summary: format!(
+            "{}, {} of {} photons, {} rays in {:.2} s",
+            crate::method::MethodKind::LightTrace.name(),
+            out.photons_traced,
+            out.photons,
+            out.rays,
+            out.seconds
+        ),
+        complete: out.complete(),
+        ..empty()
+    })
+}
