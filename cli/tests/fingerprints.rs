@@ -1,5 +1,5 @@
-//! What users get, pinned bit for bit: every method's output on the Cornell box and an image
-//! of every built-in scene, produced by the `strahl` binary and compared with a fingerprint
+//! What users get, pinned bit for bit: every method's output on the Cornell box, an image
+//! of every built-in scene, and every lobe a material can have (`tests/data/lobes.toml`), produced by the `strahl` binary and compared with a fingerprint
 //! (64-bit FNV-1a) of its exact bytes.
 //!
 //! Images are written as PFM (the linear `f32` radiance, unrounded); reports as JSON with the
@@ -175,6 +175,28 @@ fn outputs_match_their_fingerprints() {
             "canopy",
             "solve canopy:300 --solver light-trace --photons 50000 --report {}/report.json",
             &[("report.json", 0x468b80157b511c98)],
+        ),
+        // Every lobe (Lambert, Phong, mirror, dielectric, and all four in one material) by
+        // the methods that follow them.
+        case(
+            "lobes-raytrace",
+            "render ../tests/data/lobes.toml -o {}/image.pfm --width 48 --height 36",
+            &[("image.pfm", 0x22e64d264e899000)],
+        ),
+        case(
+            "lobes-pathtrace",
+            "render ../tests/data/lobes.toml -o {}/image.pfm --method pathtrace --width 48 --height 36 --spp 16",
+            &[("image.pfm", 0xe00f4bc62551464d)],
+        ),
+        case(
+            "lobes-light-trace",
+            "solve ../tests/data/lobes.toml --solver light-trace --photons 100000 --report {}/report.json",
+            &[("report.json", 0xde20dbd3423662ff)],
+        ),
+        case(
+            "lobes-final-gather",
+            "render ../tests/data/lobes.toml -o {}/image.pfm --method final-gather --error 1e-3 --gather-rays 4 --spp 1 --width 32 --height 24",
+            &[("image.pfm", 0xf4e7cdb58e2d8a19)],
         ),
         case(
             "blocks",

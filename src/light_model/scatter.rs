@@ -1,24 +1,22 @@
 //! What happens to a photon at a surface: absorbed, or scattered by one of the material's
-//! parts (Lambert, normalised Phong, ideal mirror, smooth dielectric with Fresnel), chosen at
-//! random so that the expected outgoing power is exactly the material's.
+//! lobes ([`Lobe`]: Lambert, normalised Phong, ideal mirror, smooth dielectric with Fresnel),
+//! chosen at random so that the expected outgoing power is exactly the material's.
 //!
-//! The part k is chosen with probability `pₖ = Σ_c Φ_c·wₖ_c / Σ_c Φ_c` (Φ the photon's RGB
-//! power, wₖ the part's RGB weight) and the photon continues with `Φ·wₖ/pₖ`; with probability
+//! The lobe k is chosen with probability `pₖ = Σ_c Φ_c·wₖ_c / Σ_c Φ_c` (Φ the photon's RGB
+//! power, wₖ the lobe's RGB weight) and the photon continues with `Φ·wₖ/pₖ`; with probability
 //! `1 − Σₖ pₖ` it is absorbed (Russian roulette by the material's albedo). The channel sum
-//! of the power is kept by every choice except the Phong part, whose sampled direction
+//! of the power is kept by every choice except the Phong lobe, whose sampled direction
 //! carries the factor `(s+2)/(s+1)·cos θ` (normalised lobe over its sampling density).
 //! Diffuse directions are cosine-distributed about the geometric normal; mirror, Phong and
 //! refraction directions use the shading normal, and a direction that would leave on the
 //! wrong side of the geometric normal is absorbed.
 
 use crate::color::{Rgb, Rgb64};
-use crate::geometry::Frame;
 use crate::sampling::Sampler;
-use crate::sampling::warp::cosine_hemisphere;
 use crate::scene::Scene;
-use crate::world::optics::{fresnel_dielectric, reflect, refract, sample_phong};
+use crate::world::lobes::{Lobe, LocalView};
 use crate::world::{SurfaceHit, SurfaceMaterial};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// A photon leaving a surface.
 #[derive(Clone, Copy, Debug)]
@@ -47,35 +45,31 @@ pub fn scatter_photon(
         return None;
     }
     let side = if hit.front_face { 1.0 } else { -1.0 };
-    let n = hit.ns * side;
-    let ng = hit.ng * side;
-    let wo = -dir;
-    let parts = [m.diffuse, m.specular, m.mirror, m.transmission];
+    let view = LocalView {
+        n: hit.ns * side,
+        ng: hit.ng * side,
+        wo: -dir,
+        front_face: hit.front_face,
+    };
     let choice =
         |w: Rgb| (power.r * w.r as f64 + power.g * w.g as f64 + power.b * w.b as f64) / total;
     let u = sampler.next_1d() as f64;
     let mut cumulative = 0.0;
     let mut chosen = None;
-    for (k, &w) in parts.iter().enumerate() {
+    for lobe in Lobe::ALL {
+        let w = lobe.weight(&m);
         let p = choice(w);
         cumulative += p;
         if p > 0.0 && u < cumulative {
-            chosen = Some((k, w, p));
+            chosen = Some((lobe, w, p));
             break;
         }
     }
-    let (k, w, p) = chosen?;
+    let (lobe, w, p) = chosen?;
     let u2 = sampler.next_2d();
-    let (out, factor) = match k {
-        0 => (Frame::from_normal(ng).to_world(cosine_hemisphere(u2)), 1.0),
-        1 => phong_direction(n, wo, m.shininess, u2)?,
-        2 => (reflect(wo, n), 1.0),
-        _ => (
-            dielectric_direction(n, wo, hit.front_face, m.ior, sampler.next_1d()),
-            1.0,
-        ),
-    };
-    let transmitted = k == 3 && out.dot(ng) < 0.0;
+    let (out, factor) = lobe.sample_photon(&m, &view, u2, sampler)?;
+    let ng = view.ng;
+    let transmitted = lobe.transmits() && out.dot(ng) < 0.0;
     if (out.dot(ng) <= 0.0) != transmitted {
         return None;
     }
@@ -84,26 +78,6 @@ pub fn scatter_photon(
         dir: out,
         power: power * w.to_f64() * scale,
     })
-}
-
-/// A direction from the normalised Phong lobe about the mirror direction of `wo`
-/// ([`sample_phong`]) and the lobe's weight factor `(s+2)/(s+1)·cos θ`; `None` below the
-/// surface.
-fn phong_direction(n: Vec3, wo: Vec3, shininess: f32, u: Vec2) -> Option<(Vec3, f32)> {
-    let wi = sample_phong(n, wo, shininess, u);
-    let cos = wi.dot(n);
-    (cos > 0.0).then(|| (wi, (shininess + 2.0) / (shininess + 1.0) * cos))
-}
-
-/// Reflection or refraction at a smooth dielectric (ior behind the front face), chosen with
-/// the Fresnel reflectance from the uniform number `u`.
-fn dielectric_direction(n: Vec3, wo: Vec3, front_face: bool, ior: f32, u: f32) -> Vec3 {
-    let eta = if front_face { 1.0 / ior } else { ior };
-    let fresnel = fresnel_dielectric(wo.dot(n), eta);
-    match refract(wo, n, eta) {
-        Some(t) if u >= fresnel => t,
-        _ => reflect(wo, n),
-    }
 }
 
 #[cfg(test)]

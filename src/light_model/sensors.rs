@@ -54,7 +54,7 @@ pub(super) fn connect_reflection(
     (out, part): (&mut [[Rgb64; 2]], usize),
 ) {
     let m = SurfaceMaterial::at(&world.scene, hit);
-    if m.is_black_from(hit.front_face) || (m.diffuse.is_black() && m.specular.is_black()) {
+    if m.is_black_from(hit.front_face) || !m.has_density() {
         return;
     }
     let side = if hit.front_face { 1.0 } else { -1.0 };

@@ -101,7 +101,8 @@ pub fn light_irradiance(
 }
 
 /// The share of the intensity that `light` sends toward `x`: the spot falloff, the cosine
-/// for a Lambertian light, 1 for a point light.
+/// for a Lambertian light, 1 for a point light (and for the lights that send no intensity
+/// from a point: directional light and sky).
 fn falloff(light: &LightKind, x: DVec3) -> f64 {
     match *light {
         LightKind::Lambertian {
@@ -123,7 +124,7 @@ fn falloff(light: &LightKind, x: DVec3) -> f64 {
             let cos = toward.dot(direction.as_dvec3().normalize_or_zero());
             LightKind::spot_falloff(cos as f32, inner_degrees, outer_degrees) as f64
         }
-        _ => 1.0,
+        LightKind::Point { .. } | LightKind::Directional { .. } | LightKind::Sky { .. } => 1.0,
     }
 }
 

@@ -10,7 +10,7 @@
 use super::element::Side;
 use super::mesh::Patch;
 use crate::color::Rgb64;
-use crate::scene::{Coverage, MaterialId, Scene, TextureId};
+use crate::scene::{Coverage, Lobe, MaterialId, Scene, TextureId};
 use glam::DVec2;
 use std::f64::consts::PI;
 
@@ -90,13 +90,13 @@ pub fn emission_of(scene: &Scene, material: MaterialId, side: Side, at: TextureA
 
 /// Diffuse reflectance in `[0, 1]` of side `side` of a patch of `scene` with material
 /// `material`, the diffuse texture taken `at` the patch or a point; 0 on the back of a
-/// `one_sided` material. Specular, mirror and transmission parts are ignored.
+/// `one_sided` material: the weight of its Lambert lobe (radiosity ignores the others).
 pub fn reflectance_of(scene: &Scene, material: MaterialId, side: Side, at: TextureAt) -> Rgb64 {
     let m = &scene.materials[material as usize];
     if m.one_sided && side == Side::Back {
         return Rgb64::BLACK;
     }
-    (m.diffuse.to_f64() * at.colour(scene, m.diffuse_texture, m.alpha_texture))
+    (m.lobe_weight(Lobe::Lambert).to_f64() * at.colour(scene, m.diffuse_texture, m.alpha_texture))
         .map(|v| v.clamp(0.0, 1.0))
 }
 
@@ -120,15 +120,13 @@ pub fn is_textured(scene: &Scene, material: MaterialId) -> bool {
 }
 
 /// The names of the materials of `scene`'s objects that reflect or pass light other than
-/// diffusely (specular, mirror or transmission parts), in order of first use: radiosity
-/// counts that light as absorbed.
+/// diffusely (any lobe besides Lambert's), in order of first use: radiosity counts that light
+/// as absorbed.
 pub fn non_diffuse_materials(scene: &Scene) -> Vec<&str> {
     let mut names: Vec<&str> = Vec::new();
     for object in &scene.objects {
         let m = &scene.materials[object.material as usize];
-        let diffuse_only =
-            m.specular.is_black() && m.mirror.is_black() && m.transmission.is_black();
-        if !diffuse_only && !names.contains(&m.name.as_str()) {
+        if !m.is_lambertian() && !names.contains(&m.name.as_str()) {
             names.push(&m.name);
         }
     }

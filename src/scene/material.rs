@@ -6,8 +6,47 @@ use crate::color::Rgb;
 /// Index of a material in [`super::Scene::materials`].
 pub type MaterialId = u32;
 
-/// A surface material. Its parts add up: diffuse (Lambert) reflectance, Phong glossy
-/// reflection, ideal mirror reflection and ideal refraction; every part is an RGB weight in
+/// The ways a material scatters light, each with an RGB weight in the material
+/// ([`Material::lobe_weight`]); the order is the one samplers choose in. Each lobe's
+/// scattering is in its own file of `world::lobes`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Lobe {
+    /// Lambertian (diffuse) reflection, BRDF ρ/π.
+    Lambert,
+    /// The normalised Phong lobe about the mirror direction (glossy reflection).
+    Phong,
+    /// Ideal mirror reflection.
+    Mirror,
+    /// A smooth dielectric: Fresnel reflection and Snell refraction.
+    Dielectric,
+}
+
+impl Lobe {
+    /// Every lobe, in the order samplers choose among them: those with a density first.
+    pub const ALL: [Lobe; 4] = [Lobe::Lambert, Lobe::Phong, Lobe::Mirror, Lobe::Dielectric];
+
+    /// True for lobes that scatter into single directions (no density): mirror and
+    /// dielectric.
+    pub fn is_delta(self) -> bool {
+        match self {
+            Lobe::Lambert | Lobe::Phong => false,
+            Lobe::Mirror | Lobe::Dielectric => true,
+        }
+    }
+
+    /// The lobe's position in [`Lobe::ALL`].
+    pub fn index(self) -> usize {
+        match self {
+            Lobe::Lambert => 0,
+            Lobe::Phong => 1,
+            Lobe::Mirror => 2,
+            Lobe::Dielectric => 3,
+        }
+    }
+}
+
+/// A surface material. Its lobes add up: diffuse (Lambert) reflectance, Phong glossy
+/// reflection, ideal mirror reflection and ideal refraction; every lobe has an RGB weight in
 /// `[0, 1]` and their sum per channel must not exceed 1 (energy conservation, checked when a
 /// scene is loaded).
 #[derive(Clone, Debug, PartialEq)]
@@ -84,8 +123,29 @@ impl Material {
         !self.emission.is_black()
     }
 
+    /// The weight of `lobe` (reflectance or transmittance per channel, in `[0, 1]`; the
+    /// diffuse weight before its texture).
+    pub fn lobe_weight(&self, lobe: Lobe) -> Rgb {
+        match lobe {
+            Lobe::Lambert => self.diffuse,
+            Lobe::Phong => self.specular,
+            Lobe::Mirror => self.mirror,
+            Lobe::Dielectric => self.transmission,
+        }
+    }
+
+    /// True when the material scatters by its Lambert lobe alone (what radiosity models).
+    pub fn is_lambertian(&self) -> bool {
+        Lobe::ALL
+            .iter()
+            .all(|&lobe| lobe == Lobe::Lambert || self.lobe_weight(lobe).is_black())
+    }
+
     /// Largest per-channel sum of the reflected and transmitted fractions (must be ≤ 1).
     pub fn albedo_bound(&self) -> f32 {
-        (self.diffuse + self.specular + self.mirror + self.transmission).max_channel()
+        Lobe::ALL
+            .iter()
+            .fold(Rgb::BLACK, |sum, &lobe| sum + self.lobe_weight(lobe))
+            .max_channel()
     }
 }

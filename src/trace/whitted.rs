@@ -8,7 +8,7 @@ use crate::color::Rgb;
 use crate::geometry::{Ray, spawn_ray};
 use crate::sampling::Sampler;
 use crate::world::World;
-use crate::world::optics::{fresnel_dielectric, reflect, refract};
+use crate::world::lobes::{Lobe, LocalView};
 
 /// Settings of the standard ray tracer.
 #[derive(Clone, Debug)]
@@ -49,19 +49,19 @@ impl StandardRayTracer {
             }
             weight * self.trace(world, &spawn_ray(hit.p, sp.ng, dir), depth + 1, sampler)
         };
-        radiance += follow(reflect(sp.wo, sp.n), m.mirror, sampler);
-        if !m.transmission.is_black() {
-            // Entering through the front face goes from air (1) into the material (ior).
-            let eta = if hit.front_face { 1.0 / m.ior } else { m.ior };
-            let cos_i = sp.wo.dot(sp.n);
-            let fresnel = fresnel_dielectric(cos_i, eta);
-            let mirror_dir = reflect(sp.wo, sp.n);
-            match refract(sp.wo, sp.n, eta) {
-                Some(t) => {
-                    radiance += follow(mirror_dir, m.transmission * fresnel, sampler);
-                    radiance += follow(t, m.transmission * (1.0 - fresnel), sampler);
-                }
-                None => radiance += follow(mirror_dir, m.transmission, sampler),
+        let view = LocalView {
+            n: sp.n,
+            ng: sp.ng,
+            wo: sp.wo,
+            front_face: hit.front_face,
+        };
+        // Every branch of every delta lobe (mirror, dielectric), in lobe order.
+        for lobe in Lobe::ALL {
+            if lobe.weight(&m).is_black() {
+                continue;
+            }
+            for (dir, weight) in lobe.branches(&m, &view).into_iter().flatten() {
+                radiance += follow(dir, weight, sampler);
             }
         }
         radiance

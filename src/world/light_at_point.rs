@@ -27,7 +27,10 @@ pub fn point_irradiance(
         LightKind::Sky { radiance } => {
             radiance.to_f64() * (PI * sky_share(world, &[(x, 1.0)], normal, sky_per_axis))
         }
-        _ => {
+        LightKind::Point { .. }
+        | LightKind::Lambertian { .. }
+        | LightKind::Spot { .. }
+        | LightKind::Directional { .. } => {
             let Some(inc) = light.incidence(x.as_vec3()) else {
                 return Rgb64::BLACK;
             };

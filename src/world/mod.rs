@@ -4,8 +4,9 @@
 //! ([`SceneGeometry`], the second stage of intersection included), an accelerator over them,
 //! and the lights as samplers see them ([`LightSet`]), with the irradiance a non-surface
 //! light sends to a point ([`point_irradiance`]). [`SurfaceMaterial`] is a material at a
-//! surface point with its textures applied; [`optics`] holds the mirror, refraction, Fresnel
-//! and Phong formulas both the ray tracers and the light model scatter by.
+//! surface point with its textures applied; [`lobes`] holds what the ray tracers, the path
+//! tracer and the light model ask of each lobe it scatters by (one file per lobe), on the
+//! mirror, refraction and Fresnel formulas of [`optics`].
 //!
 //! Invariant: primitive indices are fixed when the world is built (triangles first, sorted
 //! along a Morton curve, then analytic shapes), so every accelerator, light and hit refers to
@@ -13,6 +14,7 @@
 
 mod light_at_point;
 mod lights;
+pub mod lobes;
 pub mod optics;
 mod ray_bench;
 mod scene_geometry;

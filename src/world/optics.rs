@@ -1,10 +1,7 @@
-//! Optics of smooth and glossy surfaces: mirror and refracted directions, the Fresnel
-//! reflectance of a dielectric, and the normalised Phong lobe with the direction sampling
-//! that follows it.
+//! Optics of smooth surfaces: mirror and refracted directions and the Fresnel reflectance
+//! of a dielectric.
 
-use crate::geometry::Frame;
-use glam::{Vec2, Vec3};
-use std::f32::consts::{FRAC_1_PI, PI};
+use glam::Vec3;
 
 /// Mirror direction of `w` (pointing away from the surface) about the unit normal `n`.
 #[inline]
@@ -40,44 +37,9 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     0.5 * (r_s * r_s + r_p * r_p)
 }
 
-/// Normalised Phong lobe `(s+2)/(2π)·cosˢα`, α the angle between `wi` and the mirror
-/// direction of `wo`. Reflects at most the lobe weight for any incidence.
-#[inline]
-pub fn phong_lobe(n: Vec3, wo: Vec3, wi: Vec3, shininess: f32) -> f32 {
-    let cos_alpha = reflect(wo, n).dot(wi);
-    if cos_alpha <= 0.0 {
-        0.0
-    } else {
-        (shininess + 2.0) / (2.0 * PI) * cos_alpha.powf(shininess)
-    }
-}
-
-/// A direction about the mirror direction of `wo` (unit, pointing away from the surface with
-/// unit normal `n`) from the uniform point `u`, distributed as `(s+1)/(2π)·cosˢα`
-/// ([`phong_pdf`]); it may point below the surface.
-#[inline]
-pub fn sample_phong(n: Vec3, wo: Vec3, shininess: f32, u: Vec2) -> Vec3 {
-    let cos_alpha = u.x.powf(1.0 / (shininess + 1.0));
-    let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    let local = Vec3::new(sin_alpha * phi.cos(), sin_alpha * phi.sin(), cos_alpha);
-    Frame::from_normal(reflect(wo, n)).to_world(local)
-}
-
-/// Density (1/sr) of [`sample_phong`] for `cos α` to the mirror direction.
-#[inline]
-pub fn phong_pdf(cos_alpha: f32, shininess: f32) -> f32 {
-    if cos_alpha <= 0.0 {
-        0.0
-    } else {
-        (shininess + 1.0) * (0.5 * FRAC_1_PI) * cos_alpha.powf(shininess)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::warp::hemisphere_integral;
 
     #[test]
     fn fresnel_reference_values() {
@@ -97,15 +59,5 @@ mod tests {
         let sin_t = (1.0 - t.z * t.z).sqrt();
         assert!((sin_i - 1.5 * sin_t).abs() < 1e-5 && t.z < 0.0 && t.x < 0.0);
         assert!(refract(Vec3::new(0.9, 0.0, 0.436), n, 1.5).is_none());
-    }
-
-    #[test]
-    fn phong_lobe_reflects_at_most_its_weight() {
-        // ∫ lobe·cos dω ≤ 1 at normal incidence (numerical quadrature over the hemisphere).
-        let n = Vec3::Z;
-        for s in [1.0, 10.0, 100.0] {
-            let sum = hemisphere_integral(400, |wi| phong_lobe(n, n, wi, s) as f64);
-            assert!(sum <= 1.0 + 1e-3 && sum > 0.5, "s={s}: {sum}");
-        }
     }
 }

@@ -1,12 +1,10 @@
 //! Materials evaluated at a surface point: textures applied, emission, and the reflection
-//! function (Lambert plus a normalised Phong lobe) beside the mirror and refraction weights.
+//! function of the lobes with a density beside the weights of the delta lobes.
 
 use super::SurfaceHit;
-use super::optics::phong_lobe;
 use crate::color::Rgb;
-use crate::scene::{Material, Scene};
+use crate::scene::{Lobe, Material, Scene};
 use glam::Vec3;
-use std::f32::consts::FRAC_1_PI;
 
 /// A material at one surface point, with textures applied.
 #[derive(Clone, Copy, Debug)]
@@ -53,16 +51,35 @@ impl SurfaceMaterial {
         self.one_sided && !front_face
     }
 
-    /// The non-delta reflection function `f(wo, wi)` (1/sr) for unit directions `wo` (toward
-    /// the viewer) and `wi` (toward the light) on the side of the unit normal `n`.
+    /// True when the material scatters by its Lambert lobe alone.
+    #[inline]
+    pub fn is_lambertian(&self) -> bool {
+        Lobe::ALL
+            .iter()
+            .all(|&lobe| lobe == Lobe::Lambert || lobe.weight(self).is_black())
+    }
+
+    /// True when a lobe with a density has weight (light sampling can reach the surface).
+    #[inline]
+    pub fn has_density(&self) -> bool {
+        Lobe::ALL
+            .iter()
+            .any(|&lobe| !lobe.is_delta() && !lobe.weight(self).is_black())
+    }
+
+    /// The non-delta reflection function `f(wo, wi)` (1/sr), the sum of the lobes with a
+    /// density, for unit directions `wo` (toward the viewer) and `wi` (toward the light) on
+    /// the side of the unit normal `n`.
     #[inline]
     pub fn eval(&self, n: Vec3, wo: Vec3, wi: Vec3) -> Rgb {
         if n.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
             return Rgb::BLACK;
         }
-        let mut f = self.diffuse * FRAC_1_PI;
-        if !self.specular.is_black() {
-            f += self.specular * phong_lobe(n, wo, wi, self.shininess);
+        let mut f = Rgb::BLACK;
+        for lobe in Lobe::ALL {
+            if !lobe.is_delta() && !lobe.weight(self).is_black() {
+                f += lobe.eval(self, n, wo, wi);
+            }
         }
         f
     }

@@ -21,13 +21,14 @@ mod packet;
 
 use super::Integrator;
 use super::shading::ShadingPoint;
-use super::shading::bsdf::{LobeChoice, ViewSide, sample_bsdf};
+use super::shading::bsdf::{LobeChoice, sample_bsdf};
 use super::shading::light_sampling::{LightPicker, LightSample, ShadowTarget};
 use crate::color::Rgb;
 use crate::geometry::{Ray, spawn_ray};
 use crate::lanes::LANES;
 use crate::sampling::Sampler;
 use crate::sampling::mis::{light_sample_weight, power_heuristic};
+use crate::world::lobes::LocalView;
 use crate::world::{SurfaceHit, World, emitted};
 use glam::{Vec2, Vec3};
 
@@ -329,7 +330,7 @@ impl PathTracer {
         numbers: &BounceNumbers,
         sampler: &mut Sampler,
     ) -> Option<(Ray, Rgb, Arrival)> {
-        let side = ViewSide {
+        let side = LocalView {
             n: sp.n,
             ng: sp.ng,
             wo: sp.wo,

@@ -205,7 +205,7 @@ impl PathTracer {
         }
         let u = BounceNumbers::draw(sampler, path.bounce);
         if choice.is_lambert_only()
-            && sp.material.specular.is_black()
+            && sp.material.is_lambertian()
             && let Some(light) = self
                 .lights
                 .uniform_area_point(world, u.light_pick, u.light_point)

@@ -1,20 +1,18 @@
 //! Sampling the scattering of a [`SurfaceMaterial`] for path tracing.
 //!
-//! A material is a mixture of four lobes: Lambert (`diffuse`), normalised Phong (`specular`,
-//! `shininess`), ideal mirror (`mirror`) and a smooth dielectric (`transmission`, `ior`, which
-//! reflects or refracts by Fresnel). One lobe is chosen with probability proportional to the
-//! luminance of its weight. Directions from the two non-delta lobes are weighted by the full
-//! non-delta mixture (`f·cos / pdf` with `pdf` the sum over both lobes of choice probability
-//! times lobe density), which is what [`LobeChoice::pdf`] returns, so the density used by
-//! multiple importance sampling is the one the sampler actually draws from. The delta lobes
-//! (mirror, dielectric) have no density and never take part in multiple importance sampling.
+//! A material is a mixture of lobes ([`Lobe`]: Lambert, normalised Phong, ideal mirror and a
+//! smooth dielectric that reflects or refracts by Fresnel). One lobe is chosen with
+//! probability proportional to the luminance of its weight. Directions from the lobes with a
+//! density are weighted by the full mixture of those lobes (`f·cos / pdf` with `pdf` the sum
+//! over them of choice probability times lobe density), which is what [`LobeChoice::pdf`]
+//! returns, so the density used by multiple importance sampling is the one the sampler
+//! actually draws from. The delta lobes (mirror, dielectric) have no density and never take
+//! part in multiple importance sampling.
 
 use crate::color::Rgb;
-use crate::lanes::V3;
-use crate::sampling::warp::{cosine_about, cosine_hemisphere_pdf};
 use crate::scene::Material;
 use crate::world::SurfaceMaterial;
-use crate::world::optics::{fresnel_dielectric, phong_pdf, reflect, refract, sample_phong};
+use crate::world::lobes::{Lobe, LocalView};
 use glam::{Vec2, Vec3};
 
 /// A scattered direction with its path weight.
@@ -35,63 +33,76 @@ pub struct BsdfSample {
 /// the lobe weights (they sum to 1 unless the material scatters nothing).
 #[derive(Clone, Copy, Debug)]
 pub struct LobeChoice {
-    diffuse: f32,
-    /// `1 / diffuse` (0 when there is no diffuse lobe).
-    inverse_diffuse: f32,
-    specular: f32,
-    mirror: f32,
-    transmission: f32,
+    /// Per lobe of [`Lobe::ALL`], the probability of choosing it.
+    probability: [f32; Lobe::ALL.len()],
+    /// Per lobe, `1 / probability` (0 for a lobe never chosen).
+    inverse: [f32; Lobe::ALL.len()],
 }
 
 impl LobeChoice {
     /// The lobe probabilities of `m`.
     pub fn new(m: &SurfaceMaterial) -> Self {
-        Self::from_weights([m.diffuse, m.specular, m.mirror, m.transmission])
+        Self::from_weights(Lobe::ALL.map(|lobe| lobe.weight(m)))
     }
 
     /// The lobe probabilities of a scene material without a diffuse texture (the same at
     /// every point of it).
     pub fn of_material(m: &Material) -> Self {
-        Self::from_weights([m.diffuse, m.specular, m.mirror, m.transmission])
+        Self::from_weights(Lobe::ALL.map(|lobe| m.lobe_weight(lobe)))
     }
 
-    /// Probabilities from the lobe weights (diffuse, specular, mirror, transmission).
-    fn from_weights(weights: [Rgb; 4]) -> Self {
-        let [d, s, r, t] = weights.map(|w| w.luminance().max(0.0));
-        let total = d + s + r + t;
+    /// Probabilities from the lobe weights, in the order of [`Lobe::ALL`].
+    fn from_weights(weights: [Rgb; Lobe::ALL.len()]) -> Self {
+        let luminance = weights.map(|w| w.luminance().max(0.0));
+        let total: f32 = luminance.iter().sum();
         if total <= 0.0 {
             return LobeChoice {
-                diffuse: 0.0,
-                inverse_diffuse: 0.0,
-                specular: 0.0,
-                mirror: 0.0,
-                transmission: 0.0,
+                probability: [0.0; Lobe::ALL.len()],
+                inverse: [0.0; Lobe::ALL.len()],
             };
         }
         LobeChoice {
-            diffuse: d / total,
-            inverse_diffuse: if d > 0.0 { total / d } else { 0.0 },
-            specular: s / total,
-            mirror: r / total,
-            transmission: t / total,
+            probability: luminance.map(|l| l / total),
+            inverse: luminance.map(|l| if l > 0.0 { total / l } else { 0.0 }),
         }
     }
 
-    /// True for a material with only a Lambert lobe, which it then chooses with probability
-    /// exactly 1 (`d / d`), so [`sample_bsdf`]'s weight is the reflectance itself.
-    pub fn is_lambert_only(&self) -> bool {
-        self.diffuse > 0.0 && self.specular + self.mirror + self.transmission <= 0.0
+    /// The probability of choosing `lobe`.
+    #[inline]
+    fn of(&self, lobe: Lobe) -> f32 {
+        self.probability[lobe.index()]
     }
 
-    /// True when the material has a lobe with a density (diffuse or Phong), so that light
-    /// sampling can reach it.
+    /// True for a material whose only lobe is Lambert's, which it then chooses with
+    /// probability exactly 1 (`d / d`), so [`sample_bsdf`]'s weight is the reflectance itself.
+    pub fn is_lambert_only(&self) -> bool {
+        Lobe::ALL.iter().all(|&lobe| {
+            if lobe == Lobe::Lambert {
+                self.of(lobe) > 0.0
+            } else {
+                self.of(lobe) <= 0.0
+            }
+        })
+    }
+
+    /// True when the material has a lobe with a density, so that light sampling can reach it.
     pub fn has_density(&self) -> bool {
-        self.diffuse + self.specular > 0.0
+        self.density_share() > 0.0
     }
 
     /// True when the material scatters nothing.
     pub fn is_black(&self) -> bool {
-        self.diffuse + self.specular + self.mirror + self.transmission <= 0.0
+        self.probability.iter().sum::<f32>() <= 0.0
+    }
+
+    /// The probability of choosing a lobe with a density.
+    #[inline]
+    fn density_share(&self) -> f32 {
+        Lobe::ALL
+            .iter()
+            .filter(|lobe| !lobe.is_delta())
+            .map(|&lobe| self.of(lobe))
+            .sum()
     }
 
     /// Density (1/sr) with which [`sample_bsdf`] produces the non-delta direction `wi`, for
@@ -101,61 +112,55 @@ impl LobeChoice {
         if cos <= 0.0 || n.dot(wo) <= 0.0 {
             return 0.0;
         }
-        let mut pdf = self.diffuse * cosine_hemisphere_pdf(cos);
-        if self.specular > 0.0 {
-            pdf += self.specular * phong_pdf(reflect(wo, n).dot(wi), m.shininess);
+        let mut pdf = 0.0;
+        for lobe in Lobe::ALL {
+            if !lobe.is_delta() && self.of(lobe) > 0.0 {
+                pdf += self.of(lobe) * lobe.pdf(m, n, wo, wi);
+            }
         }
         pdf
     }
 }
 
-/// The local view of a surface point that scattering needs.
-#[derive(Clone, Copy, Debug)]
-pub struct ViewSide {
-    /// Unit shading normal turned toward the viewer.
-    pub n: Vec3,
-    /// Unit geometric normal turned toward the viewer.
-    pub ng: Vec3,
-    /// Unit direction toward the viewer.
-    pub wo: Vec3,
-    /// Whether the viewer is on the material's front side (decides the refraction indices).
-    pub front_face: bool,
-}
-
-/// Samples a continuation direction at a surface point seen as `side`, from the uniform
+/// Samples a continuation direction at a surface point seen as `view`, from the uniform
 /// numbers `u_lobe` (chooses the lobe) and `u` (the direction). `None` when the path is
 /// absorbed (the chosen direction leaves through the wrong side of the surface).
 pub fn sample_bsdf(
     m: &SurfaceMaterial,
     choice: &LobeChoice,
-    side: &ViewSide,
+    view: &LocalView,
     u_lobe: f32,
     u: Vec2,
 ) -> Option<BsdfSample> {
-    let ViewSide {
-        n,
-        ng,
-        wo,
-        front_face,
-    } = *side;
-    let non_delta = choice.diffuse + choice.specular;
+    let LocalView { n, ng, wo, .. } = *view;
+    let non_delta = choice.density_share();
     if u_lobe < non_delta {
-        let wi = if u_lobe < choice.diffuse {
-            cosine_about(V3::from(n), u.x, u.y).into()
-        } else {
-            sample_phong(n, wo, m.shininess, u)
-        };
+        // The lobes with a density, in order; the last one takes what rounding leaves over.
+        let mut cumulative = 0.0;
+        let mut chosen = None;
+        for lobe in Lobe::ALL.into_iter().filter(|lobe| !lobe.is_delta()) {
+            cumulative += choice.of(lobe);
+            chosen = Some(lobe);
+            if u_lobe < cumulative {
+                break;
+            }
+        }
+        let lobe = chosen?;
+        let (wi, _) = lobe.sample(m, view, u, 0.0);
         let cos = n.dot(wi);
         if cos <= 0.0 || ng.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
             return None;
         }
-        if choice.specular <= 0.0 {
-            // Lambert alone: f·cos/pdf = (ρ/π)·cos / (p_d·cos/π) = ρ/p_d, a constant the
-            // processor need not wait for a division to know.
+        let alone = Lobe::ALL
+            .iter()
+            .all(|&other| other == lobe || other.is_delta() || choice.of(other) <= 0.0);
+        if alone && lobe.samples_its_weight() {
+            // f·cos/pdf = weight/p exactly, a constant the processor need not wait for a
+            // division to know.
             return Some(BsdfSample {
                 wi,
-                weight: m.diffuse * choice.inverse_diffuse,
-                pdf: choice.diffuse * cosine_hemisphere_pdf(cos),
+                weight: lobe.weight(m) * choice.inverse[lobe.index()],
+                pdf: choice.of(lobe) * lobe.pdf(m, n, wo, wi),
                 delta: false,
             });
         }
@@ -170,34 +175,38 @@ pub fn sample_bsdf(
             delta: false,
         });
     }
-    let mirror_dir = reflect(wo, n);
-    let delta = |wi: Vec3, weight: Rgb| {
-        // A delta direction on the wrong side of the geometric surface would pass through it.
-        let reflected = n.dot(wi) > 0.0;
-        (reflected == (ng.dot(wi) > 0.0)).then_some(BsdfSample {
-            wi,
-            weight,
-            pdf: 0.0,
-            delta: true,
-        })
-    };
-    if u_lobe < non_delta + choice.mirror || choice.transmission <= 0.0 {
-        if choice.mirror <= 0.0 {
-            return None;
+    // The delta lobes, in order: the first whose interval holds `u_lobe`, else the last one
+    // with any probability; `u_lobe` rescaled to the chosen interval chooses within it.
+    let mut start = non_delta;
+    let mut rest = u_lobe - non_delta;
+    let mut chosen = None;
+    for lobe in Lobe::ALL.into_iter().filter(|lobe| lobe.is_delta()) {
+        let p = choice.of(lobe);
+        if p <= 0.0 {
+            continue;
         }
-        return delta(mirror_dir, m.mirror / choice.mirror);
+        chosen = Some((lobe, p, rest));
+        if u_lobe < start + p {
+            break;
+        }
+        start += p;
+        rest -= p;
     }
-    // Dielectric: reflect with the Fresnel probability, refract otherwise; the Fresnel factor
-    // and its probability cancel. Refracted radiance is scaled by (η_i/η_t)² (radiance is
-    // compressed into the smaller solid angle of the denser medium).
-    let eta = if front_face { 1.0 / m.ior } else { m.ior };
-    let weight = m.transmission / choice.transmission;
-    let u_fresnel = (u_lobe - non_delta - choice.mirror) / choice.transmission;
-    let fresnel = fresnel_dielectric(wo.dot(n), eta);
-    match refract(wo, n, eta) {
-        Some(t) if u_fresnel >= fresnel => delta(t, weight * (eta * eta)),
-        _ => delta(mirror_dir, weight),
-    }
+    let (lobe, p, rest) = chosen?;
+    let (wi, factor) = lobe.sample(m, view, u, rest / p);
+    let weight = lobe.weight(m) / p;
+    // A delta direction on the wrong side of the geometric surface would pass through it.
+    let reflected = n.dot(wi) > 0.0;
+    (reflected == (ng.dot(wi) > 0.0)).then_some(BsdfSample {
+        wi,
+        weight: if factor == 1.0 {
+            weight
+        } else {
+            weight * factor
+        },
+        pdf: 0.0,
+        delta: true,
+    })
 }
 
 #[cfg(test)]
@@ -205,6 +214,7 @@ mod tests {
     use super::*;
     use crate::sampling::warp::hemisphere_integral;
     use crate::sampling::{Sampler, SequenceKind};
+    use crate::world::optics::fresnel_dielectric;
 
     fn material(diffuse: f32, specular: f32, shininess: f32) -> SurfaceMaterial {
         SurfaceMaterial {
@@ -218,8 +228,8 @@ mod tests {
         }
     }
 
-    fn side(wo: Vec3) -> ViewSide {
-        ViewSide {
+    fn side(wo: Vec3) -> LocalView {
+        LocalView {
             n: Vec3::Z,
             ng: Vec3::Z,
             wo,
