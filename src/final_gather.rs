@@ -2,7 +2,7 @@
 //! ray tracer and the indirect light from a radiosity solution.
 //!
 //! At the surface a camera ray meets, the light arriving straight from the lights and from
-//! emitting surfaces is traced with exact shadows ([`seen_directly`]); the light arriving
+//! emitting surfaces is traced with exact shadows (`trace::direct::seen_directly`); the light arriving
 //! after one or more reflections is gathered by cosine-distributed rays that read, where they
 //! land, the radiance the solution reflects there (its radiosity without its own emission,
 //! [`Solution::reflected_radiosity`], smooth across each leaf). Shadows and contact

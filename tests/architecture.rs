@@ -255,3 +255,190 @@ fn the_import_reader_sees_grouped_and_nested_paths() {
     let found: Vec<String> = crate_modules(code).into_iter().collect();
     assert_eq!(found, ["a", "b", "e", "f", "h"]);
 }
+
+/// The module path of a file of `src/` (`radiosity::solve::matrix`; `mod.rs` names its
+/// folder; `None` for the crate root).
+fn module_path(src: &Path, file: &Path) -> Option<Vec<String>> {
+    let relative = file.strip_prefix(src).ok()?.with_extension("");
+    let mut parts: Vec<String> = relative
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    if parts.last().is_some_and(|p| p == "mod") {
+        parts.pop();
+    }
+    (parts != ["lib"]).then_some(parts)
+}
+
+/// The paths a piece of code names from `crate::` or `super::`, grouped imports expanded
+/// (`super::{a::X, b}` gives `super::a::X` and `super::b`), as segments.
+fn named_paths(code: &str) -> Vec<Vec<String>> {
+    let mut paths = Vec::new();
+    let is_word = |c: char| c.is_alphanumeric() || c == '_';
+    let mut rest = code;
+    while let Some(i) = rest.find(['c', 's']) {
+        let preceded = i > 0 && rest[..i].chars().next_back().is_some_and(is_word);
+        let tail = &rest[i..];
+        let start = if preceded {
+            None
+        } else if tail.starts_with("crate::") || tail.starts_with("super::") {
+            Some(tail)
+        } else {
+            None
+        };
+        rest = &rest[i + 1..];
+        let Some(tail) = start else {
+            continue;
+        };
+        let mut prefix = Vec::new();
+        let mut at = tail;
+        loop {
+            let word: String = at.chars().take_while(|&c| is_word(c)).collect();
+            if word.is_empty() {
+                break;
+            }
+            prefix.push(word.clone());
+            at = &at[word.len()..];
+            if let Some(next) = at.strip_prefix("::") {
+                at = next;
+                if let Some(group) = at.strip_prefix('{') {
+                    let end = group.find('}').unwrap_or(group.len());
+                    for item in group[..end].split(',') {
+                        let mut path = prefix.clone();
+                        path.extend(
+                            item.trim()
+                                .split("::")
+                                .map(|s| s.trim().to_string())
+                                .filter(|s| !s.is_empty() && s != "{"),
+                        );
+                        paths.push(path);
+                    }
+                    prefix.clear();
+                    break;
+                }
+            } else {
+                break;
+            }
+        }
+        if !prefix.is_empty() {
+            paths.push(prefix);
+        }
+    }
+    paths
+}
+
+#[test]
+fn the_files_of_the_library_import_one_another_without_cycles() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&src, &mut files);
+    let modules: BTreeMap<String, (PathBuf, Vec<String>)> = files
+        .iter()
+        .filter_map(|f| {
+            let path = module_path(&src, f)?;
+            Some((path.join("::"), (f.clone(), path)))
+        })
+        .collect();
+    let without_tests = |f: &Path| {
+        let c = code(f);
+        match c.find("#[cfg(test)]") {
+            Some(i) => c[..i].to_string(),
+            None => c,
+        }
+    };
+    // Names a folder's `mod.rs` re-exports from one of its files: (folder, name) → file.
+    let mut reexported: BTreeMap<(String, String), String> = BTreeMap::new();
+    for (name, (file, _)) in &modules {
+        if !file.ends_with("mod.rs") {
+            continue;
+        }
+        for line in without_tests(file).split(';') {
+            let Some(used) = line.trim().strip_prefix("pub use ") else {
+                continue;
+            };
+            let child = used.split("::").next().unwrap_or("").trim();
+            let module = format!("{name}::{child}");
+            if !modules.contains_key(&module) {
+                continue;
+            }
+            let items = used
+                .split_once('{')
+                .map_or(used.rsplit("::").next(), |(_, g)| {
+                    Some(g.trim_end_matches('}'))
+                });
+            for item in items.unwrap_or("").split(',') {
+                let item = item.trim().trim_end_matches('}').trim();
+                if !item.is_empty() {
+                    reexported.insert((name.clone(), item.to_string()), module.clone());
+                }
+            }
+        }
+    }
+    let resolve = |path: &[String]| -> Option<String> {
+        (1..=path.len()).rev().find_map(|k| {
+            let module = path[..k].join("::");
+            modules.contains_key(&module).then(|| {
+                path.get(k)
+                    .and_then(|n| reexported.get(&(module.clone(), n.clone())))
+                    .cloned()
+                    .unwrap_or(module)
+            })
+        })
+    };
+    let mut edges: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (name, (file, parts)) in &modules {
+        for named in named_paths(&without_tests(file)) {
+            // `super` is the module's parent (a file's folder, a folder's parent).
+            let absolute: Vec<String> = if named[0] == "crate" {
+                named[1..].to_vec()
+            } else {
+                let mut base = parts.clone();
+                let ups = named.iter().take_while(|s| *s == "super").count();
+                base.truncate(base.len().saturating_sub(ups));
+                base.extend(named[ups..].iter().cloned());
+                base
+            };
+            if let Some(target) = resolve(&absolute)
+                && &target != name
+                && !name.starts_with(&format!("{target}::"))
+            {
+                edges.entry(name.clone()).or_default().insert(target);
+            }
+        }
+    }
+    // Depth-first search for a path back to where it started.
+    fn cycle_from(
+        start: &str,
+        at: &str,
+        edges: &BTreeMap<String, BTreeSet<String>>,
+        path: &mut Vec<String>,
+        seen: &mut BTreeSet<String>,
+    ) -> Option<Vec<String>> {
+        for next in edges.get(at).into_iter().flatten() {
+            if next == start {
+                let mut cycle = path.clone();
+                cycle.push(start.to_string());
+                return Some(cycle);
+            }
+            if seen.insert(next.clone()) {
+                path.push(next.clone());
+                if let Some(c) = cycle_from(start, next, edges, path, seen) {
+                    return Some(c);
+                }
+                path.pop();
+            }
+        }
+        None
+    }
+    let cycles: Vec<String> = edges
+        .keys()
+        .filter_map(|m| {
+            cycle_from(m, m, &edges, &mut vec![m.clone()], &mut BTreeSet::new())
+                .map(|c| c.join(" → "))
+        })
+        .collect();
+    assert!(cycles.is_empty(), "import cycles:\n{}", cycles.join("\n"));
+    // The reader sees the imports it is meant to.
+    assert!(edges["radiosity::contact"].contains("radiosity::clip"));
+    assert!(edges["radiosity::solve::hierarchical::solver"].contains("radiosity::solve::solution"));
+}

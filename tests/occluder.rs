@@ -17,6 +17,7 @@ use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb;
 use strahl::progress::{Cancel, NoProgress};
+use strahl::radiosity::VisibilityOptions;
 use strahl::radiosity::solve::hierarchical::{
     HierarchicalSettings, solve_hierarchical, solve_hierarchical_shooting,
 };
@@ -24,7 +25,6 @@ use strahl::radiosity::solve::{
     Iteration, MatrixSettings, RadiositySystem, ShootingSettings, Solution, SystemOptions,
     solve_matrix, solve_progressive,
 };
-use strahl::radiosity::visibility::VisibilityOptions;
 use strahl::radiosity::{MeshOptions, MeshSize};
 use strahl::report::Report;
 use strahl::scene::{Material, Scene, Shape};

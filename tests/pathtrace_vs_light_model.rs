@@ -15,11 +15,11 @@ use strahl::accel::AccelKind;
 use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
-use strahl::radiosity::mesh::{MeshOptions, MeshSize};
 use strahl::radiosity::solve::{
     DisplaySettings, LinkDisplay, MatrixSettings, RadiositySystem, Shading, SystemOptions,
     render_solution, solve_matrix,
 };
+use strahl::radiosity::{MeshOptions, MeshSize};
 use strahl::report::Report;
 use strahl::scene::builtin;
 use strahl::trace::PathTracer;

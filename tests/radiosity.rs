@@ -9,7 +9,7 @@ use strahl::image::{ToneMap, ToneMapping};
 use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
-use strahl::radiosity::light_links::solid_angle;
+use strahl::radiosity::solid_angle;
 use strahl::radiosity::solve::hierarchical::{
     HierarchicalSettings, Oracle, solve_hierarchical, solve_hierarchical_shooting,
 };

@@ -12,13 +12,13 @@ use strahl::accel::AccelKind;
 use strahl::light_model::{LightTraceSettings, trace_light};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
-use strahl::radiosity::mesh::{MeshOptions, MeshSize};
 use strahl::radiosity::solve::hierarchical::{
     HierarchicalSettings, solve_hierarchical, solve_hierarchical_shooting,
 };
 use strahl::radiosity::solve::{
     RadiositySystem, ShootingSettings, Solution, SystemOptions, solve_progressive,
 };
+use strahl::radiosity::{MeshOptions, MeshSize};
 use strahl::report::Report;
 use strahl::scene::builtin;
 use strahl::world::World;

@@ -9,7 +9,7 @@
 //! partial run, is stratified over the sources. Each photon emits power Φₛ/Nₛ (exactly so
 //! for untextured sources, so the emitted totals are exact) and starts with it (aimed
 //! directional and sky photons with a part of it, the rest escaping at once, see
-//! [`sources`]), and scatters as [`scatter`] describes. The error falls as 1/√N.
+//! [`sources`]), and scatters as `scatter.rs` describes. The error falls as 1/√N.
 //!
 //! Exact bookkeeping. Powers are tallied in 128-bit fixed point (2⁶² units for the total
 //! emitted power), and at every hit `absorbed = incident − carried on` in those units, so
@@ -31,7 +31,7 @@
 //! Photons stop after `max_bounces` scattering events (the last hit absorbs them; counted as
 //! `truncated_paths`), which only matters for scenes of near-perfect mirrors.
 
-pub mod scatter;
+mod scatter;
 mod sensors;
 pub mod sources;
 mod tally;

@@ -38,7 +38,7 @@ impl Choice for MethodKind {
         (
             MethodKind::PathTrace,
             "pathtrace",
-            "Unbiased Monte Carlo path tracing with next-event estimation and multiple importance sampling, rendered in progressive passes",
+            "Unbiased Monte Carlo path tracing with next-event estimation and multiple importance sampling (images in progressive passes)",
         ),
         (
             MethodKind::RadiosityImage,

@@ -53,15 +53,14 @@ pub use crate::measure::{
     usable_memory_bytes,
 };
 pub use crate::progress::{Cancel, NoProgress, ProgressListener};
-pub use crate::radiosity::solve::hierarchical::{
-    HierarchicalSettings, Oracle, RefinePass, RoundStats,
-};
+pub use crate::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, RefinePass};
 pub use crate::radiosity::solve::{
-    Iteration, MatrixSettings, Shading, ShootingSettings, Solution, SolverKind, SystemOptions,
+    Iteration, MatrixSettings, RoundStats, Shading, ShootingSettings, Solution, SolverKind,
+    SystemOptions,
 };
-pub use crate::radiosity::surface::non_diffuse_materials;
 pub use crate::radiosity::{
     FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,
+    non_diffuse_materials,
 };
 pub use crate::trace::{AntialiasMode, ShadowMode};
 pub use crate::world::{GeometryError, QueryTiming, RayBench, RaySet, World, bench_rays};

@@ -4,6 +4,7 @@
 //! absorbs what reaches it) and emits when the material emits there (the back only for a
 //! `two_sided` emitter).
 
+use super::clip::Plane;
 use super::mesh::{Patch, PatchId};
 use glam::DVec3;
 
@@ -27,6 +28,12 @@ impl Side {
             Side::Front => patch.normal,
             Side::Back => -patch.normal,
         }
+    }
+
+    /// The support plane of this side of `patch` (front side = this side).
+    #[inline]
+    pub fn plane(self, patch: &Patch) -> Plane {
+        Plane::new(patch.centroid, self.normal(patch))
     }
 
     /// The side a direction `dir` arriving at `patch` hits (the front when it travels against

@@ -148,7 +148,7 @@ fn edge_terms(a: DVec3x4, b: DVec3x4, normal: DVec3) -> f64x4 {
 /// of `patch`: [`point_to_polygon`] when the point lies in front of that side, 0 when it lies
 /// behind (it sees the other side) or in the patch's plane (edge-on).
 pub fn point_to_side(point: DVec3, normal: DVec3, patch: &Patch, side: Side) -> f64 {
-    if Plane::of_side(patch, side).distance(point) > 0.0 {
+    if side.plane(patch).distance(point) > 0.0 {
         point_to_polygon(point, normal, patch.corners())
     } else {
         0.0
@@ -158,7 +158,7 @@ pub fn point_to_side(point: DVec3, normal: DVec3, patch: &Patch, side: Side) -> 
 /// [`point_to_side`] from each of `points` (all with the unit normal `normal`), in order:
 /// 0 behind the side, [`points_to_polygon`] (four at a time) for the points in front of it.
 pub fn points_to_side(points: &[DVec3], normal: DVec3, patch: &Patch, side: Side) -> FactorList {
-    let plane = Plane::of_side(patch, side);
+    let plane = side.plane(patch);
     let front: SmallVec<[usize; 9]> = (0..points.len())
         .filter(|&i| plane.distance(points[i]) > 0.0)
         .collect();

@@ -6,6 +6,7 @@
 //! All geometry is in world space, in `f64`, in scene units. A patch's front side is the side
 //! its corners wind counter-clockwise around (its `normal` points there).
 
+use super::clip::Plane;
 use super::contact::{Face, split_at_contacts};
 use crate::scene::{MaterialId, PolygonMesh, Scene, Shape};
 use glam::{DVec2, DVec3, Vec2, Vec3};
@@ -101,6 +102,12 @@ impl Patch {
     /// The area weights of the Gauss points (summing to 1).
     pub fn gauss_weights(&self) -> &[f64] {
         &self.gauss_weights[..self.sides as usize]
+    }
+
+    /// The support plane of the patch (front side = the patch's front side).
+    #[inline]
+    pub fn plane(&self) -> Plane {
+        Plane::new(self.centroid, self.normal)
     }
 
     /// The corners, counter-clockwise around the front side (3 or 4).
@@ -277,7 +284,7 @@ pub struct MeshOptions {
     /// Initial uniform subdivision.
     pub size: MeshSize,
     /// Split faces that other faces touch at the toucher's plane first
-    /// ([`super::contact`]), so no patch lies partly inside a touching solid.
+    /// (`contact.rs`), so no patch lies partly inside a touching solid.
     pub contact_splits: bool,
     /// Most patches (all quadtree nodes) the mesh may have before any refinement: a finer
     /// initial mesh is refused with [`MeshError::TooManyPatches`].

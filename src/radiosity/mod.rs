@@ -5,23 +5,26 @@
 //!
 //! All radiosity geometry is `f64` (`glam::DVec3`) in world space and scene units.
 
-pub mod clip;
-pub mod contact;
-pub mod element;
-pub mod form_factor;
-pub mod light_links;
-pub mod mesh;
-pub mod shaft;
-pub mod solid_angle;
+mod clip;
+mod contact;
+mod element;
+mod facing;
+mod form_factor;
+mod light_links;
+mod mesh;
+mod shaft;
+mod solid_angle;
 pub mod solve;
-pub mod surface;
-pub mod visibility;
+mod surface;
+mod visibility;
 
-pub use clip::{Facing, Plane, Polygon, SplitPolygon, facing, needs_split, split};
+pub use clip::{Plane, Polygon, SplitPolygon, split};
 pub use element::{Element, Side};
+pub use facing::{Facing, facing, needs_split};
 pub use form_factor::{
     FormFactorMethod, FormFactorOptions, form_factor, point_to_point, point_to_polygon, reciprocal,
 };
-pub use light_links::light_irradiance;
+pub use light_links::{light_irradiance, solid_angle};
 pub use mesh::{MeshError, MeshOptions, MeshSize, Patch, PatchId, PatchMesh};
+pub use surface::non_diffuse_materials;
 pub use visibility::{VisRays, Visibility, VisibilityEstimate, VisibilityOptions};

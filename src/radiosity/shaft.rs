@@ -1,12 +1,11 @@
-//! Shaft culling (Haines & Wallace 1994; the seed's "outcode" pre-test, §4.4.2, is its
-//! simplest form): the convex volume spanned by the bounding boxes of two patches, used to
-//! discard candidate occluders whose bounds lie entirely outside it before any ray is cast.
+//! Shaft culling (after Haines & Wallace 1994; the seed's "outcode" pre-test, §4.4.2, is its
+//! simplest form): the convex volume spanned by two patches, used to discard candidate
+//! occluders that lie entirely outside it before any ray is cast.
 //!
-//! The shaft is the union box of the two boxes cut by planes that join an edge of one box to
-//! the parallel edge of the other wherever the two boxes define adjacent faces of the union.
-//! Between two convex polygons ([`Shaft::between_polygons`]) it is further cut by the faces
-//! of the polygons' convex hull, which holds every segment from one polygon to the other and
-//! is much tighter than the boxes' shaft for tilted or far-apart patches.
+//! The shaft between two convex polygons ([`Shaft::between_polygons`]) is the union of their
+//! bounding boxes cut by the faces of the polygons' convex hull, which holds every segment
+//! from one polygon to the other (much tighter than Haines and Wallace's shaft between the
+//! boxes for tilted or far-apart patches).
 
 use crate::geometry::DVec3x4;
 use glam::DVec3;
@@ -50,26 +49,14 @@ impl Bounds {
     pub fn overlaps(&self, other: &Bounds) -> bool {
         self.min.cmple(other.max).all() && other.min.cmple(self.max).all()
     }
-
-    fn side(&self, axis: usize, upper: bool) -> f64 {
-        if upper {
-            self.max[axis]
-        } else {
-            self.min[axis]
-        }
-    }
 }
 
-/// The shaft between two boxes: everything a segment from one box to the other can touch.
+/// The shaft between two polygons: everything a segment from one to the other can touch.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Shaft {
-    /// The union of the two boxes.
+    /// The union of the polygons' bounding boxes.
     pub bounds: Bounds,
-    /// Bounding planes `normal · x ≤ offset` (normals not unit length, lying in a coordinate
-    /// plane).
-    planes: Vec<(DVec3, f64)>,
-    /// Faces `normal · x ≤ offset` (unit normals) of the convex hull of the two polygons
-    /// the shaft was built from; empty for a shaft between boxes.
+    /// Faces `normal · x ≤ offset` (unit normals) of the convex hull of the two polygons.
     hull: SmallVec<[(DVec3, f64); 16]>,
     /// Tolerance added to every plane test (relative to the shaft's size), so that boxes
     /// touching the shaft are kept.
@@ -80,29 +67,6 @@ pub struct Shaft {
 const SHAFT_TOLERANCE: f64 = 1e-9;
 
 impl Shaft {
-    /// The shaft between boxes `a` and `b`.
-    pub fn new(a: Bounds, b: Bounds) -> Shaft {
-        let bounds = a.union(b);
-        let mut planes = Vec::new();
-        for i in 0..3 {
-            for j in i + 1..3 {
-                for upper_i in [false, true] {
-                    for upper_j in [false, true] {
-                        if let Some(plane) = corner_plane(&a, &b, (i, upper_i), (j, upper_j)) {
-                            planes.push(plane);
-                        }
-                    }
-                }
-            }
-        }
-        Shaft {
-            bounds,
-            planes,
-            hull: SmallVec::new(),
-            tolerance: tolerance(&bounds),
-        }
-    }
-
     /// The shaft between the convex planar polygons `a` and `b` (corners in order): the
     /// union of their bounding boxes cut by the faces of their convex hull (which lies
     /// inside the boxes' shaft, so the boxes' cutting planes are left out). A hull face is
@@ -113,7 +77,6 @@ impl Shaft {
         let bounds = Bounds::from_points(a.iter().chain(b).copied());
         let mut shaft = Shaft {
             bounds,
-            planes: Vec::new(),
             hull: SmallVec::new(),
             tolerance: tolerance(&bounds),
         };
@@ -159,15 +122,9 @@ impl Shaft {
         shaft
     }
 
-    /// Number of cutting planes (0 when one box contains the other, up to 8).
-    pub fn plane_count(&self) -> usize {
-        self.planes.len()
-    }
-
-    /// False when `candidate` lies entirely outside the shaft (it cannot block any segment
-    /// between the two boxes), or for a shaft between polygons, on or outside one of the
-    /// hull's faces (it can block no segment through the hull's interior — the box of the
-    /// solid a patch is a face of, say); true when it may intersect it. Conservative: boxes
+    /// False when `candidate` lies outside the union box or on or outside one of the hull's
+    /// faces (it can block no segment through the hull's interior — the box of the solid a
+    /// patch is a face of, say); true when it may intersect the shaft. Conservative: boxes
     /// with infinite extent are always kept.
     pub fn may_intersect(&self, candidate: &Bounds) -> bool {
         if !(candidate.min.is_finite() && candidate.max.is_finite()) {
@@ -178,10 +135,7 @@ impl Shaft {
         }
         // The candidate's corner furthest into the shaft side of plane `n`.
         let nearest = |n: DVec3| DVec3::select(n.cmpgt(DVec3::ZERO), candidate.min, candidate.max);
-        self.planes.iter().all(|&(n, offset)| {
-            n.dot(nearest(n)) <= offset + self.tolerance * n.abs().max_element()
-        }) && self
-            .hull
+        self.hull
             .iter()
             .all(|&(n, offset)| n.dot(nearest(n)) < offset - self.tolerance)
     }
@@ -189,8 +143,7 @@ impl Shaft {
     /// False when the convex hull of `points` (a triangle that passed
     /// [`Shaft::may_intersect`] on its bounds) lies on or outside one of the hull faces of a
     /// shaft between polygons, so that it can block no segment through the hull's interior
-    /// — a face of a box touching the patch along an edge, say; true otherwise (always for
-    /// a shaft between boxes).
+    /// — a face of a box touching the patch along an edge, say; true otherwise.
     pub fn may_intersect_points(&self, points: &[DVec3]) -> bool {
         self.hull
             .iter()
@@ -235,42 +188,6 @@ fn tolerance(bounds: &Bounds) -> f64 {
     SHAFT_TOLERANCE * size
 }
 
-/// The plane at the union-box corner edge `(i side, j side)` when the two faces there are
-/// defined by different boxes: through that edge of `a` and the parallel edge of `b`, facing
-/// out of the shaft.
-fn corner_plane(
-    a: &Bounds,
-    b: &Bounds,
-    (i, upper_i): (usize, bool),
-    (j, upper_j): (usize, bool),
-) -> Option<(DVec3, f64)> {
-    // +1 when `a` defines the union face, −1 when `b` does, 0 when both do.
-    let owner = |axis: usize, upper: bool| {
-        let (x, y) = (a.side(axis, upper), b.side(axis, upper));
-        let beyond = if upper { x - y } else { y - x };
-        beyond.partial_cmp(&0.0).map_or(0, |o| o as i32)
-    };
-    let (oi, oj) = (owner(i, upper_i), owner(j, upper_j));
-    if oi == 0 || oj == 0 || oi == oj {
-        return None;
-    }
-    let pa = (a.side(i, upper_i), a.side(j, upper_j));
-    let pb = (b.side(i, upper_i), b.side(j, upper_j));
-    let edge = (pb.0 - pa.0, pb.1 - pa.1);
-    let outward = (
-        if upper_i { 1.0 } else { -1.0 },
-        if upper_j { 1.0 } else { -1.0 },
-    );
-    let mut n2 = (edge.1, -edge.0);
-    if n2.0 * outward.0 + n2.1 * outward.1 < 0.0 {
-        n2 = (-n2.0, -n2.1);
-    }
-    let mut normal = DVec3::ZERO;
-    normal[i] = n2.0;
-    normal[j] = n2.1;
-    Some((normal, n2.0 * pa.0 + n2.1 * pa.1))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -279,47 +196,6 @@ mod tests {
         Bounds {
             min: DVec3::from_array(min),
             max: DVec3::from_array(max),
-        }
-    }
-
-    #[test]
-    fn diagonal_shaft_rejects_boxes_off_the_diagonal() {
-        let a = bounds([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]);
-        let b = bounds([2.0, 2.0, 0.0], [3.0, 3.0, 1.0]);
-        let shaft = Shaft::new(a, b);
-        assert_eq!(
-            shaft.plane_count(),
-            2,
-            "x–y corners only: z faces are shared"
-        );
-        // On the diagonal between the boxes.
-        assert!(shaft.may_intersect(&bounds([1.4, 1.4, 0.4], [1.6, 1.6, 0.6])));
-        // In the union box's empty corner (3, 0).
-        assert!(!shaft.may_intersect(&bounds([2.5, 0.1, 0.4], [2.9, 0.4, 0.6])));
-        assert!(!shaft.may_intersect(&bounds([0.1, 2.5, 0.4], [0.4, 2.9, 0.6])));
-        // Outside the union box.
-        assert!(!shaft.may_intersect(&bounds([1.4, 1.4, 1.5], [1.6, 1.6, 2.0])));
-        // Touching the cutting plane x − y = 1 at a corner: kept.
-        assert!(shaft.may_intersect(&bounds([2.0, 1.0, 0.0], [2.5, 1.0, 0.5])));
-        // Infinite boxes are kept.
-        assert!(shaft.may_intersect(&bounds([f64::NEG_INFINITY; 3], [f64::INFINITY; 3])));
-    }
-
-    #[test]
-    fn segments_between_the_boxes_stay_inside_the_shaft() {
-        let a = bounds([0.0, 0.0, 0.0], [1.0, 0.2, 1.0]);
-        let b = bounds([0.5, 3.0, -2.0], [2.0, 3.5, -1.5]);
-        let shaft = Shaft::new(a, b);
-        for k in 0..1000 {
-            let f = |x: u32| (x as f64 * 0.618_033_988_75).fract();
-            let p = a.min + (a.max - a.min) * DVec3::new(f(k), f(k + 7), f(k + 13));
-            let q = b.min + (b.max - b.min) * DVec3::new(f(k + 3), f(k + 11), f(k + 17));
-            let x = p.lerp(q, f(k + 5));
-            let tiny = Bounds { min: x, max: x };
-            assert!(
-                shaft.may_intersect(&tiny),
-                "point {x} on a segment was culled"
-            );
         }
     }
 
@@ -390,9 +266,21 @@ mod tests {
     }
 
     #[test]
-    fn nested_boxes_have_no_planes() {
-        let outer = bounds([0.0; 3], [4.0; 3]);
-        let inner = bounds([1.0; 3], [2.0; 3]);
-        assert_eq!(Shaft::new(outer, inner).plane_count(), 0);
+    fn boxes_off_the_hull_are_culled_and_unbounded_ones_kept() {
+        // A floor square at the origin and a ceiling square 3 along x and 1 up: the hull is
+        // a slanted slab inside their union box.
+        let shaft = Shaft::between_polygons(
+            &square(DVec3::ZERO, 0.0),
+            &square(DVec3::new(3.0, 1.0, 0.0), 0.0),
+        );
+        // On the segment between the centres: kept.
+        assert!(shaft.may_intersect(&bounds([1.4, 0.4, -0.1], [1.6, 0.6, 0.1])));
+        // In the union box below the ceiling square, beneath the hull (whose lower face is
+        // at y ≈ 0.93 there): culled.
+        assert!(!shaft.may_intersect(&bounds([3.2, 0.0, -0.1], [3.4, 0.1, 0.1])));
+        // Outside the union box: culled.
+        assert!(!shaft.may_intersect(&bounds([1.4, 1.5, -0.1], [1.6, 2.0, 0.1])));
+        // Infinite boxes are kept.
+        assert!(shaft.may_intersect(&bounds([f64::NEG_INFINITY; 3], [f64::INFINITY; 3])));
     }
 }

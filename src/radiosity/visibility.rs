@@ -672,7 +672,7 @@ impl Visibility {
 
     fn shaft_survivors(&self, a: &Patch, b: &Patch) -> Vec<u32> {
         let shaft = Shaft::between_polygons(a.corners(), b.corners());
-        self.survivors(&shaft, &[Plane::of_patch(a), Plane::of_patch(b)])
+        self.survivors(&shaft, &[a.plane(), b.plane()])
     }
 
     /// The primitives that may cross `shaft`, less those lying in one of `planes`.
@@ -708,7 +708,7 @@ impl Visibility {
             return Occluders::Scene;
         }
         let shaft = Shaft::between_polygons(&[x], q.corners());
-        Occluders::of(self.survivors(&shaft, &[Plane::of_patch(q)]))
+        Occluders::of(self.survivors(&shaft, &[q.plane()]))
     }
 
     /// What may block rays between `a` and `b` of the primitives `inherited` (those of a

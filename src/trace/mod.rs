@@ -1,9 +1,9 @@
 //! Ray tracing: images of a scene by integrators that follow rays from the camera.
 //!
 //! - integrators: the standard (Whitted-style) ray tracer ([`StandardRayTracer`], with the
-//!   direct light of [`direct`]) and the path tracer ([`PathTracer`], one path at a time or
+//!   direct light of `direct.rs`) and the path tracer ([`PathTracer`], one path at a time or
 //!   eight side by side);
-//! - shading: what an integrator evaluates at a surface point — the [`shading`] point, the
+//! - shading: what an integrator evaluates at a surface point — the shading point, the
 //!   sampled BSDF and the choice of a light for next-event estimation;
 //! - render: the image loops that drive an integrator over the camera's pixels — tiles with
 //!   antialiasing ([`render()`]) and progressive passes for Monte Carlo integrators
@@ -12,11 +12,11 @@
 //!   ([`sensor_readings`]: direct light as the standard ray tracer computes it, indirect light
 //!   from an integrator).
 
-pub mod direct;
+pub(crate) mod direct;
 mod path;
-pub mod render;
+mod render;
 mod sensors;
-pub mod shading;
+pub(crate) mod shading;
 mod whitted;
 
 pub use direct::ShadowMode;

@@ -10,8 +10,7 @@
 //! with a gutter of [`GUTTER`] texels; texels outside the patch take the value at the
 //! nearest point of the patch, so filtering never mixes in another chart.
 
-use super::lookup::{RadiosityLookup, Shading};
-use super::solution::Solution;
+use super::lookup::RadiosityLookup;
 use super::system::RadiositySystem;
 use crate::color::Rgb;
 use crate::geometry::Ray;
@@ -133,8 +132,9 @@ impl Lightmaps {
     }
 }
 
-/// Bakes the lightmaps of `system`'s textured surfaces from `solution`.
-pub(super) fn bake(system: &RadiositySystem, solution: &Solution) -> Lightmaps {
+/// Bakes the lightmaps of `system`'s textured surfaces from `lookup`, the display radiosity
+/// of a solution looked up smooth with its texture detail.
+pub(super) fn bake(system: &RadiositySystem, lookup: &RadiosityLookup) -> Lightmaps {
     let scene = &system.world().scene;
     let mesh = &system.mesh;
     // Textured roots grouped by object and material, in order.
@@ -148,8 +148,6 @@ pub(super) fn bake(system: &RadiositySystem, solution: &Solution) -> Lightmaps {
                 .push(root);
         }
     }
-    let lookup = RadiosityLookup::new(system, solution.display_radiosity(system), Shading::Smooth)
-        .with_texture_detail(solution.display_irradiance(), true);
     let mut surfaces = Vec::new();
     let mut chart_of: BTreeMap<(PatchId, usize), (u32, Chart, [u32; 2])> = BTreeMap::new();
     for ((object, material), roots) in groups {
@@ -161,7 +159,7 @@ pub(super) fn bake(system: &RadiositySystem, solution: &Solution) -> Lightmaps {
             })
             .collect();
         let size = pack(&mut charts);
-        let lightmap = render(mesh, &lookup, &charts, size);
+        let lightmap = render(mesh, lookup, &charts, size);
         let surface = surfaces.len() as u32;
         for chart in charts {
             chart_of.insert((chart.root, chart.side.index()), (surface, chart, size));

@@ -180,3 +180,14 @@ fn gauss_seidel_sweep(
         })
         .collect()
 }
+
+impl Iteration {
+    /// The matrix solver's name in reports with this scheme: `matrix-jacobi` or
+    /// `matrix-gauss-seidel`.
+    pub fn solver_name(self) -> &'static str {
+        match self {
+            Iteration::Jacobi => "matrix-jacobi",
+            Iteration::GaussSeidel => "matrix-gauss-seidel",
+        }
+    }
+}

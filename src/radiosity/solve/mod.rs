@@ -11,6 +11,7 @@ mod lightmap;
 mod lookup;
 mod matrix;
 mod progressive;
+mod rounds;
 mod sensors;
 mod solution;
 mod solver_kind;
@@ -22,6 +23,7 @@ pub use interpolate::{CornerValues, SmoothCorners, vertex_radiosity};
 pub use lookup::{LeafHit, RadiosityLookup, Shading};
 pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};
+pub use rounds::RoundStats;
 pub use solution::{
     CONVERGENCE_ROWS, LinkSegment, PhaseTimes, Solution, power_fraction, source_power,
 };

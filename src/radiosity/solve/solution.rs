@@ -12,9 +12,10 @@
 //! (`Σ A_i H_light,i`), and the escaped power is what is emitted but not absorbed by any
 //! patch (light leaving an open scene, plus the small imbalance of the discretisation).
 
-use super::hierarchical::RoundStats;
 use super::interpolate::vertex_radiosity;
 use super::lightmap;
+use super::lookup::{RadiosityLookup, Shading};
+use super::rounds::RoundStats;
 use super::solver_kind::SolverKind;
 use super::system::RadiositySystem;
 use crate::color::Rgb64;
@@ -203,7 +204,9 @@ impl Solution {
     pub fn lit_mesh(&self, system: &RadiositySystem, lightmaps: bool) -> LitMesh {
         let display = self.display_radiosity(system);
         let lightmaps = if lightmaps {
-            lightmap::bake(system, self)
+            let lookup = RadiosityLookup::new(system, display.clone(), Shading::Smooth)
+                .with_texture_detail(self.display_irradiance(), true);
+            lightmap::bake(system, &lookup)
         } else {
             lightmap::Lightmaps::none(system)
         };

@@ -1,7 +1,6 @@
 //! The radiosity solvers by name: what a caller picks, what a solution records, and what
 //! each one's convergence history measures.
 
-use super::matrix::Iteration;
 use crate::radiosity::MeshSize;
 
 /// A radiosity solver.
@@ -48,17 +47,6 @@ impl SolverKind {
             SolverKind::Matrix => "residual",
             SolverKind::Progressive | SolverKind::HierarchicalShooting => "unshot",
             SolverKind::Hierarchical => "change",
-        }
-    }
-}
-
-impl Iteration {
-    /// The matrix solver's name in reports with this scheme: `matrix-jacobi` or
-    /// `matrix-gauss-seidel`.
-    pub fn solver_name(self) -> &'static str {
-        match self {
-            Iteration::Jacobi => "matrix-jacobi",
-            Iteration::GaussSeidel => "matrix-gauss-seidel",
         }
     }
 }

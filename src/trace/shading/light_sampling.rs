@@ -166,11 +166,6 @@ impl LightPicker {
         }
     }
 
-    /// True when there is no light to sample.
-    pub fn is_empty(&self) -> bool {
-        self.choices.is_empty()
-    }
-
     /// Solid-angle density (1/sr, choice probability included) with which [`Self::sample`]
     /// picks the point `p` (unit front normal `n_light`) of area light `light`, as seen from
     /// `x`.

@@ -26,8 +26,8 @@
 
 use super::nodes::{node, split_node};
 use crate::color::Rgb64;
-use crate::radiosity::clip::{Facing, facing};
 use crate::radiosity::element::Side;
+use crate::radiosity::facing::{Facing, facing};
 use crate::radiosity::form_factor::{FactorList, points_to_side};
 use crate::radiosity::light_links::{SKY_DIRECTIONS_PER_AXIS, light_irradiance};
 use crate::radiosity::mesh::{Patch, PatchMesh};

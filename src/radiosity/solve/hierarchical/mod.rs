@@ -4,7 +4,7 @@
 //! 1. **Initial linking** (§6.3): every pair of root-patch sides that face each other and can
 //!    see each other is linked, with form factor and visibility stored in the link; every
 //!    root side is linked to every point, spot and directional light and the sky that reaches
-//!    it. With the asymmetric linking of the mesh ([`crate::radiosity::contact`], the
+//!    it. With the asymmetric linking of the mesh (`radiosity/contact.rs`, the
 //!    default) faces that others stand on are split at their planes first. With clustering
 //!    (the default, `clusters.rs`) root patches far apart against their size are linked as
 //!    groups instead, so the links do not grow with the square of the number of faces; a
@@ -40,7 +40,7 @@ mod solver;
 
 pub use oracle::Oracle;
 pub use shooting::solve_hierarchical_shooting;
-pub use solver::{RoundStats, solve_hierarchical};
+pub use solver::solve_hierarchical;
 
 /// Which links a refinement pass judges.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -35,7 +35,7 @@
 //! than the minimum area is refined.
 
 use super::links::{LightLink, Link};
-use crate::radiosity::clip::needs_split;
+use crate::radiosity::facing::needs_split;
 use crate::radiosity::mesh::PatchMesh;
 
 /// Which oracle decides refinement.

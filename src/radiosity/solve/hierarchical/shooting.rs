@@ -26,10 +26,11 @@
 use super::links::Prior;
 use super::nodes::{node, split_node};
 use super::oracle::{Decision, decide};
-use super::solver::{RoundStats, Solver, children, prepare};
+use super::solver::{Solver, children, prepare};
 use super::{HierarchicalSettings, RefinePass};
 use crate::color::Rgb64;
 use crate::progress::{Cancel, ProgressListener};
+use crate::radiosity::solve::rounds::RoundStats;
 use crate::radiosity::solve::unshot_progress::UnshotProgress;
 use crate::radiosity::solve::{
     PhaseTimes, RadiositySystem, ShootingSettings, Solution, SolveError, SolverKind, SystemOptions,
