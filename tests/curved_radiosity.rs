@@ -10,14 +10,13 @@ use std::path::Path;
 use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb64;
-use strahl::final_gather::FinalGather;
 use strahl::image::ToneMapping;
 use strahl::measure::Film;
-use strahl::method::{RadiositySettings, solve_radiosity};
+use strahl::method::{RadiositySettings, SolvedRadiosity, solve_radiosity};
 use strahl::progress::{Cancel, NoProgress};
 use strahl::radiosity::solve::{
-    DisplaySettings, LinkDisplay, RadiosityLookup, RadiositySystem, Shading, Solution, SolverKind,
-    render_solution, vertex_radiosity,
+    DisplaySettings, LinkDisplay, RadiositySystem, Shading, Solution, SolverKind, render_solution,
+    vertex_radiosity,
 };
 use strahl::radiosity::{MeshSize, Side};
 use strahl::report::export_lit_mesh;
@@ -49,7 +48,7 @@ struct Coarse {
     tolerance: f64,
 }
 
-fn solve(world: &Arc<World>, solver: SolverKind, coarse: Coarse) -> (RadiositySystem, Solution) {
+fn solve(world: &Arc<World>, solver: SolverKind, coarse: Coarse) -> SolvedRadiosity {
     let mut settings = RadiositySettings::new(solver);
     settings.system.mesh.segments = coarse.segments;
     if !solver.is_hierarchical() {
@@ -57,8 +56,7 @@ fn solve(world: &Arc<World>, solver: SolverKind, coarse: Coarse) -> (RadiositySy
     }
     settings.hierarchical.error = 1e-3;
     settings.shooting.tolerance = coarse.tolerance;
-    let solved = solve_radiosity(world, &settings, &NoProgress, &Cancel::new()).unwrap();
-    (solved.system, solved.solution)
+    solve_radiosity(world, &settings, &NoProgress, &Cancel::new()).unwrap()
 }
 
 fn world(scene: Scene) -> Arc<World> {
@@ -122,18 +120,9 @@ fn display(
     .unwrap()
 }
 
-/// Final gather of `solution` at [`SIZE`]², 4 samples per pixel.
-fn final_gather(system: &RadiositySystem, solution: &Solution, world: &Arc<World>) -> Film {
-    let gather = FinalGather {
-        reflected: RadiosityLookup::new(
-            system,
-            solution.reflected_radiosity(system),
-            Shading::Smooth,
-        )
-        .with_texture_detail(solution.display_irradiance(), false),
-        light_samples: 4,
-        gather_rays: 16,
-    };
+/// Final gather of `solved` at [`SIZE`]², 4 samples per pixel.
+fn final_gather(solved: &SolvedRadiosity, world: &Arc<World>) -> Film {
+    let gather = solved.final_gather(Shading::Smooth, 4, 16);
     let settings = RenderSettings {
         width: SIZE,
         height: SIZE,
@@ -159,9 +148,10 @@ fn mean(film: &Film) -> f64 {
 
 /// Checks one solution as the module describes and returns its final gather.
 fn check_solution(world: &Arc<World>, solver: SolverKind, coarse: Coarse, label: &str) -> Film {
-    let (system, solution) = solve(world, solver, coarse);
+    let solved = solve(world, solver, coarse);
+    let (system, solution) = (&solved.system, &solved.solution);
     let label = format!("{label}, {solver:?}");
-    let values = solution.display_radiosity(&system);
+    let values = solution.display_radiosity(system);
     let corners: usize = system
         .leaves
         .iter()
@@ -205,8 +195,8 @@ fn check_solution(world: &Arc<World>, solver: SolverKind, coarse: Coarse, label:
             .iter()
             .map(|v| v.map(|x| x / std::f64::consts::PI).to_array()),
     );
-    let flat = display(&system, &solution, world, Shading::Flat);
-    let smooth = display(&system, &solution, world, Shading::Smooth);
+    let flat = display(system, solution, world, Shading::Flat);
+    let smooth = display(system, solution, world, Shading::Smooth);
     for (name, film) in [("flat", &flat), ("smooth", &smooth)] {
         assert!(
             pixels(film).all(|p| p.iter().all(|x| x.is_finite())),
@@ -239,7 +229,7 @@ fn check_solution(world: &Arc<World>, solver: SolverKind, coarse: Coarse, label:
     );
     // Export: every vertex colour within the leaves' range (so finite), written as glTF and
     // PLY.
-    let lit = solution.lit_mesh(&system, false);
+    let lit = solution.lit_mesh(system, false);
     assert!(!lit.polygons.is_empty(), "{label}: nothing exported");
     let value_range = range(values.iter().map(|v| v.to_array()));
     assert!(
@@ -259,7 +249,7 @@ fn check_solution(world: &Arc<World>, solver: SolverKind, coarse: Coarse, label:
         std::fs::remove_file(&path).unwrap();
     }
     // Final gather: finite.
-    let gathered = final_gather(&system, &solution, world);
+    let gathered = final_gather(&solved, world);
     assert!(
         pixels(&gathered).all(|p| p.iter().all(|x| x.is_finite() && *x >= 0.0)),
         "{label}: final gather has negative or non-finite pixels"

@@ -8,13 +8,10 @@
 
 use std::sync::Arc;
 use strahl::accel::AccelKind;
-use strahl::final_gather::FinalGather;
 use strahl::measure::Film;
+use strahl::method::{RadiositySettings, solve_radiosity};
 use strahl::progress::{Cancel, NoProgress};
-use strahl::radiosity::solve::hierarchical::{HierarchicalSettings, solve_hierarchical};
-use strahl::radiosity::solve::{
-    DisplaySettings, LinkDisplay, RadiosityLookup, Shading, SystemOptions, render_solution,
-};
+use strahl::radiosity::solve::{DisplaySettings, LinkDisplay, Shading};
 use strahl::sampling::SequenceKind;
 use strahl::scene::builtin;
 use strahl::trace::{
@@ -78,24 +75,14 @@ fn against_the_path_tracer(name: &str) -> ((f64, f64), (f64, f64)) {
         .unwrap()
         .film;
 
-    let (system, solution) = solve_hierarchical(
+    let solved = solve_radiosity(
         &world,
-        SystemOptions::default(),
-        &HierarchicalSettings::default(),
+        &RadiositySettings::default(),
         &NoProgress,
         &Cancel::new(),
     )
     .unwrap();
-    let gather = FinalGather {
-        reflected: RadiosityLookup::new(
-            &system,
-            solution.reflected_radiosity(&system),
-            Shading::Smooth,
-        )
-        .with_texture_detail(solution.display_irradiance(), false),
-        light_samples: 16,
-        gather_rays: 64,
-    };
+    let gather = solved.final_gather(Shading::Smooth, 16, 64);
     let settings = RenderSettings {
         width: SIZE,
         height: SIZE,
@@ -116,16 +103,9 @@ fn against_the_path_tracer(name: &str) -> ((f64, f64), (f64, f64)) {
         wireframe: false,
         samples_per_axis: 4,
     };
-    let camera = &world.scene.camera;
-    let shown = render_solution(
-        &system,
-        &solution,
-        camera,
-        &display,
-        &NoProgress,
-        &Cancel::new(),
-    )
-    .unwrap();
+    let shown = solved
+        .render(&world.scene.camera, &display, &NoProgress, &Cancel::new())
+        .unwrap();
 
     (
         difference(&gathered, &reference),

@@ -2,9 +2,12 @@
 //! surfaces and sensors, a radiosity solution — whichever the method makes — with whether
 //! it ran to the end and one phrase on the work done.
 
+use crate::final_gather::FinalGather;
 use crate::measure::{Film, LitMesh, Measurement, SensorReading};
 use crate::progress::{Cancel, ProgressListener};
-use crate::radiosity::solve::{DisplaySettings, RadiositySystem, Solution, render_solution};
+use crate::radiosity::solve::{
+    DisplaySettings, RadiosityLookup, RadiositySystem, Shading, Solution, render_solution,
+};
 use crate::scene::Camera;
 use crate::world::World;
 
@@ -94,6 +97,25 @@ impl SolvedRadiosity {
     /// `lightmaps`), for export.
     pub fn lit_mesh(&self, lightmaps: bool) -> LitMesh {
         self.solution.lit_mesh(&self.system, lightmaps)
+    }
+
+    /// The final-gather integrator over the solution: direct light ray-traced with
+    /// `light_samples` shadow rays per light, indirect light gathered by `gather_rays` rays
+    /// that read the light the solution reflects where they land (looked up by `shading`).
+    /// Render it with `trace::render`, or ask it for the radiance along any ray.
+    pub fn final_gather(
+        &self,
+        shading: Shading,
+        light_samples: u32,
+        gather_rays: u32,
+    ) -> FinalGather<'_> {
+        let (system, solution) = (&self.system, &self.solution);
+        FinalGather {
+            reflected: RadiosityLookup::new(system, solution.reflected_radiosity(system), shading)
+                .with_texture_detail(solution.display_irradiance(), false),
+            light_samples,
+            gather_rays,
+        }
     }
 
     /// The solution shown through `camera` as `settings` ask; `None` for a degenerate camera.

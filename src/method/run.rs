@@ -7,13 +7,11 @@ use super::settings::{
 };
 use super::{Method, MethodError};
 use crate::choice::Choice;
-use crate::final_gather::FinalGather;
 use crate::light_model::{LightTraceSettings, trace_light};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::hierarchical::{solve_hierarchical, solve_hierarchical_shooting};
 use crate::radiosity::solve::{
-    DisplaySettings, LinkDisplay, RadiosityLookup, RadiositySystem, SolverKind, solve_matrix,
-    solve_progressive,
+    DisplaySettings, LinkDisplay, RadiositySystem, SolverKind, solve_matrix, solve_progressive,
 };
 use crate::sampling::SequenceKind;
 use crate::trace::{
@@ -266,12 +264,7 @@ fn final_gather(
     image_size(world, s.size)?;
     let solved = solve_radiosity(world, &s.radiosity, progress, cancel)?;
     let (system, solution) = (&solved.system, &solved.solution);
-    let integrator = FinalGather {
-        reflected: RadiosityLookup::new(system, solution.reflected_radiosity(system), s.shading)
-            .with_texture_detail(solution.display_irradiance(), false),
-        light_samples: s.light_samples,
-        gather_rays: s.gather_rays,
-    };
+    let integrator = solved.final_gather(s.shading, s.light_samples, s.gather_rays);
     let output = render_tiles(
         world,
         &integrator,
