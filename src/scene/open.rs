@@ -76,5 +76,18 @@ mod tests {
         assert!(e.contains("neither a file nor a built-in scene") && e.contains("cornell"));
         let e = open("spheres:x", &options).unwrap_err().to_string();
         assert!(e.starts_with("spheres:x: "), "{e}");
+        // A bare mesh's errors name the file as the user gave it.
+        let dir = std::env::temp_dir().join(format!("strahl-open-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let lonely = dir.join("points.obj");
+        std::fs::write(&lonely, "v 0 0 0\nv 1 0 0\n").unwrap();
+        let e = open(lonely.to_str().unwrap(), &options)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            format!("mesh file \"{}\": the mesh has no faces", lonely.display())
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -15,13 +15,7 @@ use std::path::Path;
 /// with `options`. The scene is named after the file's stem.
 pub fn load_mesh_file(path: &Path, options: &LoadOptions) -> Result<Scene, SceneError> {
     let shown = path.display().to_string();
-    let error = |message: String| SceneError::Mesh {
-        path: shown.clone(),
-        message,
-    };
-    let absolute = path
-        .canonicalize()
-        .map_err(|e| error(format!("cannot open {shown}: {e}")))?;
+    let error = |message: String| SceneError::Mesh { message };
     let name = path
         .file_stem()
         .map_or_else(|| shown.clone(), |s| s.to_string_lossy().into_owned());
@@ -33,7 +27,7 @@ pub fn load_mesh_file(path: &Path, options: &LoadOptions) -> Result<Scene, Scene
         file_defined: 0,
     };
     let mesh = MeshCache::default()
-        .mesh(&mut scene, &mut textures, &absolute, faces)
+        .mesh(&mut scene, &mut textures, path, faces)
         .map_err(error)?;
     let bounds = Aabb::from_points(
         mesh.faces()
@@ -41,7 +35,9 @@ pub fn load_mesh_file(path: &Path, options: &LoadOptions) -> Result<Scene, Scene
             .filter_map(|&v| mesh.positions.get(v as usize).copied()),
     );
     if bounds.is_empty() {
-        return Err(error("the mesh has no faces".to_string()));
+        return Err(error(format!(
+            "mesh file \"{shown}\": the mesh has no faces"
+        )));
     }
     scene.objects.push(Object {
         name: Some("mesh".to_string()),

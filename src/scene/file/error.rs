@@ -15,11 +15,9 @@ pub enum SceneError {
         reason: String,
     },
     /// A mesh file loaded as a scene on its own could not be read or holds no faces.
-    #[error("{path}: {message}")]
+    #[error("{message}")]
     Mesh {
-        /// The mesh file as named by the caller.
-        path: String,
-        /// What went wrong (naming the file where the importer does).
+        /// What went wrong, naming the file (and the line, where the importer can).
         message: String,
     },
     /// The file is not valid TOML, does not follow the format, or describes an invalid scene
