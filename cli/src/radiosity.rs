@@ -46,14 +46,16 @@ pub struct RadiosityArgs {
     /// `normal` meshes every face as it is.
     #[arg(long, value_enum, default_value_t = Linking::Asymmetric)]
     pub linking: Linking,
-    /// Form-factor approximation.
-    #[arg(long, value_parser = choice::<FormFactorMethod>(), default_value_t = FormFactorMethod::Analytic)]
+    /// matrix, progressive: form-factor approximation (the hierarchical solvers integrate the
+    /// exact point form factor over Gauss points of the smaller patch).
+    #[arg(long, value_parser = choice::<FormFactorMethod>(), default_value_t = FormFactorOptions::default().method)]
     pub form_factor: FormFactorMethod,
-    /// Points per axis on the smaller patch of a pair for the analytic form factor (1 = the
-    /// centroid).
+    /// matrix, progressive: points per axis on the smaller patch of a pair for the analytic
+    /// form factor (1 = the centroid).
     #[arg(long, default_value_t = FormFactorOptions::default().receiver_samples, value_parser = clap::value_parser!(u32).range(1..))]
     pub receiver_samples: u32,
-    /// Visibility rays per patch pair: a count or `adaptive`.
+    /// matrix, progressive: visibility rays per patch pair, a count or `adaptive` (the
+    /// hierarchical solvers choose their rays per link themselves).
     #[arg(long, default_value = "adaptive")]
     pub vis_rays: VisRays,
     /// Test every visibility ray against the whole scene instead of culling by shafts.
