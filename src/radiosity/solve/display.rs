@@ -75,8 +75,7 @@ pub fn render_solution(
     let rays = camera
         .with_resolution(settings.width, settings.height)
         .rays()?;
-    let lookup = RadiosityLookup::new(system, solution.display_radiosity(system), settings.shading)
-        .with_texture_detail(solution.display_irradiance(), true);
+    let lookup = solution.display_lookup(system, settings.shading);
     let view = Viewer {
         lookup: &lookup,
         wireframe: settings.wireframe,

@@ -91,6 +91,17 @@ impl Solution {
         self.convergence.len()
     }
 
+    /// The display radiosity looked up along rays by `shading`, with the texture detail of
+    /// textured surfaces (what the display and the lightmaps show).
+    pub(super) fn display_lookup<'s>(
+        &self,
+        system: &'s RadiositySystem,
+        shading: Shading,
+    ) -> RadiosityLookup<'s> {
+        RadiosityLookup::new(system, self.display_radiosity(system), shading)
+            .with_texture_detail(self.display_irradiance(), true)
+    }
+
     /// The radiosity to display per element: `B_i + ρ_i × ambient`, W·m⁻².
     pub fn display_radiosity(&self, system: &RadiositySystem) -> Vec<Rgb64> {
         self.radiosity
@@ -204,9 +215,7 @@ impl Solution {
     pub fn lit_mesh(&self, system: &RadiositySystem, lightmaps: bool) -> LitMesh {
         let display = self.display_radiosity(system);
         let lightmaps = if lightmaps {
-            let lookup = RadiosityLookup::new(system, display.clone(), Shading::Smooth)
-                .with_texture_detail(self.display_irradiance(), true);
-            lightmap::bake(system, &lookup)
+            lightmap::bake(system, &self.display_lookup(system, Shading::Smooth))
         } else {
             lightmap::Lightmaps::none(system)
         };

@@ -199,11 +199,7 @@ pub fn sample_bsdf(
     let reflected = n.dot(wi) > 0.0;
     (reflected == (ng.dot(wi) > 0.0)).then_some(BsdfSample {
         wi,
-        weight: if factor == 1.0 {
-            weight
-        } else {
-            weight * factor
-        },
+        weight: weight * factor,
         pdf: 0.0,
         delta: true,
     })

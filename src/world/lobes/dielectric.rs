@@ -13,26 +13,24 @@ pub fn relative_index(front_face: bool, ior: f32) -> f32 {
 }
 
 /// The branches of a dielectric seen from `wo` (unit, toward the viewer) about the unit
-/// normal `n` with relative index `eta`: the mirror direction with the Fresnel reflectance
-/// and the refracted direction with the rest, or the mirror direction alone (share 1) under
-/// total internal reflection.
+/// normal `n` with relative index `eta`: the mirror direction with the Fresnel reflectance,
+/// and the refracted direction (`None` under total internal reflection, where the mirror
+/// takes everything) with the rest.
 #[inline]
 pub fn branches(n: Vec3, wo: Vec3, eta: f32) -> (Vec3, f32, Option<Vec3>) {
-    let fresnel = fresnel_dielectric(wo.dot(n), eta);
-    let mirror = reflect(wo, n);
-    match refract(wo, n, eta) {
-        Some(t) => (mirror, fresnel, Some(t)),
-        None => (mirror, 1.0, None),
-    }
+    (
+        reflect(wo, n),
+        fresnel_dielectric(wo.dot(n), eta),
+        refract(wo, n, eta),
+    )
 }
 
 /// One of the branches chosen by the uniform number `u` with the Fresnel probability: the
 /// direction and whether it is the refracted one.
 #[inline]
 pub fn choose(n: Vec3, wo: Vec3, eta: f32, u: f32) -> (Vec3, bool) {
-    let fresnel = fresnel_dielectric(wo.dot(n), eta);
-    match refract(wo, n, eta) {
-        Some(t) if u >= fresnel => (t, true),
-        _ => (reflect(wo, n), false),
+    match branches(n, wo, eta) {
+        (_, fresnel, Some(t)) if u >= fresnel => (t, true),
+        (mirror, _, _) => (mirror, false),
     }
 }
