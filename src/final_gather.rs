@@ -33,22 +33,34 @@ pub struct FinalGather<'s> {
 }
 
 impl FinalGather<'_> {
-    /// Radiance reflected toward the viewer from the indirect light at `sp`, W·sr⁻¹·m⁻².
+    /// Radiance reflected toward the viewer (or passed through a translucent surface) from
+    /// the indirect light at `sp`, W·sr⁻¹·m⁻²: the gather rays cover the hemisphere in front,
+    /// and the one behind a translucent surface.
     fn indirect(&self, sp: &ShadingPoint, sampler: &mut Sampler) -> Rgb {
         let n_side = (self.gather_rays.max(1) as f32).sqrt().ceil() as u32;
-        let frame = Frame::from_normal(sp.n);
-        let mut sum = Rgb::BLACK;
-        for k in 0..n_side * n_side {
-            let wi = frame.to_world(cosine_hemisphere(stratified(k, n_side, sampler.next_2d())));
-            if sp.ng.dot(wi) <= 0.0 {
-                continue;
+        let sides: &[f32] = if sp.material.is_translucent() {
+            &[1.0, -1.0]
+        } else {
+            &[1.0]
+        };
+        let mut total = Rgb::BLACK;
+        for &sign in sides {
+            let frame = Frame::from_normal(sp.n * sign);
+            let mut sum = Rgb::BLACK;
+            for k in 0..n_side * n_side {
+                let u = stratified(k, n_side, sampler.next_2d());
+                let wi = frame.to_world(cosine_hemisphere(u));
+                if sign * sp.ng.dot(wi) <= 0.0 {
+                    continue;
+                }
+                if let Some(hit) = self.reflected.hit(&spawn_ray(sp.hit.p, sp.ng, wi)) {
+                    // f·L·cos θ / p(ω), with p(ω) = cos θ / π.
+                    sum += sp.material.eval(sp.n, sp.wo, wi) * hit.radiance * PI;
+                }
             }
-            if let Some(hit) = self.reflected.hit(&spawn_ray(sp.hit.p, sp.ng, wi)) {
-                // f·L·cos θ / p(ω), with p(ω) = cos θ / π.
-                sum += sp.material.eval(sp.n, sp.wo, wi) * hit.radiance * PI;
-            }
+            total += sum / (n_side * n_side) as f32;
         }
-        sum / (n_side * n_side) as f32
+        total
     }
 }
 

@@ -136,11 +136,24 @@ fn info_and_bench_report_statistics() {
 
 #[test]
 fn radiosity_warns_about_light_it_does_not_follow() {
-    // The canopy's leaves transmit 10 %: radiosity counts that light as absorbed.
+    // Glass and mirrors: radiosity counts the light they reflect specularly or refract as
+    // absorbed, and names them; translucent leaves it follows, and does not warn about.
+    let o = strahl(&[
+        "solve",
+        "../tests/data/lobes.toml",
+        "--solver",
+        "hierarchical",
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("warning") && err.contains("glass") && err.contains("mirror"),
+        "{err}"
+    );
     let o = strahl(&["solve", "canopy:4", "--solver", "hierarchical", "--quiet"]);
     assert!(o.status.success());
-    let err = stderr(&o);
-    assert!(err.contains("warning") && err.contains("leaf"), "{err}");
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
     let o = strahl(&[
         "solve",
         "cornell",

@@ -92,6 +92,8 @@ fn cases() -> Vec<Case> {
         case("colour length", "[materials.x]\ndiffuse = [0.5, 0.5]\n", &[":9:", "materials.x.diffuse", "invalid length 2"]),
         case("negative colour", "[materials.x]\ndiffuse = -0.5\n", &[":9:", "materials.x.diffuse", "must not be negative"]),
         case("reflectance above 1", "[materials.x]\ndiffuse = 1.5\n", &[":9:", "materials.x.diffuse", "must be in [0, 1]"]),
+        case("reflects and passes more than 1", "[materials.x]\ndiffuse = 0.6\ntranslucency = 0.5\n", &["materials.x", "diffuse + translucency", "1.100"]),
+        case("one-sided translucent", "[materials.x]\none_sided = true\ntranslucency = 0.2\n", &[":10:", "materials.x.translucency", "remove one_sided or translucency"]),
         case("huge emission", "[materials.x]\nemission = 1e38\n", &[":9:", "materials.x.emission", "beyond 1e18"]),
         case("material typo", "[materials.x]\ndifuse = 0.5\n", &[":9:", "materials.x.difuse", "did you mean `diffuse`"]),
         case("unknown light", &light("type = \"laser\"\n"), &[":9:", "lights[0].type", "unknown variant `laser`"]),

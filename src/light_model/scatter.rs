@@ -1,5 +1,6 @@
 //! What happens to a photon at a surface: absorbed, or scattered by one of the material's
-//! lobes ([`Lobe`]: Lambert, normalised Phong, ideal mirror, smooth dielectric with Fresnel),
+//! lobes ([`Lobe`]: Lambert, translucent, normalised Phong, ideal mirror, smooth dielectric
+//! with Fresnel),
 //! chosen at random so that the expected outgoing power is exactly the material's.
 //!
 //! The lobe k is chosen with probability `pₖ = Σ_c Φ_c·wₖ_c / Σ_c Φ_c` (Φ the photon's RGB
@@ -7,7 +8,8 @@
 //! `1 − Σₖ pₖ` it is absorbed (Russian roulette by the material's albedo). The channel sum
 //! of the power is kept by every choice except the Phong lobe, whose sampled direction
 //! carries the factor `(s+2)/(s+1)·cos θ` (normalised lobe over its sampling density).
-//! Diffuse directions are cosine-distributed about the geometric normal; mirror, Phong and
+//! Diffuse directions are cosine-distributed about the geometric normal (reversed for the
+//! translucent lobe, which passes the photon through); mirror, Phong and
 //! refraction directions use the shading normal, and a direction that would leave on the
 //! wrong side of the geometric normal is absorbed.
 
@@ -146,6 +148,39 @@ mod tests {
                 expected[c]
             );
         }
+    }
+
+    /// A translucent leaf sends photons back with power ρ and through with power τ on
+    /// average, the ones through cosine-distributed about the far side's normal (mean
+    /// cosine 2/3).
+    #[test]
+    fn translucent_photons_pass_through_diffusely() {
+        let m = Material {
+            translucency: Rgb::splat(0.5),
+            ..Material::diffuse("leaf", Rgb::splat(0.3))
+        };
+        let (scene, hit) = hit_on_quad(m);
+        let n = 100_000;
+        let (mut back, mut through, mut cos_through) = (0.0, 0.0, 0.0);
+        for i in 0..n {
+            let mut s = Sampler::new(SequenceKind::Random, 3, i, 0);
+            if let Some(out) = scatter_photon(&scene, &hit, -Vec3::Y, Rgb64::WHITE, &mut s) {
+                if out.dir.y > 0.0 {
+                    back += out.power.g;
+                } else {
+                    through += out.power.g;
+                    cos_through += f64::from(-out.dir.y) * out.power.g;
+                }
+            }
+        }
+        let n = n as f64;
+        // Each photon carries ρ + τ = 0.8 when it goes on: binomial shares of 0.3/0.8 and
+        // 0.5/0.8 of a 0.8 survival.
+        let sigma = 0.8 * (0.25 * 0.75 / n).sqrt();
+        assert!((back / n - 0.3).abs() < 5.0 * sigma, "{}", back / n);
+        assert!((through / n - 0.5).abs() < 5.0 * sigma, "{}", through / n);
+        let mean_cos = cos_through / through;
+        assert!((mean_cos - 2.0 / 3.0).abs() < 0.01, "{mean_cos}");
     }
 
     #[test]

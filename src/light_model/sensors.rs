@@ -5,7 +5,9 @@
 //!   the emitting side's normal `n`) sends the radiant intensity `Φ·cos θₓ/π` toward the
 //!   sensor — direct light;
 //! - a photon of power `Φ` arriving at a surface along `ωᵢ` sends `Φ·f(ωᵢ, ω)·|cos θₓ|`
-//!   toward it (`f` the material's non-delta reflection function) — indirect light;
+//!   toward it (`f` the material's non-delta scattering function: reflection toward a
+//!   sensor on the photon's side, diffuse transmission toward one behind a translucent
+//!   surface) — indirect light;
 //!
 //! and the sensor at distance `d`, seeing the point under `cos θₛ`, receives the irradiance
 //! `I·cos θₛ/d²` when nothing lies between. Light reflected by ideal mirrors and glass cannot
@@ -58,14 +60,23 @@ pub(super) fn connect_reflection(
         return;
     }
     let side = if hit.front_face { 1.0 } else { -1.0 };
-    let (ng, ns) = (hit.ng * side, hit.ns * side);
-    connect(world, hit.p, ng, (out, part), |to_sensor| {
-        let cos = f64::from(ng.dot(to_sensor));
-        if cos <= 0.0 {
-            return Rgb64::BLACK;
-        }
-        power * m.eval(ns, to_sensor, -dir).to_f64() * cos
-    });
+    // Sensors on the side the photon came from see it reflected; those behind a translucent
+    // surface see it passed through.
+    let sides: &[f32] = if m.is_translucent() {
+        &[1.0, -1.0]
+    } else {
+        &[1.0]
+    };
+    for &toward in sides {
+        let (ng, ns) = (hit.ng * (side * toward), hit.ns * (side * toward));
+        connect(world, hit.p, ng, (&mut *out, part), |to_sensor| {
+            let cos = f64::from(ng.dot(to_sensor));
+            if cos <= 0.0 {
+                return Rgb64::BLACK;
+            }
+            power * m.eval(ns, to_sensor, -dir).to_f64() * cos
+        });
+    }
 }
 
 /// Adds to part `part` of each sensor's entry of `out` the irradiance `I·cos θₛ/d²` from the

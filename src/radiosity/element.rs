@@ -1,6 +1,6 @@
 //! The unknowns of radiosity: one side of one patch. Every surface has two sides, each with
 //! its own radiosity, as the ray tracers and the light model see it: a side reflects when the
-//! material does on that side (the back of a `one_sided` material reflects nothing but still
+//! material does on that side, a translucent material passes light to the other side (the back of a `one_sided` material reflects nothing but still
 //! absorbs what reaches it) and emits when the material emits there (the back only for a
 //! `two_sided` emitter).
 
@@ -44,6 +44,15 @@ impl Side {
             Side::Front
         } else {
             Side::Back
+        }
+    }
+
+    /// The other side.
+    #[inline]
+    pub fn other(self) -> Side {
+        match self {
+            Side::Front => Side::Back,
+            Side::Back => Side::Front,
         }
     }
 

@@ -1,5 +1,5 @@
-//! What one side of a patch does with light: the radiosity it emits and the share it
-//! reflects, from its material with textures averaged over the patch (for the solvers) or
+//! What one side of a patch does with light: the radiosity it emits, the share it reflects
+//! and the share it passes diffusely to the other side (translucency), from its material with textures averaged over the patch (for the solvers) or
 //! taken at a point (for the display, which shows the texture at full resolution).
 //!
 //! An alpha texture cuts a surface: over a patch, only the share it leaves in place
@@ -100,6 +100,31 @@ pub fn reflectance_of(scene: &Scene, material: MaterialId, side: Side, at: Textu
         .map(|v| v.clamp(0.0, 1.0))
 }
 
+/// Diffuse transmittance in `[0, 1]` of a patch of `scene` (either side) with material
+/// `material`, scaled by the share an alpha texture leaves in place `at` the patch or a
+/// point: the weight of its translucent lobe, 0 for a `one_sided` material (its back
+/// absorbs everything, so nothing passes through).
+pub fn translucency_of(scene: &Scene, material: MaterialId, at: TextureAt) -> Rgb64 {
+    let m = &scene.materials[material as usize];
+    if m.one_sided || m.translucency.is_black() {
+        return Rgb64::BLACK;
+    }
+    let presence = match at {
+        TextureAt::Point(_) => 1.0,
+        TextureAt::Patch(patch) => coverage_of(scene, m.alpha_texture, patch).mean,
+        TextureAt::Spread(patch) => {
+            let c = coverage_of(scene, m.alpha_texture, patch);
+            c.max - c.min
+        }
+    };
+    (m.lobe_weight(Lobe::Translucent).to_f64() * presence).map(|v| v.clamp(0.0, 1.0))
+}
+
+/// [`translucency_of`] `patch`, averaged over the patch.
+pub fn translucency(scene: &Scene, patch: &Patch) -> Rgb64 {
+    translucency_of(scene, patch.material, TextureAt::Patch(patch))
+}
+
 /// [`emission_of`] side `side` of `patch`, its texture averaged over the patch, W·m⁻².
 pub fn emission(scene: &Scene, patch: &Patch, side: Side) -> Rgb64 {
     emission_of(scene, patch.material, side, TextureAt::Patch(patch))
@@ -126,7 +151,7 @@ pub fn non_diffuse_materials(scene: &Scene) -> Vec<&str> {
     let mut names: Vec<&str> = Vec::new();
     for object in &scene.objects {
         let m = &scene.materials[object.material as usize];
-        if !m.is_lambertian() && !names.contains(&m.name.as_str()) {
+        if !m.is_diffuse() && !names.contains(&m.name.as_str()) {
             names.push(&m.name);
         }
     }

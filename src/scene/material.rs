@@ -13,6 +13,9 @@ pub type MaterialId = u32;
 pub enum Lobe {
     /// Lambertian (diffuse) reflection, BRDF ρ/π.
     Lambert,
+    /// Diffuse transmission (translucency), BTDF τ/π: light arriving on one side leaves the
+    /// other side as from a Lambertian surface.
+    Translucent,
     /// The normalised Phong lobe about the mirror direction (glossy reflection).
     Phong,
     /// Ideal mirror reflection.
@@ -23,13 +26,19 @@ pub enum Lobe {
 
 impl Lobe {
     /// Every lobe, in the order samplers choose among them: those with a density first.
-    pub const ALL: [Lobe; 4] = [Lobe::Lambert, Lobe::Phong, Lobe::Mirror, Lobe::Dielectric];
+    pub const ALL: [Lobe; 5] = [
+        Lobe::Lambert,
+        Lobe::Translucent,
+        Lobe::Phong,
+        Lobe::Mirror,
+        Lobe::Dielectric,
+    ];
 
     /// True for lobes that scatter into single directions (no density): mirror and
     /// dielectric.
     pub fn is_delta(self) -> bool {
         match self {
-            Lobe::Lambert | Lobe::Phong => false,
+            Lobe::Lambert | Lobe::Translucent | Lobe::Phong => false,
             Lobe::Mirror | Lobe::Dielectric => true,
         }
     }
@@ -38,15 +47,17 @@ impl Lobe {
     pub fn index(self) -> usize {
         match self {
             Lobe::Lambert => 0,
-            Lobe::Phong => 1,
-            Lobe::Mirror => 2,
-            Lobe::Dielectric => 3,
+            Lobe::Translucent => 1,
+            Lobe::Phong => 2,
+            Lobe::Mirror => 3,
+            Lobe::Dielectric => 4,
         }
     }
 }
 
-/// A surface material. Its lobes add up: diffuse (Lambert) reflectance, Phong glossy
-/// reflection, ideal mirror reflection and ideal refraction; every lobe has an RGB weight in
+/// A surface material. Its lobes add up: diffuse (Lambert) reflectance, diffuse
+/// transmission (translucency), Phong glossy reflection, ideal mirror reflection and ideal
+/// refraction; every lobe has an RGB weight in
 /// `[0, 1]` and their sum per channel must not exceed 1 (energy conservation, checked when a
 /// scene is loaded).
 #[derive(Clone, Debug, PartialEq)]
@@ -57,6 +68,9 @@ pub struct Material {
     pub diffuse: Rgb,
     /// Texture multiplied into `diffuse`.
     pub diffuse_texture: Option<TextureId>,
+    /// Diffuse transmittance τ (translucency, BTDF τ/π): the fraction of the light arriving
+    /// on either side that leaves the other side diffusely. Untextured.
+    pub translucency: Rgb,
     /// Emitted radiance L in W·sr⁻¹·m⁻² (a Lambertian emitter's radiosity is π·L).
     pub emission: Rgb,
     /// Texture multiplied into `emission`.
@@ -86,6 +100,7 @@ impl Default for Material {
             name: "default".to_string(),
             diffuse: Rgb::splat(0.8),
             diffuse_texture: None,
+            translucency: Rgb::BLACK,
             emission: Rgb::BLACK,
             emission_texture: None,
             two_sided: false,
@@ -128,17 +143,19 @@ impl Material {
     pub fn lobe_weight(&self, lobe: Lobe) -> Rgb {
         match lobe {
             Lobe::Lambert => self.diffuse,
+            Lobe::Translucent => self.translucency,
             Lobe::Phong => self.specular,
             Lobe::Mirror => self.mirror,
             Lobe::Dielectric => self.transmission,
         }
     }
 
-    /// True when the material scatters by its Lambert lobe alone (what radiosity models).
-    pub fn is_lambertian(&self) -> bool {
-        Lobe::ALL
-            .iter()
-            .all(|&lobe| lobe == Lobe::Lambert || self.lobe_weight(lobe).is_black())
+    /// True when the material scatters by its diffuse lobes alone, Lambertian reflection and
+    /// translucency (what radiosity models).
+    pub fn is_diffuse(&self) -> bool {
+        Lobe::ALL.iter().all(|&lobe| {
+            matches!(lobe, Lobe::Lambert | Lobe::Translucent) || self.lobe_weight(lobe).is_black()
+        })
     }
 
     /// Largest per-channel sum of the reflected and transmitted fractions (must be ≤ 1).

@@ -55,8 +55,8 @@ pub fn seen_directly(
     (radiance, Some(sp))
 }
 
-/// Radiance reflected toward the viewer from light arriving directly from all lights.
-/// Area lights and the sky each get `samples` shadow rays (stratified and jittered).
+/// Radiance reflected toward the viewer (or passed through a translucent surface) from
+/// light arriving directly from all lights. Area lights and the sky each get `samples` shadow rays (stratified and jittered).
 pub fn direct_light(
     world: &World,
     sp: &ShadingPoint,
@@ -66,6 +66,9 @@ pub fn direct_light(
 ) -> Rgb {
     let mut total = Rgb::BLACK;
     let x = sp.hit.p;
+    // Light from behind passes a translucent surface; an opaque one only takes it in front.
+    let through = sp.material.is_translucent();
+    let arrives = |cos: f32| cos > 0.0 || (through && cos < 0.0);
     for light in &world.lights.delta {
         let Some(Incidence {
             wi,
@@ -76,7 +79,7 @@ pub fn direct_light(
             continue;
         };
         let cos = sp.n.dot(wi);
-        if cos <= 0.0 || irradiance_normal.is_black() {
+        if !arrives(cos) || irradiance_normal.is_black() {
             continue;
         }
         let visible = if dist.is_finite() {
@@ -85,7 +88,7 @@ pub fn direct_light(
             shadows.lets_through(|| sp.sees_along(world, wi))
         };
         if visible {
-            total += sp.material.eval(sp.n, sp.wo, wi) * irradiance_normal * cos;
+            total += sp.material.eval(sp.n, sp.wo, wi) * irradiance_normal * cos.abs();
         }
     }
     let n_side = (samples.max(1) as f32).sqrt().ceil() as u32;
@@ -104,7 +107,7 @@ pub fn direct_light(
             let wi = d / dist2.sqrt();
             let cos_x = sp.n.dot(wi);
             let cos_y = s.n.dot(-wi);
-            if cos_x <= 0.0 || cos_y == 0.0 {
+            if !arrives(cos_x) || cos_y == 0.0 {
                 continue;
             }
             let le =
@@ -114,22 +117,28 @@ pub fn direct_light(
             if le.is_black() || !shadows.lets_through(|| sp.sees(world, s.p)) {
                 continue;
             }
-            let geometric = cos_x * cos_y.abs() / (dist2 * s.pdf_area);
+            let geometric = (cos_x * cos_y).abs() / (dist2 * s.pdf_area);
             sum += sp.material.eval(sp.n, sp.wo, wi) * le * geometric;
         }
         total += sum / count as f32;
     }
     if let Some(sky) = world.lights.sky {
-        let frame = Frame::from_normal(sp.n);
-        let mut sum = Rgb::BLACK;
-        for k in 0..count {
-            let wi = frame.to_world(cosine_hemisphere(stratified(k, n_side, sampler.next_2d())));
-            if sp.ng.dot(wi) > 0.0 && shadows.lets_through(|| sp.sees_along(world, wi)) {
-                // L·f·cos / (cos/π) = π·L·f.
-                sum += sp.material.eval(sp.n, sp.wo, wi) * sky * PI;
+        // The sky in front, and behind a translucent surface: `count` cosine-distributed
+        // directions about the normal on each side.
+        let sides: &[f32] = if through { &[1.0, -1.0] } else { &[1.0] };
+        for &sign in sides {
+            let frame = Frame::from_normal(sp.n * sign);
+            let mut sum = Rgb::BLACK;
+            for k in 0..count {
+                let u = stratified(k, n_side, sampler.next_2d());
+                let wi = frame.to_world(cosine_hemisphere(u));
+                if sign * sp.ng.dot(wi) > 0.0 && shadows.lets_through(|| sp.sees_along(world, wi)) {
+                    // L·f·cos / (cos/π) = π·L·f.
+                    sum += sp.material.eval(sp.n, sp.wo, wi) * sky * PI;
+                }
             }
+            total += sum / count as f32;
         }
-        total += sum / count as f32;
     }
     total
 }

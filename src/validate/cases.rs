@@ -66,6 +66,7 @@ pub fn all(quick: bool) -> Vec<Case> {
         point_over_plane(false),
         area_source_in_black_room(),
         reflected_once(),
+        translucent_sheet(),
         occluder(),
     ];
     let reflectances: &[f64] = if quick {
@@ -316,6 +317,75 @@ fn reflected_once() -> Case {
     Case {
         name: "reflected-once".to_string(),
         description: "Black room, floor of reflectance rho lit uniformly: E = rho E_floor F",
+        scene: s,
+        checks,
+        flat_mesh_levels: 3,
+    }
+}
+
+/// A horizontal 4 × 4 m translucent sheet (reflectance ρ = 0.3, diffuse transmittance
+/// τ = 0.5) 3 m above a black floor of the same size, lit by 1000 lux straight from above:
+/// the sheet's top sends `ρ·E` up, its underside `τ·E` down, so a floor point facing up
+/// receives `τ·E·F` and a point 1 m above the sheet facing down `ρ·E·F`, with `F` the form
+/// factor from the point to the sheet (the floor lies in the sheet's shadow).
+fn translucent_sheet() -> Case {
+    let (w, h) = (4.0f32, 3.0f32);
+    let (rho, tau) = (0.3, 0.5);
+    let illuminance = 1000.0;
+    let mut s = scene(
+        "translucent",
+        Vec3::new(2.0, 1.5, 9.0),
+        Vec3::new(2.0, 1.5, 2.0),
+    );
+    let black = s.add_material(Material::diffuse("black", Rgb::BLACK));
+    let sheet = s.add_material(Material {
+        translucency: Rgb::splat(tau as f32),
+        ..Material::diffuse("sheet", Rgb::splat(rho as f32))
+    });
+    for (name, y, material) in [("floor", 0.0, black), ("sheet", h, sheet)] {
+        s.add_object(
+            name,
+            Shape::Parallelogram {
+                origin: Vec3::new(0.0, y, w),
+                edge_u: Vec3::X * w,
+                edge_v: Vec3::NEG_Z * w,
+            },
+            material,
+        );
+    }
+    s.lights.push(Light {
+        name: None,
+        kind: LightKind::Directional {
+            direction: -Vec3::Y,
+            irradiance: white(illuminance),
+        },
+    });
+    let mut checks = Vec::new();
+    for (x, z) in [(2.0, 2.0), (0.5, 1.0)] {
+        let f = parallel_rectangle((-x, 4.0 - x), (-z, 4.0 - z), f64::from(h));
+        let p = Vec3::new(x as f32, 0.0, z as f32);
+        let name = format!("floor {x},{z}");
+        checks.push(sensor_check(
+            &mut s,
+            sensor(&name, p, Vec3::Y),
+            tau * illuminance * f,
+            None,
+        ));
+    }
+    for (x, z) in [(2.0, 2.0), (1.0, 3.5)] {
+        let f = parallel_rectangle((-x, 4.0 - x), (-z, 4.0 - z), 1.0);
+        let p = Vec3::new(x as f32, h + 1.0, z as f32);
+        let name = format!("above {x},{z}");
+        checks.push(sensor_check(
+            &mut s,
+            sensor(&name, p, -Vec3::Y),
+            rho * illuminance * f,
+            None,
+        ));
+    }
+    Case {
+        name: "translucent-sheet".to_string(),
+        description: "Translucent sheet (rho, tau) lit from above over a black floor: E = tau E F below, rho E F above",
         scene: s,
         checks,
         flat_mesh_levels: 3,

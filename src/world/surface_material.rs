@@ -11,6 +11,8 @@ use glam::Vec3;
 pub struct SurfaceMaterial {
     /// Diffuse reflectance ρ.
     pub diffuse: Rgb,
+    /// Diffuse transmittance τ (black for a one-sided material).
+    pub translucency: Rgb,
     /// Phong lobe weight.
     pub specular: Rgb,
     /// Phong exponent.
@@ -36,6 +38,12 @@ impl SurfaceMaterial {
         };
         SurfaceMaterial {
             diffuse,
+            // A one-sided material's back absorbs everything: nothing passes through.
+            translucency: if m.one_sided {
+                Rgb::BLACK
+            } else {
+                m.translucency
+            },
             specular: m.specular,
             shininess: m.shininess,
             mirror: m.mirror,
@@ -67,17 +75,27 @@ impl SurfaceMaterial {
             .any(|&lobe| !lobe.is_delta() && !lobe.weight(self).is_black())
     }
 
-    /// The non-delta reflection function `f(wo, wi)` (1/sr), the sum of the lobes with a
-    /// density, for unit directions `wo` (toward the viewer) and `wi` (toward the light) on
-    /// the side of the unit normal `n`.
+    /// True when light passes diffusely through the surface (a translucent lobe with
+    /// weight): light from behind reaches the viewer's side.
+    #[inline]
+    pub fn is_translucent(&self) -> bool {
+        !self.translucency.is_black()
+    }
+
+    /// The non-delta scattering function `f(wo, wi)` (1/sr), the sum of the lobes with a
+    /// density, for unit directions `wo` (toward the viewer, on the side of the unit normal
+    /// `n`) and `wi` (toward the light): the reflecting lobes when `wi` is on the viewer's
+    /// side, the transmitting (translucent) lobe when it is behind.
     #[inline]
     pub fn eval(&self, n: Vec3, wo: Vec3, wi: Vec3) -> Rgb {
-        if n.dot(wi) <= 0.0 || n.dot(wo) <= 0.0 {
+        let cos = n.dot(wi);
+        if cos == 0.0 || n.dot(wo) <= 0.0 {
             return Rgb::BLACK;
         }
+        let behind = cos < 0.0;
         let mut f = Rgb::BLACK;
         for lobe in Lobe::ALL {
-            if !lobe.is_delta() && !lobe.weight(self).is_black() {
+            if !lobe.is_delta() && lobe.transmits() == behind && !lobe.weight(self).is_black() {
                 f += lobe.eval(self, n, wo, wi);
             }
         }

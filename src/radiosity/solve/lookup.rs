@@ -9,7 +9,9 @@ use crate::color::{Rgb, Rgb64};
 use crate::geometry::{Aabb, Ray, Triangle, spawn_ray};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::Patch;
-use crate::radiosity::surface::{TextureAt, emission_of, is_textured, reflectance_of};
+use crate::radiosity::surface::{
+    TextureAt, emission_of, is_textured, reflectance_of, translucency_of,
+};
 use std::f64::consts::PI;
 
 /// How radiosity is shown across a patch (`--shading`).
@@ -212,7 +214,13 @@ impl<'s> RadiosityLookup<'s> {
                 } else {
                     Rgb64::BLACK
                 };
-                e + reflectance_of(scene, patch.material, side, at) * h
+                let tau = translucency_of(scene, patch.material, at);
+                let passed = if tau.is_black() {
+                    Rgb64::BLACK
+                } else {
+                    tau * detail.irradiance.at(leaf, side.other(), corner_ids, local)
+                };
+                e + reflectance_of(scene, patch.material, side, at) * h + passed
             }
             _ => self.values.at(leaf, side, corner_ids, local),
         };

@@ -1,5 +1,6 @@
 //! The full-matrix solver (seed 000 §5.1, seed 001): all couplings `F_ij V_ij` are assembled
-//! (rows in parallel), then `B = S + ρ ⊙ (F B)` is iterated by Jacobi or Gauss-Seidel sweeps
+//! (rows in parallel), then `B = S + ρ ⊙ (F B) + τ ⊙ (F̄ B)` (`F̄` the rows of the other
+//! sides) is iterated by Jacobi or Gauss-Seidel sweeps
 //! until the change of one sweep, as a fraction of the source power ([`power_fraction`]),
 //! falls to the tolerance. Starting from `B = S`, a Jacobi sweep's change is exactly the
 //! light not yet reflected, so the measure matches the progressive solver's unshot power.
@@ -138,7 +139,8 @@ fn gather(row: &Couplings, b: &[Rgb64]) -> Rgb64 {
     sum
 }
 
-/// `S_i + ρ_i Σ_j F_ij B_j` for leaf `i`.
+/// `S_i + ρ_i Σ_j F_ij B_j + τ_i Σ_j F_īj B_j` for element `i` (`ī` the other side of its
+/// leaf, gathered only when the element is translucent).
 fn update(
     system: &RadiositySystem,
     rows: &[Couplings],
@@ -146,7 +148,13 @@ fn update(
     b: &[Rgb64],
     i: usize,
 ) -> Rgb64 {
-    source[i] + system.reflectance[i] * gather(&rows[i], b)
+    let own = gather(&rows[i], b);
+    let other = if system.translucency[i].is_black() {
+        Rgb64::BLACK
+    } else {
+        gather(&rows[RadiositySystem::other_side(i)], b)
+    };
+    source[i] + system.scattered(i, own, other)
 }
 
 /// One Jacobi sweep (rows in parallel); returns the change per element.

@@ -1,13 +1,15 @@
 //! Progressive refinement (seed 000 §5.2, seed 004): repeatedly shoot the leaf with the
 //! largest unshot power `|ΔB|·A` (luminance) to every other leaf through one column of
-//! couplings, `ΔH_i = F_ij V_ij s`, `B_i += ρ_i ΔH_i`, `ΔB_i += ρ_i ΔH_i`, `ΔB_j −= s`.
+//! couplings, `ΔH_i = F_ij V_ij s`, `B_i += ρ_i ΔH_i`, `ΔB_i += ρ_i ΔH_i`, `ΔB_j −= s`; a
+//! translucent receiver also passes `τ_i ΔH_i` to the other side `ī` of its leaf
+//! (`B_ī += τ_i ΔH_i`, `ΔB_ī += τ_i ΔH_i`).
 //!
 //! The shot `s` is the unshot radiosity `ΔB_j`, or with overshooting (negative radiosity)
-//! `ΔB_j + ρ_j × ambient`: the light the patch will still receive is sent ahead, leaving a
+//! `ΔB_j + (ρ_j + τ_j) × ambient`: the light the patch will still receive is sent ahead, leaving a
 //! negative unshot amount that later shots correct (shooting just that amount, no more light
 //! ahead); the fixed point is unchanged. The ambient
 //! term (Cohen et al. 1988) is `R · Σ_k ΔB_k A_k / Σ_k A_k` with `R = 1 / (1 − ρ̄)` and `ρ̄`
-//! the area-averaged reflectance; it is kept in the solution for display.
+//! the area-averaged albedo `ρ + τ`; it is kept in the solution for display.
 //!
 //! Columns already computed are cached up to [`COLUMN_CACHE_BYTES`]: a leaf shot again costs
 //! no form factors.
@@ -66,13 +68,13 @@ pub fn solve_progressive(
     let mut cache: Vec<Option<Couplings>> = vec![None; n];
     let mut cached_bytes = 0usize;
     let total_area = system.total_area();
-    let mean_reflectance = Rgb64::from(std::array::from_fn(|c| {
+    let mean_albedo = Rgb64::from(std::array::from_fn(|c| {
         (0..n)
-            .map(|k| system.reflectance[k][c] * system.area[k])
+            .map(|k| system.albedo(k)[c] * system.area[k])
             .sum::<f64>()
             / total_area
     }));
-    let interreflection = mean_reflectance.map(|r| 1.0 / (1.0 - r.min(0.999_999)));
+    let interreflection = mean_albedo.map(|r| 1.0 / (1.0 - r.min(0.999_999)));
     let mut bar = UnshotProgress::start(progress, settings.tolerance);
     let started = Instant::now();
     let mut form_factor_seconds = 0.0;
@@ -89,7 +91,7 @@ pub fn solve_progressive(
         // negative patch brings it to zero; overshooting it again would leave it where it
         // was and stall the solver on that patch.
         let overshoot = if settings.overshoot && unshot[j].luminance() > 0.0 {
-            (system.reflectance[j] * solution.ambient).map(|v| v.max(0.0))
+            (system.albedo(j) * solution.ambient).map(|v| v.max(0.0))
         } else {
             Rgb64::BLACK
         };
@@ -156,10 +158,17 @@ fn distribute(
 ) {
     for (&i, &f) in column.leaves.iter().zip(&column.values) {
         let i = i as usize;
-        let (rho, dh) = (system.reflectance[i], shot * f);
+        let dh = shot * f;
         solution.irradiance[i] += dh;
-        solution.radiosity[i] += rho * dh;
-        unshot[i] += rho * dh;
+        let reflected = system.reflectance[i] * dh;
+        solution.radiosity[i] += reflected;
+        unshot[i] += reflected;
+        if !system.translucency[i].is_black() {
+            let passed = system.translucency[i] * dh;
+            let other = RadiositySystem::other_side(i);
+            solution.radiosity[other] += passed;
+            unshot[other] += passed;
+        }
     }
 }
 

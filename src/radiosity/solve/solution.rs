@@ -3,11 +3,11 @@
 //! and the time spent per phase; and what it hands on — the power per reported surface, the
 //! run's statistics and the lit mesh.
 //!
-//! Per leaf `i` with area `A_i`, irradiance `H_i`, emitted radiosity `E_i`, reflectance
-//! `ρ_i` and the share `c_i` an alpha texture leaves in place (1 without one), the surface
-//! power is: incident `c_i A_i H_i`, absorbed `(c_i − ρ_i) A_i H_i`, emitted `A_i E_i`,
-//! reflected `ρ_i A_i H_i` (`E_i` and `ρ_i` already include `c_i`), summed per reported
-//! surface. Scene-wide, the point,
+//! Per element `i` with area `A_i`, irradiance `H_i`, emitted radiosity `E_i`, reflectance
+//! `ρ_i`, translucency `τ_i` and the share `c_i` an alpha texture leaves in place (1 without
+//! one), the surface power is: incident `c_i A_i H_i`, absorbed `(c_i − ρ_i − τ_i) A_i H_i`,
+//! emitted `A_i E_i`, reflected (out of either side) `(ρ_i + τ_i) A_i H_i` (`E_i`, `ρ_i` and
+//! `τ_i` already include `c_i`), summed per reported surface. Scene-wide, the point,
 //! spot and directional lights count with the power they send into the mesh
 //! (`Σ A_i H_light,i`), and the escaped power is what is emitted but not absorbed by any
 //! patch (light leaving an open scene, plus the small imbalance of the discretisation).
@@ -51,7 +51,7 @@ pub struct Solution {
     /// when the solver computed it (not for hierarchical shooting or an interrupted solve).
     pub direct_irradiance: Option<Vec<Rgb64>>,
     /// Ambient radiosity estimate of the light not yet distributed (progressive refinement,
-    /// seed 004), W·m⁻²; zero for the matrix solvers. Display adds `ρ_i × ambient`.
+    /// seed 004), W·m⁻²; zero for the matrix solvers. Display adds `(ρ_i + τ_i) × ambient`.
     pub ambient: Rgb64,
     /// Per iteration (sweep or shot): the residual or unshot power as a fraction of the
     /// source power ([`power_fraction`]).
@@ -102,12 +102,13 @@ impl Solution {
             .with_texture_detail(self.display_irradiance(), true)
     }
 
-    /// The radiosity to display per element: `B_i + ρ_i × ambient`, W·m⁻².
+    /// The radiosity to display per element: `B_i + (ρ_i + τ_i) × ambient` (the ambient
+    /// light arrives on both sides), W·m⁻².
     pub fn display_radiosity(&self, system: &RadiositySystem) -> Vec<Rgb64> {
         self.radiosity
             .iter()
-            .zip(&system.reflectance)
-            .map(|(&b, &r)| b + r * self.ambient)
+            .enumerate()
+            .map(|(k, &b)| b + system.albedo(k) * self.ambient)
             .collect()
     }
 
@@ -145,11 +146,12 @@ impl Solution {
         for k in 0..system.len() {
             let patch = system.patch(k);
             let entry = power.table().entry(patch.object, patch.face);
+            // What arrives on this side and is scattered back out of either side.
             let (a, h, e, r, c) = (
                 system.area[k],
                 self.irradiance[k],
                 system.emission[k],
-                system.reflectance[k],
+                system.albedo(k),
                 system.coverage[k],
             );
             let direct = self.direct_irradiance.as_ref().map(|d| d[k] * (c * a));

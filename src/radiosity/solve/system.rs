@@ -1,14 +1,17 @@
 //! The linear radiosity system of a meshed scene, per RGB channel in `f64`, with one unknown
 //! per side of every leaf patch (an [`Element`]):
-//! `B_i = E_i + ρ_i (H_light,i + Σ_j F_ij V_ij B_j)`.
+//! `B_i = E_i + ρ_i H_i + τ_i H_ī` with `H_i = H_light,i + Σ_j F_ij V_ij B_j`, `ī` the
+//! other side of `i`'s leaf.
 //!
 //! - `B_i`: radiosity leaving element `i` (one side of a leaf), W·m⁻².
 //! - `E_i = π·L`: emitted radiosity, the emission texture averaged over the patch; the front
 //!   side emits, the back only for a `two_sided` material.
 //! - `ρ_i`: diffuse reflectance (the material's diffuse part times its texture averaged over
 //!   the patch); 0 on the back of a `one_sided` material, which absorbs what reaches it.
-//!   Specular, mirror and transmission parts are ignored. Where an alpha texture cuts the
-//!   surface, `E_i` and `ρ_i` are scaled by the share `c_i` of the patch left in place, and
+//!   Specular, mirror and transmission parts are ignored.
+//! - `τ_i`: diffuse transmittance (translucency): the share of the irradiance on the other
+//!   side `ī` that leaves side `i`, the coupling of a leaf's two sides; 0 for a `one_sided`
+//!   material. Where an alpha texture cuts the surface, `E_i`, `ρ_i` and `τ_i` are scaled by the share `c_i` of the patch left in place, and
 //!   the element intercepts `c_i·A_i·H_i` of the light reaching it (`coverage`).
 //! - `H_light,i`: irradiance from point, spot and directional lights and the sky through
 //!   emitter-only links (seed §9.3.1, [`light_irradiance`]): these lights send and never
@@ -93,6 +96,9 @@ pub struct RadiositySystem {
     pub emission: Vec<Rgb64>,
     /// Diffuse reflectance per element, in `[0, 1]`.
     pub reflectance: Vec<Rgb64>,
+    /// Diffuse transmittance per element, in `[0, 1]`: the share of the other side's
+    /// irradiance this side sends out.
+    pub translucency: Vec<Rgb64>,
     /// The share of each element's area its material's alpha texture leaves in place, in
     /// `[0, 1]` (1 without one): `emission` and `reflectance` are per unit of the whole
     /// area, and the element intercepts its irradiance over this share only.
@@ -158,6 +164,10 @@ impl RadiositySystem {
             .iter()
             .map(|e| surface::reflectance(scene, mesh.patch(e.patch), e.side))
             .collect();
+        let translucency = elements
+            .iter()
+            .map(|e| surface::translucency(scene, mesh.patch(e.patch)))
+            .collect();
         let coverage = elements
             .iter()
             .map(|e| surface::coverage(scene, mesh.patch(e.patch)))
@@ -187,6 +197,7 @@ impl RadiositySystem {
             area,
             emission,
             reflectance,
+            translucency,
             coverage,
             light_irradiance,
             setup_seconds: start.elapsed().as_secs_f64(),
@@ -234,9 +245,35 @@ impl RadiositySystem {
         2 * leaf + side.index()
     }
 
-    /// The source term `S_i = E_i + ρ_i H_light,i` of leaf `k`, W·m⁻².
+    /// The other side of element `k`'s leaf.
+    #[inline]
+    pub fn other_side(k: usize) -> usize {
+        k ^ 1
+    }
+
+    /// The radiosity element `k` scatters, W·m⁻², when the irradiance on it is `own` and on
+    /// the other side of its leaf `other` (W·m⁻²): `ρ_k·own + τ_k·other`.
+    #[inline]
+    pub fn scattered(&self, k: usize, own: Rgb64, other: Rgb64) -> Rgb64 {
+        self.reflectance[k] * own + self.translucency[k] * other
+    }
+
+    /// The share of the light arriving on element `k` that its leaf scatters back out,
+    /// `ρ_k + τ_k` (the rest is absorbed).
+    #[inline]
+    pub fn albedo(&self, k: usize) -> Rgb64 {
+        self.reflectance[k] + self.translucency[k]
+    }
+
+    /// True when some element is translucent (the two sides of its leaf are coupled).
+    pub fn has_translucency(&self) -> bool {
+        self.translucency.iter().any(|t| !t.is_black())
+    }
+
+    /// The source term `S_i = E_i + ρ_i H_light,i + τ_i H_light,ī` of element `k`, W·m⁻².
     pub fn source(&self, k: usize) -> Rgb64 {
-        self.emission[k] + self.reflectance[k] * self.light_irradiance[k]
+        let other = self.light_irradiance[Self::other_side(k)];
+        self.emission[k] + self.scattered(k, self.light_irradiance[k], other)
     }
 
     /// Total area of all elements (both sides of every leaf), scene units².

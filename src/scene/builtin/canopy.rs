@@ -2,8 +2,8 @@
 //! square grid 10 cm apart, at heights from 0 to 45 cm and tilted in three ways, under a
 //! uniform sky (radiance 0.2 W·sr⁻¹·m⁻²) and a sun (500 W·m⁻² from slightly south-east).
 //! Every leaf is its own named object (`leaf-<row>-<column>`), 6 × 6 cm, reflecting
-//! (0.1, 0.4, 0.1) diffusely and transmitting 10 % straight through (index 1) — the light
-//! model reports what each leaf absorbs.
+//! (0.1, 0.4, 0.1) diffusely and passing 10 % through diffusely (translucent, as real
+//! leaves are) — the light model and radiosity report what each leaf absorbs.
 
 use crate::color::Rgb;
 use crate::scene::{Camera, Light, LightKind, Material, Scene, Shape};
@@ -23,8 +23,7 @@ pub fn parse_count(parameter: Option<&str>) -> Result<usize, String> {
 pub fn scene(leaves: usize) -> Scene {
     let mut scene = Scene::empty("canopy");
     let leaf = scene.add_material(Material {
-        transmission: Rgb::splat(0.1),
-        ior: 1.0,
+        translucency: Rgb::splat(0.1),
         ..Material::diffuse("leaf", Rgb::new(0.1, 0.4, 0.1))
     });
     let side = (leaves as f64).sqrt().ceil() as usize;

@@ -66,6 +66,7 @@ pub(super) struct MaterialEntry {
     pub shininess: Option<Spanned<f32>>,
     pub mirror: Option<Spanned<Triple>>,
     pub transmission: Option<Spanned<Triple>>,
+    pub translucency: Option<Spanned<Triple>>,
     pub ior: Option<Spanned<f32>>,
     pub alpha_texture: Option<Spanned<TextureEntry>>,
     pub one_sided: Option<bool>,

@@ -44,16 +44,29 @@ pub(super) fn build_material(
     let specular = weight("specular", e.specular.as_ref(), Rgb::BLACK)?;
     let mirror = weight("mirror", e.mirror.as_ref(), Rgb::BLACK)?;
     let transmission = weight("transmission", e.transmission.as_ref(), Rgb::BLACK)?;
-    let sum = diffuse + specular + mirror + transmission;
+    let translucency = weight("translucency", e.translucency.as_ref(), Rgb::BLACK)?;
+    let sum = diffuse + translucency + specular + mirror + transmission;
     if sum.max_channel() > 1.0 + ENERGY_TOLERANCE {
         let channel = ["red", "green", "blue"][(0..3)
             .max_by(|&a, &b| sum[a].total_cmp(&sum[b]))
             .unwrap_or(0)];
         return Err(t.table_error(format!(
-            "material \"{name}\" reflects more than it receives: diffuse + specular + mirror + \
-             transmission = {:.3} in the {channel} channel (must be ≤ 1)",
+            "material \"{name}\" reflects more than it receives: diffuse + translucency + \
+             specular + mirror + transmission = {:.3} in the {channel} channel (must be ≤ 1)",
             sum.max_channel()
         )));
+    }
+    let one_sided = e.one_sided.unwrap_or(false);
+    if one_sided
+        && !translucency.is_black()
+        && let Some(span) = e.translucency.as_ref().map(Spanned::span)
+    {
+        return Err(t.error(
+            span,
+            "translucency",
+            "a one-sided material absorbs on its back, so nothing passes through it: \
+             remove one_sided or translucency",
+        ));
     }
     let emission = photometry::amount(
         t,
@@ -87,6 +100,7 @@ pub(super) fn build_material(
         name: name.to_string(),
         diffuse,
         diffuse_texture: texture("diffuse_texture", e.diffuse_texture.as_ref(), false)?,
+        translucency,
         emission,
         emission_texture: texture("emission_texture", e.emission_texture.as_ref(), false)?,
         two_sided: e.two_sided.unwrap_or(false),
@@ -96,7 +110,7 @@ pub(super) fn build_material(
         transmission,
         ior,
         alpha_texture: texture("alpha_texture", e.alpha_texture.as_ref(), true)?,
-        one_sided: e.one_sided.unwrap_or(false),
+        one_sided,
     })
 }
 

@@ -170,7 +170,9 @@ impl PathTracer {
             return None;
         }
         let (pick, point) = (numbers.light_pick, numbers.light_point);
-        self.lights.sample(world, sp.hit.p, sp.n, pick, point)
+        let through = sp.material.is_translucent();
+        self.lights
+            .sample(world, sp.hit.p, sp.n, through, pick, point)
     }
 
     /// Radiance reflected toward the viewer at `sp` from the light sample `ls`, weighted
@@ -182,7 +184,10 @@ impl PathTracer {
         choice: &LobeChoice,
         ls: &LightSample,
     ) -> Rgb {
-        if sp.ng.dot(ls.wi) <= 0.0 {
+        // The light must arrive on the side of the geometric surface the shading normal says
+        // (in front, or behind through a translucent surface).
+        let cos = sp.n.dot(ls.wi);
+        if cos * sp.ng.dot(ls.wi) <= 0.0 {
             return Rgb::BLACK;
         }
         let f = sp.material.eval(sp.n, sp.wo, ls.wi);
@@ -197,7 +202,7 @@ impl PathTracer {
             return Rgb::BLACK;
         }
         let weight = light_sample_weight(ls.pdf, || choice.pdf(&sp.material, sp.n, sp.wo, ls.wi));
-        f * ls.radiance_over_pdf * (sp.n.dot(ls.wi) * weight)
+        f * ls.radiance_over_pdf * (cos.abs() * weight)
     }
 
     /// The vertex a path with throughput `beta`, `bounce` scattering events so far and

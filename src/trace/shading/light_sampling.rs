@@ -226,23 +226,27 @@ impl LightPicker {
     /// Samples one light for the shading point `x` with unit shading normal `n` (toward the
     /// viewer), from uniform numbers `u_pick` (chooses the light; what remains of it after the
     /// choice, rescaled to `[0, 1)`, chooses the light's triangle) and `u` (the point). `None`
-    /// when the sample carries no light (behind the point, back of a one-sided emitter,
-    /// outside a spot cone).
+    /// when the sample carries no light (behind the point unless `through` — a surface that
+    /// passes light diffusely — back of a one-sided emitter, outside a spot cone). The sky is
+    /// sampled in front of the point only ([`Self::sky_pdf`] is 0 behind it), so the sky seen
+    /// through a translucent surface comes from scattering alone.
     pub fn sample(
         &self,
         world: &World,
         x: Vec3,
         n: Vec3,
+        through: bool,
         u_pick: f32,
         u: Vec2,
     ) -> Option<LightSample> {
+        let arrives = |wi: Vec3| through || n.dot(wi) > 0.0;
         let (choice, probability, u_prim) = self.choose(u_pick)?;
         match choice {
             Choice::Area(light) => {
                 let s = world.lights.sample_area(&world.geometry, light, u_prim, u);
                 let toward = toward_light(V3::from(x), V3::from(s.p), V3::from(s.n));
                 let (wi, cos_y) = (Vec3::from(toward.wi), toward.cos_light);
-                if toward.dist2 <= 0.0 || cos_y == 0.0 || n.dot(wi) <= 0.0 {
+                if toward.dist2 <= 0.0 || cos_y == 0.0 || n.dot(wi) == 0.0 || !arrives(wi) {
                     return None;
                 }
                 let le = world.lights.area_radiance(
@@ -279,7 +283,7 @@ impl LightPicker {
             }
             Choice::Delta(light) => {
                 let inc = world.lights.delta[light].incidence(x)?;
-                if inc.irradiance.is_black() || n.dot(inc.wi) <= 0.0 {
+                if inc.irradiance.is_black() || n.dot(inc.wi) == 0.0 || !arrives(inc.wi) {
                     return None;
                 }
                 let target = if inc.distance.is_finite() {

@@ -1,5 +1,5 @@
 //! The lobes a material scatters by ([`Lobe`]), one file each: the Lambertian lobe
-//! (`lambert.rs`), the normalised Phong lobe (`phong.rs`), the ideal mirror (`mirror.rs`)
+//! (`lambert.rs`), diffuse transmission (`translucent.rs`), the normalised Phong lobe (`phong.rs`), the ideal mirror (`mirror.rs`)
 //! and the smooth dielectric (`dielectric.rs`). What every algorithm asks of a lobe is here,
 //! dispatched by an exhaustive `match`: its value and density (path tracer, final gather,
 //! light sampling), a sampled direction (path tracer), a photon's direction (light model),
@@ -11,6 +11,7 @@ mod dielectric;
 mod lambert;
 mod mirror;
 mod phong;
+mod translucent;
 
 pub use crate::scene::Lobe;
 
@@ -38,19 +39,22 @@ impl Lobe {
     pub fn weight(self, m: &SurfaceMaterial) -> Rgb {
         match self {
             Lobe::Lambert => m.diffuse,
+            Lobe::Translucent => m.translucency,
             Lobe::Phong => m.specular,
             Lobe::Mirror => m.mirror,
             Lobe::Dielectric => m.transmission,
         }
     }
 
-    /// The lobe's part of the reflection function `f(wo, wi)` (1/sr) of `m`, weight
-    /// included, for unit `wo` and `wi` on the side of the unit normal `n`; black for delta
-    /// lobes.
+    /// The lobe's part of the scattering function `f(wo, wi)` (1/sr) of `m`, weight
+    /// included, for unit `wo` on the side of the unit normal `n` and unit `wi` on the side
+    /// the lobe scatters to (the same side, or behind the surface for a lobe that
+    /// [`transmits`](Lobe::transmits)); black for delta lobes.
     #[inline]
     pub fn eval(self, m: &SurfaceMaterial, n: Vec3, wo: Vec3, wi: Vec3) -> Rgb {
         match self {
             Lobe::Lambert => lambert::eval(m.diffuse),
+            Lobe::Translucent => lambert::eval(m.translucency),
             Lobe::Phong => m.specular * phong::lobe(n, wo, wi, m.shininess),
             Lobe::Mirror | Lobe::Dielectric => Rgb::BLACK,
         }
@@ -61,17 +65,18 @@ impl Lobe {
     pub fn pdf(self, m: &SurfaceMaterial, n: Vec3, wo: Vec3, wi: Vec3) -> f32 {
         match self {
             Lobe::Lambert => lambert::pdf(n.dot(wi)),
+            Lobe::Translucent => translucent::pdf(n.dot(wi)),
             Lobe::Phong => phong::pdf(mirror::direction(n, wo).dot(wi), m.shininess),
             Lobe::Mirror | Lobe::Dielectric => 0.0,
         }
     }
 
-    /// True when `f·cos θ / pdf` of the lobe alone is its weight exactly (Lambert), so a
-    /// sampler that chose it alone needs no division.
+    /// True when `f·|cos θ| / pdf` of the lobe alone is its weight exactly (Lambert and
+    /// translucent), so a sampler that chose it alone needs no division.
     #[inline]
     pub fn samples_its_weight(self) -> bool {
         match self {
-            Lobe::Lambert => true,
+            Lobe::Lambert | Lobe::Translucent => true,
             Lobe::Phong | Lobe::Mirror | Lobe::Dielectric => false,
         }
     }
@@ -91,6 +96,7 @@ impl Lobe {
         let LocalView { n, wo, .. } = *view;
         match self {
             Lobe::Lambert => (lambert::sample(n, u), 1.0),
+            Lobe::Translucent => (translucent::sample(n, u), 1.0),
             Lobe::Phong => (phong::sample(n, wo, m.shininess, u), 1.0),
             Lobe::Mirror => (mirror::direction(n, wo), 1.0),
             Lobe::Dielectric => {
@@ -108,7 +114,8 @@ impl Lobe {
     /// A photon's direction from the lobe at `view` (`wo` back along the photon) from the
     /// uniform point `u`, and the factor its power carries besides the lobe weight (the
     /// Phong lobe's `(s+2)/(s+1)·cos θ`, else 1); `None` when the lobe sends it below the
-    /// surface. Diffuse photons leave about the geometric normal; the dielectric draws one
+    /// surface. Diffuse photons leave about the geometric normal (behind the surface for the
+    /// translucent lobe); the dielectric draws one
     /// more number from `sampler` to choose reflection or refraction.
     #[inline]
     pub fn sample_photon(
@@ -121,6 +128,7 @@ impl Lobe {
         let LocalView { n, ng, wo, .. } = *view;
         match self {
             Lobe::Lambert => Some((lambert::sample_photon(ng, u), 1.0)),
+            Lobe::Translucent => Some((translucent::sample_photon(ng, u), 1.0)),
             Lobe::Phong => phong::sample_photon(n, wo, m.shininess, u),
             Lobe::Mirror => Some((mirror::direction(n, wo), 1.0)),
             Lobe::Dielectric => {
@@ -130,11 +138,11 @@ impl Lobe {
         }
     }
 
-    /// True for the lobes that pass light through the surface (the dielectric).
+    /// True for the lobes that pass light through the surface (translucent and dielectric).
     #[inline]
     pub fn transmits(self) -> bool {
         match self {
-            Lobe::Dielectric => true,
+            Lobe::Translucent | Lobe::Dielectric => true,
             Lobe::Lambert | Lobe::Phong | Lobe::Mirror => false,
         }
     }
@@ -145,7 +153,7 @@ impl Lobe {
     pub fn branches(self, m: &SurfaceMaterial, view: &LocalView) -> [Option<(Vec3, Rgb)>; 2] {
         let LocalView { n, wo, .. } = *view;
         match self {
-            Lobe::Lambert | Lobe::Phong => [None, None],
+            Lobe::Lambert | Lobe::Translucent | Lobe::Phong => [None, None],
             Lobe::Mirror => [Some((mirror::direction(n, wo), m.mirror)), None],
             Lobe::Dielectric => {
                 let eta = dielectric::relative_index(view.front_face, m.ior);

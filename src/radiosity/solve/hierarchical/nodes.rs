@@ -35,7 +35,10 @@ pub struct Nodes {
     pub emission: Vec<Rgb64>,
     /// Diffuse reflectance.
     pub reflectance: Vec<Rgb64>,
-    /// Radiosity: at a leaf `E + ρ·H` (H everything gathered at it and its ancestors), at an
+    /// Diffuse transmittance: the share of the other side's irradiance this side sends out.
+    pub translucency: Vec<Rgb64>,
+    /// Radiosity: at a leaf `E + ρ·H + τ·H̄` (H everything gathered at it and its ancestors,
+    /// H̄ the same on the other side), at an
     /// inner node the area-weighted mean of its children, W·m⁻².
     pub radiosity: Vec<Rgb64>,
     /// Irradiance gathered over the node's own links in the last gather, W·m⁻².
@@ -61,9 +64,7 @@ impl Nodes {
         let mut nodes = Nodes::default();
         nodes.grow(scene, mesh);
         for &root in &mesh.roots {
-            for side in Side::BOTH {
-                nodes.push_pull_from(mesh, node(root, side), Rgb64::BLACK, Rgb64::BLACK);
-            }
+            nodes.push_pull_from(mesh, root, [Rgb64::BLACK; 2], [Rgb64::BLACK; 2]);
         }
         nodes
     }
@@ -86,6 +87,7 @@ impl Nodes {
                 self.emission.push(surface::emission(scene, patch, side));
                 self.reflectance
                     .push(surface::reflectance(scene, patch, side));
+                self.translucency.push(surface::translucency(scene, patch));
                 self.radiosity.push(start);
                 self.gathered.push(Rgb64::BLACK);
                 self.lit.push(Rgb64::BLACK);
@@ -107,19 +109,16 @@ impl Nodes {
     }
 
     /// Push-pull over every tree (seed §6.8): irradiance gathered at a node is handed down to
-    /// its leaves, where it becomes radiosity `E + ρ·H`, and the leaves' radiosity is pulled
+    /// its leaves, where it becomes radiosity `E + ρ·H + τ·H̄` (`H̄` on the other side), and the leaves' radiosity is pulled
     /// up as area-weighted means. Returns `(Σ A·Y(|ΔB|), Σ A·Y(S))` over the leaves: the
-    /// change of radiosity and the source term `S = E + ρ·H_lights`, both as power.
+    /// change of radiosity and the source term `S = E + ρ·H_lights + τ·H̄_lights`, both as power.
     pub fn push_pull(&mut self, mesh: &PatchMesh) -> (f64, f64) {
         let mut change = 0.0;
         let mut source = 0.0;
         for &root in &mesh.roots {
-            for side in Side::BOTH {
-                let (c, s) =
-                    self.push_pull_from(mesh, node(root, side), Rgb64::BLACK, Rgb64::BLACK);
-                change += c;
-                source += s;
-            }
+            let (c, s) = self.push_pull_from(mesh, root, [Rgb64::BLACK; 2], [Rgb64::BLACK; 2]);
+            change += c;
+            source += s;
         }
         (change, source)
     }
@@ -144,47 +143,62 @@ impl Nodes {
         at_leaves
     }
 
-    /// Push-pull below node `n`, which receives `above` (irradiance from its ancestors'
-    /// links, of which `above_lit` from lights). Returns the change and source powers of its
-    /// leaves.
+    /// Push-pull below patch `patch`, whose sides receive `above` (irradiance from their
+    /// ancestors' links, per side, of which `above_lit` from lights). Both sides go down
+    /// together: at a leaf each side's radiosity takes the other side's irradiance through
+    /// the translucency. Returns the change and source powers of its leaves.
     fn push_pull_from(
         &mut self,
         mesh: &PatchMesh,
-        n: usize,
-        above: Rgb64,
-        above_lit: Rgb64,
+        patch: PatchId,
+        above: [Rgb64; 2],
+        above_lit: [Rgb64; 2],
     ) -> (f64, f64) {
-        let (patch, side) = split_node(n);
-        let h = above + self.gathered[n] + self.lit[n];
-        let h_lit = above_lit + self.lit[n];
+        let nodes = Side::BOTH.map(|side| node(patch, side));
+        let h = [0, 1].map(|s| above[s] + self.gathered[nodes[s]] + self.lit[nodes[s]]);
+        let h_lit = [0, 1].map(|s| above_lit[s] + self.lit[nodes[s]]);
+        let area = mesh.patch(patch).area;
         match mesh.patch(patch).children {
             None => {
-                let b = self.emission[n] + self.reflectance[n] * h;
-                let area = mesh.patch(patch).area;
-                let change = area * (b - self.radiosity[n]).map(f64::abs).luminance();
-                let source = area * (self.emission[n] + self.reflectance[n] * h_lit).luminance();
-                let y = b.luminance();
-                self.radiosity[n] = b;
-                self.irradiance[n] = h;
-                self.lit_total[n] = h_lit;
-                self.range[n] = (y, y);
+                let (mut change, mut source) = (0.0, 0.0);
+                for s in 0..2 {
+                    let n = nodes[s];
+                    let scattered = |own: Rgb64, other: Rgb64| {
+                        self.reflectance[n] * own + self.translucency[n] * other
+                    };
+                    let b = self.emission[n] + scattered(h[s], h[1 - s]);
+                    change += area * (b - self.radiosity[n]).map(f64::abs).luminance();
+                    source +=
+                        area * (self.emission[n] + scattered(h_lit[s], h_lit[1 - s])).luminance();
+                    let y = b.luminance();
+                    self.radiosity[n] = b;
+                    self.irradiance[n] = h[s];
+                    self.lit_total[n] = h_lit[s];
+                    self.range[n] = (y, y);
+                }
                 (change, source)
             }
             Some(children) => {
-                let area = mesh.patch(patch).area;
-                let mut sum = Rgb64::BLACK;
-                let mut range = (f64::INFINITY, f64::NEG_INFINITY);
+                let mut sum = [Rgb64::BLACK; 2];
+                let mut range = [(f64::INFINITY, f64::NEG_INFINITY); 2];
                 let (mut change, mut source) = (0.0, 0.0);
                 for child in children {
-                    let c = node(child, side);
-                    let (dc, ds) = self.push_pull_from(mesh, c, h, h_lit);
+                    let (dc, ds) = self.push_pull_from(mesh, child, h, h_lit);
                     change += dc;
                     source += ds;
-                    sum += self.radiosity[c] * mesh.patch(child).area;
-                    range = (range.0.min(self.range[c].0), range.1.max(self.range[c].1));
+                    for (s, side) in Side::BOTH.into_iter().enumerate() {
+                        let c = node(child, side);
+                        sum[s] += self.radiosity[c] * mesh.patch(child).area;
+                        range[s] = (
+                            range[s].0.min(self.range[c].0),
+                            range[s].1.max(self.range[c].1),
+                        );
+                    }
                 }
-                self.radiosity[n] = sum.map(|v| v / area);
-                self.range[n] = range;
+                for s in 0..2 {
+                    self.radiosity[nodes[s]] = sum[s].map(|v| v / area);
+                    self.range[nodes[s]] = range[s];
+                }
                 (change, source)
             }
         }

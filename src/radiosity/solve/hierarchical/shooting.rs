@@ -259,13 +259,14 @@ impl Shots {
 }
 
 /// The push (§5.3.2): irradiance `h` taken at node `n` reaches every leaf below it, where it
-/// adds `ρ·h` to the radiosity.
+/// adds `ρ·h` to the radiosity of its side and `τ·h` to that of the other side.
 fn push(solver: &mut Solver, n: usize, h: Rgb64) {
     let (patch, side) = split_node(n);
     let nodes = &mut solver.nodes;
     for leaf in solver.mesh.leaves_under(patch) {
-        let l = node(leaf, side);
+        let (l, other) = (node(leaf, side), node(leaf, side.other()));
         nodes.irradiance[l] += h;
         nodes.radiosity[l] += nodes.reflectance[l] * h;
+        nodes.radiosity[other] += nodes.translucency[other] * h;
     }
 }

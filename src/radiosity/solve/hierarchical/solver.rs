@@ -454,8 +454,10 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 .into_iter()
                 .flat_map(|c| Side::BOTH.map(|s| (c, s)))
             {
-                let n = node(c, side);
-                let b = nodes.emission[n] + nodes.reflectance[n] * nodes.irradiance[n];
+                let (n, other) = (node(c, side), node(c, side.other()));
+                let b = nodes.emission[n]
+                    + nodes.reflectance[n] * nodes.irradiance[n]
+                    + nodes.translucency[n] * nodes.irradiance[other];
                 nodes.radiosity[n] = b;
                 nodes.range[n] = (b.luminance(), b.luminance());
             }
