@@ -563,9 +563,11 @@ fn hierarchical_mesh_does_not_change_when_the_scene_or_the_light_is_scaled() {
 
 #[test]
 fn hierarchical_results_do_not_depend_on_the_thread_count() {
+    // At the default error the box has about 37,000 links, more than one chunk of the
+    // parallel gather; the surface error adds the importance solve.
     let world = cornell();
     let settings = HierarchicalSettings {
-        error: 3e-4,
+        surface_error: 0.03,
         ..HierarchicalSettings::default()
     };
     let run = |threads: usize| {

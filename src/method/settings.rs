@@ -180,6 +180,12 @@ impl RadiositySettings {
                 format!("must be a positive number (got {})", h.error),
             ));
         }
+        if !(h.surface_error.is_finite() && (0.0..1.0).contains(&h.surface_error)) {
+            return Err(SettingError::new(
+                "surface-error",
+                format!("must lie between 0 (off) and 1 (got {})", h.surface_error),
+            ));
+        }
         if !(h.min_area.is_finite() && h.min_area > 0.0 && h.min_area < 1.0) {
             return Err(SettingError::new(
                 "min-area",

@@ -10,7 +10,8 @@
 //!   angle its area subtends (`cos θ / d²`);
 //! - directional light: `E·cos θ` times the share of receiver points that see it;
 //! - sky of uniform radiance `L`: `π·L` times the cosine-weighted share of directions that
-//!   reach the sky, from stratified directions at every receiver point.
+//!   reach the sky, from stratified directions at every receiver point (fewer per point the
+//!   more points there are: about 64 rays per patch side).
 
 use super::element::Side;
 use super::form_factor::receiver_points;
@@ -41,7 +42,10 @@ pub fn light_irradiance(
     let points = receiver_points(patch, samples);
     match *light {
         LightKind::Sky { radiance } => {
-            radiance.to_f64() * (PI * sky_share(world, &points, normal, SKY_DIRECTIONS_PER_AXIS))
+            // About the same rays whatever the points: 4 × 4 directions at each of 2 × 2
+            // points, one at each of 8 × 8.
+            let per_axis = (SKY_DIRECTIONS_PER_AXIS * 2 / samples.max(1)).max(1);
+            radiance.to_f64() * (PI * sky_share(world, &points, normal, per_axis))
         }
         LightKind::Directional { direction, .. } => {
             let Some(inc) = light.incidence(patch.centroid.as_vec3()) else {

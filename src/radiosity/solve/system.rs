@@ -47,19 +47,22 @@ pub struct SystemOptions {
     /// Visibility rays and shaft culling.
     pub visibility: VisibilityOptions,
     /// Receiver points per axis for the links from point, spot and directional lights and
-    /// the sky.
+    /// the sky. Shadows cast by small things (leaves on leaves) need many: at 2 × 2 the
+    /// canopy's leaves, whose shadows fall in a regular pattern, took up to 9 % too much sun
+    /// (what all points of a partly shadowed leaf see is what all of it gets); 8 × 8 brings
+    /// every leaf within the light model's noise (1.8 % RMS against its 1.5 %).
     pub link_samples: u32,
 }
 
 impl Default for SystemOptions {
-    /// Default mesh, analytic form factors at the centroid, adaptive visibility, 2×2 link
+    /// Default mesh, analytic form factors at the centroid, adaptive visibility, 8 × 8 link
     /// samples.
     fn default() -> Self {
         SystemOptions {
             mesh: MeshOptions::default(),
             form_factor: FormFactorOptions::default(),
             visibility: VisibilityOptions::default(),
-            link_samples: 2,
+            link_samples: 8,
         }
     }
 }
@@ -109,7 +112,7 @@ pub struct RadiositySystem {
     pub setup_seconds: f64,
     /// Per element: the largest distance from its patch's centroid to a corner.
     radius: Vec<f64>,
-    visibility: Visibility,
+    visibility: Arc<Visibility>,
     options: SystemOptions,
     form_factors: AtomicU64,
     visibility_rays: AtomicU64,
@@ -121,19 +124,21 @@ impl RadiositySystem {
     pub fn new(world: &Arc<World>, options: SystemOptions) -> Result<Self, SolveError> {
         let start = Instant::now();
         let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
-        let mut system = Self::from_mesh(world, mesh, options, None)?;
+        let mut system = Self::from_mesh(world, mesh, options, None, None)?;
         system.setup_seconds = start.elapsed().as_secs_f64();
         Ok(system)
     }
 
     /// The system on the leaves of `mesh` (a mesh of `world`'s scene). The light-link
     /// irradiance per element is `linked` when given (a solver that linked the lights
-    /// itself), else gathered here.
+    /// itself), else gathered here; the visibility estimator is `visibility` when given (one
+    /// a solver built for `world` with `options`), else built here.
     pub fn from_mesh(
         world: &Arc<World>,
         mesh: PatchMesh,
         options: SystemOptions,
         linked: Option<Vec<Rgb64>>,
+        visibility: Option<Arc<Visibility>>,
     ) -> Result<Self, SolveError> {
         let start = Instant::now();
         let leaves = mesh.leaves();
@@ -172,7 +177,14 @@ impl RadiositySystem {
             .iter()
             .map(|e| surface::coverage(scene, mesh.patch(e.patch)))
             .collect();
-        let visibility = Visibility::new(world, options.visibility, options.mesh.segments)?;
+        let visibility = match visibility {
+            Some(v) => v,
+            None => Arc::new(Visibility::new(
+                world,
+                options.visibility,
+                options.mesh.segments,
+            )?),
+        };
         let light_irradiance = linked.unwrap_or_else(|| {
             elements
                 .par_iter()

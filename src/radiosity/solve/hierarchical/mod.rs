@@ -32,6 +32,7 @@
 //! asks, and what a receiver takes is pushed to the leaves.
 
 mod clusters;
+mod importance;
 mod links;
 mod nodes;
 mod oracle;
@@ -66,6 +67,11 @@ pub struct HierarchicalSettings {
     /// Largest tolerated uncertainty of the power a link brings, relative to all power
     /// emitted in the scene.
     pub error: f64,
+    /// Per-surface error (the hierarchical solver; hierarchical shooting ignores it): each
+    /// link is also held to about this share of the power of every reported surface its
+    /// light reaches, weighed by importance (`importance.rs`); 0 leaves the scene-wide
+    /// `error` alone.
+    pub surface_error: f64,
     /// Nodes are not split below this fraction of the scene's surface area.
     pub min_area: f64,
     /// Which links a refinement pass judges.
@@ -87,6 +93,7 @@ impl Default for HierarchicalSettings {
         HierarchicalSettings {
             oracle: Oracle::Lischinski,
             error: 1e-4,
+            surface_error: 0.0,
             min_area: 2e-5,
             refine_pass: RefinePass::Original,
             tolerance: 1e-4,

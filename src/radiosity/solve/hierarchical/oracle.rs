@@ -83,6 +83,13 @@ pub struct Limits {
     pub min_area: f64,
 }
 
+impl Limits {
+    /// These limits with the power error `error` (W) in place of theirs.
+    pub fn with_error(self, error: f64) -> Self {
+        Limits { error, ..self }
+    }
+}
+
 /// Which nodes may still be split.
 fn splittable(mesh: &PatchMesh, node: u32, limits: &Limits) -> bool {
     mesh.patch(node / 2).area > limits.min_area

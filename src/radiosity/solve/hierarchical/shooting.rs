@@ -100,6 +100,7 @@ pub fn solve_hierarchical_shooting(
     let converged = fraction <= shooting.tolerance;
     let kind = SolverKind::HierarchicalShooting;
     solver.into_solution(
+        Arc::clone(&visibility),
         kind,
         options,
         times,

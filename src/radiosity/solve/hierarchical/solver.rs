@@ -2,6 +2,7 @@
 //! refinement until no link is refined (the steps of the module documentation).
 
 use super::clusters::{ClusterLink, ClusterTree, End, Split};
+use super::importance::Importance;
 use super::links::{LightLink, Link, Linker, Prior};
 use super::nodes::{Nodes, node, split_node};
 use super::oracle::{Decision, Limits, decide, decide_light};
@@ -27,6 +28,21 @@ use std::time::Instant;
 /// Gathers per round at most (each is one bounce of light).
 const MAX_GATHERS: u32 = 1000;
 
+/// Links per chunk of a parallel gather ([`Solver::gather_from`]); fixed, so that the sums
+/// do not depend on the number of threads (fewer links are one chunk, in link order).
+const GATHER_CHUNK: usize = 1 << 15;
+
+/// Bytes the chunks' sums of one gather may hold together.
+const GATHER_BYTES: usize = 256 << 20;
+
+/// The chunks a gather over `links` links into `nodes` nodes is cut into: one per
+/// [`GATHER_CHUNK`] links, as many as [`GATHER_BYTES`] allows (at least one). Depends on the
+/// problem alone, never on the thread count.
+fn gather_chunks(links: usize, nodes: usize) -> usize {
+    let by_memory = GATHER_BYTES / (nodes.max(1) * std::mem::size_of::<Rgb64>());
+    links.div_ceil(GATHER_CHUNK).min(by_memory).max(1)
+}
+
 /// What one pass of [`Solver::apply`] did.
 #[derive(Clone, Copy, Debug, Default)]
 struct Applied {
@@ -50,6 +66,10 @@ pub(super) struct Solver<'w, 'v> {
     cluster_links: Vec<ClusterLink>,
     pub(super) linker: Linker<'v>,
     pub(super) limits: Limits,
+    /// The chunks' sums of the last gather, kept for the next one.
+    gather_sums: std::sync::Mutex<Vec<Vec<Rgb64>>>,
+    /// How much the light each node receives matters to the reported surfaces.
+    importance: Importance,
     pub(super) settings: HierarchicalSettings,
 }
 
@@ -58,13 +78,13 @@ pub(super) struct Solver<'w, 'v> {
 pub(super) fn prepare(
     world: &Arc<World>,
     options: &SystemOptions,
-) -> Result<(PatchMesh, Visibility), SolveError> {
+) -> Result<(PatchMesh, Arc<Visibility>), SolveError> {
     let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
     if mesh.roots.is_empty() {
         return Err(SolveError::NoPatches);
     }
     let visibility = Visibility::new(world, options.visibility, options.mesh.segments)?;
-    Ok((mesh, visibility))
+    Ok((mesh, Arc::new(visibility)))
 }
 
 /// Solves `world`'s scene by hierarchical radiosity: the mesh (roots, contact splits and any
@@ -99,6 +119,9 @@ pub fn solve_hierarchical(
     let mut interrupted = false;
     for _ in 0..settings.max_rounds {
         solver.gather_to_convergence(&mut round, cancel);
+        solver
+            .importance
+            .update(&solver.mesh, &solver.nodes, &solver.links);
         round.links = solver.link_count() as u64;
         round.cluster_links = solver.cluster_links.len() as u64;
         round.blocked_links = solver.links.iter().filter(|l| l.is_blocked()).count() as u64;
@@ -127,6 +150,7 @@ pub fn solve_hierarchical(
     let convergence = rounds.iter().map(|r| r.residual).collect();
     let kind = SolverKind::Hierarchical;
     solver.into_solution(
+        Arc::clone(&visibility),
         kind,
         options,
         times,
@@ -165,6 +189,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 bfa: 0.0,
                 min_area: 0.0,
             },
+            gather_sums: std::sync::Mutex::new(Vec::new()),
+            importance: Importance::new(world, settings.surface_error),
             settings: *settings,
             mesh,
         };
@@ -221,18 +247,22 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             return (0, 0);
         };
         let (mut created, mut refined) = (0, 0);
+        // The links before this index were kept earlier in this call: neither the radiosity
+        // nor the patches change while it runs, so they would be kept again.
+        let mut judged = 0;
         while !cancel.is_requested() {
             let (mesh, b, error) = (&self.mesh, &self.nodes.radiosity, self.limits.error);
-            let refine: Vec<bool> = self
-                .cluster_links
+            let refine: Vec<bool> = self.cluster_links[judged..]
                 .par_iter()
                 .map(|l| tree.power_bound(mesh, l, b) > error)
                 .collect();
             let mut ends: Vec<(End, End)> = Vec::new();
             let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
             let mut decision = refine.iter();
+            let mut index = 0;
             self.cluster_links.retain(|link| {
-                if !decision.next().copied().unwrap_or(false) {
+                index += 1;
+                if index <= judged || !decision.next().copied().unwrap_or(false) {
                     return true;
                 }
                 match tree.split(mesh, link) {
@@ -256,6 +286,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     (tree.link(mesh, visibility, r, e, &mut rays), rays)
                 })
                 .collect();
+            judged = self.cluster_links.len();
             let rays: u64 = new.iter().map(|n| n.1).sum();
             self.linker.rays.fetch_add(rays, Ordering::Relaxed);
             let patch_links = self.create_links(&pairs);
@@ -355,21 +386,47 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     }
 
     /// Into `gathered` (cleared first), per node: `Σ F·V·B` over its links and the cluster
-    /// links, for the radiosity `b` per node.
+    /// links, for the radiosity `b` per node. The links (patch links, then cluster links) are
+    /// cut into [`gather_chunks`] equal chunks gathered in parallel, each into a sum of its
+    /// own, and the chunks' sums are added in their order: the same sums, to the last bit,
+    /// for any number of threads.
     fn gather_from(&self, b: &[Rgb64], gathered: &mut Vec<Rgb64>) {
+        let nodes = b.len();
+        let (patch_links, cluster_links) = (self.links.len(), self.cluster_links.len());
+        let chunks = gather_chunks(patch_links + cluster_links, nodes);
+        let chunk = (patch_links + cluster_links).div_ceil(chunks).max(1);
+        let mut sums = self.gather_sums.lock().unwrap_or_else(|e| e.into_inner());
+        sums.resize_with(chunks, Vec::new);
+        sums.par_iter_mut().enumerate().for_each(|(k, sum)| {
+            sum.clear();
+            sum.resize(nodes, Rgb64::BLACK);
+            let (start, end) = (
+                k * chunk,
+                ((k + 1) * chunk).min(patch_links + cluster_links),
+            );
+            let patch_range = start.min(patch_links)..end.min(patch_links);
+            for link in self.links[patch_range].iter().filter(|l| !l.is_blocked()) {
+                let h = link.emitter_radiosity(&self.mesh, b) * link.coupling;
+                for (n, h) in link.divide(&self.mesh, h) {
+                    sum[n] += h;
+                }
+            }
+            if let Some(tree) = &self.clusters {
+                let cluster_range =
+                    start.max(patch_links) - patch_links..end.max(patch_links) - patch_links;
+                for link in &self.cluster_links[cluster_range] {
+                    tree.gather(&self.mesh, link, b, sum);
+                }
+            }
+        });
+        let sums = &sums[..chunks];
         gathered.clear();
-        gathered.resize(b.len(), Rgb64::BLACK);
-        for link in self.links.iter().filter(|l| !l.is_blocked()) {
-            let h = link.emitter_radiosity(&self.mesh, b) * link.coupling;
-            for (n, h) in link.divide(&self.mesh, h) {
-                gathered[n] += h;
-            }
-        }
-        if let Some(tree) = &self.clusters {
-            for link in &self.cluster_links {
-                tree.gather(&self.mesh, link, b, gathered);
-            }
-        }
+        gathered.resize(nodes, Rgb64::BLACK);
+        gathered.par_iter_mut().enumerate().for_each(|(n, g)| {
+            *g = sums[1..]
+                .iter()
+                .fold(sums[0][n], |total, sum| total + sum[n]);
+        });
     }
 
     /// Per node, at the leaves: the irradiance straight from the emitting surfaces and the
@@ -387,16 +444,21 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         loop {
             let t = Instant::now();
             let (oracle, limits) = (self.settings.oracle, self.limits);
-            let (nodes, mesh) = (&self.nodes, &self.mesh);
+            let (nodes, mesh, importance) = (&self.nodes, &self.mesh, &self.importance);
+            let limits_for =
+                |receiver: u32| limits.with_error(importance.error(mesh, receiver, limits.error));
             let decisions: Vec<Decision> = self
                 .links
                 .par_iter()
-                .map(|l| decide(oracle, l, nodes.range[l.emitter as usize], mesh, &limits))
+                .map(|l| {
+                    let range = nodes.range[l.emitter as usize];
+                    decide(oracle, l, range, mesh, &limits_for(l.receiver))
+                })
                 .collect();
             let light_decisions: Vec<Decision> = self
                 .light_links
-                .iter()
-                .map(|l| decide_light(l, mesh, &limits))
+                .par_iter()
+                .map(|l| decide_light(l, mesh, &limits_for(l.receiver)))
                 .collect();
             round.seconds_refine += t.elapsed().as_secs_f64();
             let t = Instant::now();
@@ -525,10 +587,12 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         applied
     }
 
-    /// The system on the final leaves and the solution on it, by solver `kind`.
+    /// The system on the final leaves (with `visibility`, the estimator the solver used)
+    /// and the solution on it, by solver `kind`.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn into_solution(
         self,
+        visibility: Arc<Visibility>,
         kind: SolverKind,
         options: SystemOptions,
         seconds: PhaseTimes,
@@ -551,7 +615,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let links = self.link_count();
         let mut link_segments: Vec<LinkSegment> = self
             .links
-            .iter()
+            .par_iter()
             .filter(|l| !l.is_blocked())
             .map(|l| {
                 let r = self.mesh.patch(split_node(l.receiver as usize).0);
@@ -569,7 +633,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 End::Patch(p) => (self.mesh.patch(p).centroid, Some(self.mesh.patch(p).object)),
                 End::Cluster(_) => (tree.ball(&self.mesh, end).0, None),
             };
-            link_segments.extend(self.cluster_links.iter().map(|l| {
+            link_segments.par_extend(self.cluster_links.par_iter().map(|l| {
                 let ((receiver, receiver_object), (emitter, emitter_object)) =
                     (end(l.receiver), end(l.emitter));
                 LinkSegment {
@@ -582,7 +646,13 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         }
         let form_factors = self.linker.form_factors.load(Ordering::Relaxed);
         let rays = self.linker.rays.load(Ordering::Relaxed);
-        let system = RadiositySystem::from_mesh(self.world, self.mesh, options, Some(lit))?;
+        let system = RadiositySystem::from_mesh(
+            self.world,
+            self.mesh,
+            options,
+            Some(lit),
+            Some(visibility),
+        )?;
         system.count_work(form_factors, rays);
         let solution = Solution {
             solver: kind,

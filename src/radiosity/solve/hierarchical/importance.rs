@@ -1,0 +1,213 @@
+//! Importance (Smits, Arvo and Salesin 1992) for per-surface accuracy: how much an error in
+//! the light a node receives matters to the figures the report gives, every reported
+//! surface (object, or face with `per_face`) counted relative to its own power.
+//!
+//! The oracle's threshold `--error` is a share of all power emitted in the scene: a link may
+//! bring its receiver that much power too much or too little. A dim face or a small leaf
+//! receives little of the scene's power, so errors well within that threshold can be a large
+//! part of its own (measured: +12 % on a Cornell-box block face with 0.5 % of the absorbed
+//! power), and much of that error comes not from its own links but from the light of the
+//! surfaces next to it (the floor in the block's shadow that the face sees).
+//!
+//! With `--surface-error ε`, a watt arriving on surface `S` has the direct importance
+//! `w_S = 1/P_S` (`P_S` the power `S` received in the last gather, both sides, luminance; at
+//! least [`NEGLIGIBLE_SHARE`] of what all surfaces receive, so that dark corners no one reads
+//! are not refined without end), and the importance of a watt arriving at node `i` is
+//! `Γ_i = w_i + ρ_i·Σ_j F_ij^T Γ_j + τ_i·(the same for the other side)`: the adjoint of the
+//! radiosity system, solved over the same links with the transport reversed (a link's
+//! receiver passes `F·A_r/A_e·Γ_r` to its emitter) and the same push-pull. A link onto a
+//! node of area `a` on a surface of area `A` is then also held to `Γ_r·δ ≤ ε·√(a/A)` (`δ`
+//! the uncertainty of the power it brings, W): the errors of the `A/a` nodes that cover a
+//! surface add up like a random sum, `√(A/a)` times one of them, so each surface's error
+//! stays near the share ε of its power, counting what it receives directly and through
+//! what its neighbours reflect. (Holding each node to its area's share of ε, `a/A`, was as
+//! accurate at many times the links; holding it to ε alone hardly changed a face's error:
+//! its error is the sum of many small ones of one sign.) Cluster links, far-field exchange
+//! of small power, carry no importance. Before the first gather nothing is known, and the
+//! scene-wide threshold alone applies.
+
+use super::links::Link;
+use super::nodes::{Nodes, node, split_node};
+use crate::measure::SurfaceTable;
+use crate::radiosity::element::Side;
+use crate::radiosity::mesh::{PatchId, PatchMesh};
+use crate::world::World;
+
+/// Surfaces receiving less than this share of the power all surfaces receive get the
+/// importance of one at this share.
+pub const NEGLIGIBLE_SHARE: f64 = 1e-4;
+
+/// Sweeps of the importance solve at most.
+const MAX_SWEEPS: usize = 50;
+
+/// The importance solve stops when a sweep changes it by at most this share.
+const SWEEP_TOLERANCE: f64 = 1e-3;
+
+/// The importance of the power each node receives, for the error budgets of the oracle.
+#[derive(Clone, Debug)]
+pub struct Importance {
+    /// The relative error ε per surface (0: no budgets).
+    relative: f64,
+    /// The report's surfaces.
+    table: SurfaceTable,
+    /// Per node: the importance of a watt arriving there, 1/W (empty until known).
+    per_node: Vec<f64>,
+    /// Per surface: its area (one side), scene units².
+    surface_area: Vec<f64>,
+}
+
+impl Importance {
+    /// Importance for the surfaces `world` reports at relative error `relative` (nothing
+    /// known yet).
+    pub fn new(world: &World, relative: f64) -> Self {
+        Importance {
+            relative,
+            table: SurfaceTable::new(&world.scene, &world.geometry),
+            per_node: Vec::new(),
+            surface_area: Vec::new(),
+        }
+    }
+
+    /// The error threshold of a link onto `receiver` (a node of `mesh`), W: the scene-wide
+    /// threshold `scene_error` (W), or `ε·√(a/A)/Γ` when that is smaller. A node created since the
+    /// last update takes the importance of its nearest known ancestor.
+    pub fn error(&self, mesh: &PatchMesh, receiver: u32, scene_error: f64) -> f64 {
+        let mut n = receiver as usize;
+        while n >= self.per_node.len() {
+            let (patch, side) = split_node(n);
+            match mesh.patch(patch).parent {
+                Some(parent) => n = node(parent, side),
+                None => return scene_error,
+            }
+        }
+        let gamma = self.per_node[n];
+        let patch = mesh.patch(receiver / 2);
+        let area = self.surface_area[self.table.entry(patch.object, patch.face)];
+        if gamma > 0.0 && area > 0.0 {
+            scene_error.min(self.relative / gamma * (patch.area / area).sqrt())
+        } else {
+            scene_error
+        }
+    }
+
+    /// Solves the importance on `mesh` for the irradiance the leaves received in the last
+    /// gather (`nodes`) over the patch links `links`; nothing to do without a relative
+    /// error.
+    pub fn update(&mut self, mesh: &PatchMesh, nodes: &Nodes, links: &[Link]) {
+        if self.relative <= 0.0 {
+            return;
+        }
+        let Some(weight) = self.surface_weights(mesh, nodes) else {
+            return;
+        };
+        let count = nodes.radiosity.len();
+        let direct: Vec<f64> = (0..count)
+            .map(|n| {
+                let patch = mesh.patch(split_node(n).0);
+                weight[self.table.entry(patch.object, patch.face)]
+            })
+            .collect();
+        let mut gamma = direct.clone();
+        let mut leaving = vec![0.0; count];
+        for _ in 0..MAX_SWEEPS {
+            leaving.iter_mut().for_each(|l| *l = 0.0);
+            for link in links.iter().filter(|l| !l.is_blocked()) {
+                let (r, e) = (link.receiver as usize, link.emitter as usize);
+                let (ar, ae) = (
+                    mesh.patch(r as PatchId / 2).area,
+                    mesh.patch(e as PatchId / 2).area,
+                );
+                leaving[e] += link.coupling * ar / ae * gamma[r];
+            }
+            let (mut change, mut total) = (0.0, 0.0);
+            for &root in &mesh.roots {
+                let sweep = Sweep {
+                    mesh,
+                    nodes,
+                    direct: &direct,
+                    leaving: &leaving,
+                };
+                let (c, t) = sweep.descend(root, [0.0; 2], &mut gamma);
+                change += c;
+                total += t;
+            }
+            if change <= SWEEP_TOLERANCE * total {
+                break;
+            }
+        }
+        self.per_node = gamma;
+    }
+
+    /// Per surface, the direct importance `1/P_S` of a watt arriving there, 1/W; `None`
+    /// while no surface receives anything.
+    fn surface_weights(&mut self, mesh: &PatchMesh, nodes: &Nodes) -> Option<Vec<f64>> {
+        let mut power = vec![0.0; self.table.len()];
+        self.surface_area = vec![0.0; self.table.len()];
+        for leaf in mesh.leaves() {
+            let patch = mesh.patch(leaf);
+            let h: f64 = Side::BOTH
+                .iter()
+                .map(|&side| nodes.irradiance[node(leaf, side)].luminance())
+                .sum();
+            let surface = self.table.entry(patch.object, patch.face);
+            power[surface] += h * patch.area;
+            self.surface_area[surface] += patch.area;
+        }
+        let floor = NEGLIGIBLE_SHARE * power.iter().sum::<f64>();
+        (floor > 0.0).then(|| power.iter().map(|&p| 1.0 / p.max(floor)).collect())
+    }
+}
+
+/// One sweep of the importance push-pull.
+struct Sweep<'a> {
+    mesh: &'a PatchMesh,
+    nodes: &'a Nodes,
+    /// Per node, the direct importance of its surface, 1/W.
+    direct: &'a [f64],
+    /// Per node, the importance of a watt leaving it, gathered over its links, 1/W.
+    leaving: &'a [f64],
+}
+
+impl Sweep<'_> {
+    /// Sets the importance below `patch`, whose sides' ancestors pass down `above` (the
+    /// importance of a watt leaving them), as the radiosity push-pull does: at a leaf
+    /// `Γ = w + ρ·L + τ·L̄`, at an inner node the area mean of its children. Returns the
+    /// area-weighted change and total of its leaves.
+    fn descend(&self, patch: PatchId, above: [f64; 2], gamma: &mut [f64]) -> (f64, f64) {
+        let nodes = Side::BOTH.map(|side| node(patch, side));
+        let out = [0, 1].map(|s| above[s] + self.leaving[nodes[s]]);
+        let p = self.mesh.patch(patch);
+        match p.children {
+            None => {
+                let (mut change, mut total) = (0.0, 0.0);
+                for s in 0..2 {
+                    let n = nodes[s];
+                    let rho = self.nodes.reflectance[n].luminance();
+                    let tau = self.nodes.translucency[n].luminance();
+                    let g = self.direct[n] + rho * out[s] + tau * out[1 - s];
+                    change += (g - gamma[n]).abs() * p.area;
+                    total += g * p.area;
+                    gamma[n] = g;
+                }
+                (change, total)
+            }
+            Some(children) => {
+                let (mut change, mut total) = (0.0, 0.0);
+                let mut sum = [0.0; 2];
+                for child in children {
+                    let (c, t) = self.descend(child, out, gamma);
+                    change += c;
+                    total += t;
+                    let area = self.mesh.patch(child).area;
+                    for (s, side) in Side::BOTH.into_iter().enumerate() {
+                        sum[s] += gamma[node(child, side)] * area;
+                    }
+                }
+                for s in 0..2 {
+                    gamma[nodes[s]] = sum[s] / p.area;
+                }
+                (change, total)
+            }
+        }
+    }
+}
