@@ -11,8 +11,9 @@
 //!
 //! With `--surface-error ε`, a watt arriving on surface `S` has the direct importance
 //! `w_S = 1/P_S` (`P_S` the power `S` received in the last gather, both sides, luminance; at
-//! least [`NEGLIGIBLE_SHARE`] of what all surfaces receive, so that dark corners no one reads
-//! are not refined without end), and the importance of a watt arriving at node `i` is
+//! least [`NEGLIGIBLE_SHARE`] of what all surfaces receive: a 2 × 2 cm measuring patch in a
+//! room, a millionth of it or less, is held to its own power, and one that received nothing
+//! yet — all its links blocked so far — is looked at again), and the importance of a watt arriving at node `i` is
 //! `Γ_i = w_i + ρ_i·Σ_j F_ij^T Γ_j + τ_i·(the same for the other side)`: the adjoint of the
 //! radiosity system, solved over the same links with the transport reversed (a link's
 //! receiver passes `F·A_r/A_e·Γ_r` to its emitter) and the same push-pull. A link onto a
@@ -22,8 +23,9 @@
 //! stays near the share ε of its power, counting what it receives directly and through
 //! what its neighbours reflect. (Holding each node to its area's share of ε, `a/A`, was as
 //! accurate at many times the links; holding it to ε alone hardly changed a face's error:
-//! its error is the sum of many small ones of one sign.) Cluster links, far-field exchange
-//! of small power, carry no importance. Before the first gather nothing is known, and the
+//! its error is the sum of many small ones of one sign.) Cluster links carry no importance,
+//! but each is held to the smallest threshold of the surfaces it brings light to: measuring
+//! patches far from the light they read get it over cluster links. Before the first gather nothing is known, and the
 //! scene-wide threshold alone applies.
 
 use super::links::Link;
@@ -34,8 +36,8 @@ use crate::radiosity::mesh::{PatchId, PatchMesh};
 use crate::world::World;
 
 /// Surfaces receiving less than this share of the power all surfaces receive get the
-/// importance of one at this share.
-pub const NEGLIGIBLE_SHARE: f64 = 1e-4;
+/// importance of one at this share (a bound for the surfaces that receive nothing).
+pub const NEGLIGIBLE_SHARE: f64 = 1e-9;
 
 /// Sweeps of the importance solve at most.
 const MAX_SWEEPS: usize = 50;
@@ -88,6 +90,26 @@ impl Importance {
         } else {
             scene_error
         }
+    }
+
+    /// The error threshold of a cluster link onto the root patches `members`, W: the
+    /// smallest of [`Self::error`] over both sides of each (the scene-wide `scene_error`
+    /// while no importance is known).
+    pub fn error_for_members(
+        &self,
+        mesh: &PatchMesh,
+        members: &[PatchId],
+        scene_error: f64,
+    ) -> f64 {
+        if self.per_node.is_empty() {
+            return scene_error;
+        }
+        members
+            .iter()
+            .flat_map(|&p| Side::BOTH.map(|side| node(p, side) as u32))
+            .fold(scene_error, |least, n| {
+                least.min(self.error(mesh, n, scene_error))
+            })
     }
 
     /// Solves the importance on `mesh` for the irradiance the leaves received in the last

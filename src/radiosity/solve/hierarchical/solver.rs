@@ -252,9 +252,14 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let mut judged = 0;
         while !cancel.is_requested() {
             let (mesh, b, error) = (&self.mesh, &self.nodes.radiosity, self.limits.error);
+            let importance = &self.importance;
             let refine: Vec<bool> = self.cluster_links[judged..]
                 .par_iter()
-                .map(|l| tree.power_bound(mesh, l, b) > error)
+                .map(|l| {
+                    let members = tree.members(&l.receiver);
+                    tree.power_bound(mesh, l, b)
+                        > importance.error_for_members(mesh, members, error)
+                })
                 .collect();
             let mut ends: Vec<(End, End)> = Vec::new();
             let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
