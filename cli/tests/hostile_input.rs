@@ -133,6 +133,10 @@ const RENDER: &[Case] = &[
         &["--min-area", "between 0 and 1"],
     ),
     case(
+        &["--method", "radiosity", "--surface-error", "1.5"],
+        &["--surface-error", "between 0 (off) and 1"],
+    ),
+    case(
         &["--method", "radiosity", "--tolerance", "inf"],
         &["--tolerance", "finite"],
     ),
