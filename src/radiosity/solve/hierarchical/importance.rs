@@ -64,7 +64,12 @@ impl Importance {
     pub fn new(world: &World, relative: f64) -> Self {
         Importance {
             relative,
-            table: SurfaceTable::new(&world.scene, &world.geometry),
+            // Measuring the surfaces costs a pass over the geometry: only when asked for.
+            table: if relative > 0.0 {
+                SurfaceTable::new(&world.scene, &world.geometry)
+            } else {
+                SurfaceTable::default()
+            },
             per_node: Vec::new(),
             surface_area: Vec::new(),
         }
@@ -74,6 +79,9 @@ impl Importance {
     /// threshold `scene_error` (W), or `ε·√(a/A)/Γ` when that is smaller. A node created since the
     /// last update takes the importance of its nearest known ancestor.
     pub fn error(&self, mesh: &PatchMesh, receiver: u32, scene_error: f64) -> f64 {
+        if self.per_node.is_empty() {
+            return scene_error;
+        }
         let mut n = receiver as usize;
         while n >= self.per_node.len() {
             let (patch, side) = split_node(n);
