@@ -265,11 +265,13 @@ pub fn finish_solve(
 }
 
 /// Prints the convergence history to standard error: one line per iteration, or for a
-/// hierarchical solver one line per round of refinement.
+/// hierarchical solver one line per round of refinement, with the seconds of its phases
+/// (linking, refinement decisions and gathers run on all threads; the push-pull down and up
+/// the quadtrees runs on one).
 pub fn print_convergence(solution: &Solution) {
     if !solution.rounds.is_empty() {
         eprintln!(
-            "{:>5} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8} {:>8} {:>10} {:>7} {:>10} {:>8} {:>8} {:>8} {:>8}",
+            "{:>5} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8} {:>8} {:>10} {:>7} {:>10} {:>8} {:>8} {:>8} {:>9} {:>8}",
             "round",
             "created",
             "refined",
@@ -284,11 +286,12 @@ pub fn print_convergence(solution: &Solution) {
             "link s",
             "refine s",
             "gather s",
+            "serial s",
             "peak MB"
         );
         for (k, r) in solution.rounds.iter().enumerate() {
             eprintln!(
-                "{:>5} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8} {:>8} {:>10} {:>7} {:>10.3e} {:>8.3} {:>8.3} {:>8.3} {:>8}",
+                "{:>5} {:>9} {:>9} {:>7} {:>9} {:>9} {:>8} {:>8} {:>10} {:>7} {:>10.3e} {:>8.3} {:>8.3} {:>8.3} {:>9.3} {:>8}",
                 k + 1,
                 r.links_created,
                 r.links_refined,
@@ -302,7 +305,8 @@ pub fn print_convergence(solution: &Solution) {
                 r.residual,
                 r.seconds_linking,
                 r.seconds_refine,
-                r.seconds_gather + r.seconds_push_pull,
+                r.seconds_gather,
+                r.seconds_push_pull,
                 r.peak_memory_bytes
                     .map_or("?".to_string(), |b| format!("{:.1}", b as f64 / 1e6))
             );
