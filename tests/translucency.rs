@@ -162,3 +162,29 @@ fn the_sheet_absorbs_what_it_neither_reflects_nor_passes_on() {
         sheet.incident_power[1]
     );
 }
+
+/// A material built in code whose reflectance and translucency add up to more than 1 would
+/// create light in every method: the world refuses it, naming it (scene files refuse it
+/// with the file's place, `cli/tests/malformed_files.rs`).
+#[test]
+fn a_material_that_passes_on_more_than_it_receives_is_refused() {
+    let mut scene = Scene::empty("bright");
+    let m = scene.add_material(Material {
+        translucency: Rgb::splat(0.5),
+        ..Material::diffuse("glowing leaf", Rgb::splat(0.8))
+    });
+    scene.add_object(
+        "sheet",
+        Shape::Parallelogram {
+            origin: Vec3::ZERO,
+            edge_u: Vec3::X,
+            edge_v: Vec3::NEG_Z,
+        },
+        m,
+    );
+    let error = World::new(scene, AccelKind::Bvh).err().unwrap().to_string();
+    assert!(
+        error.contains("glowing leaf") && error.contains("1.3"),
+        "{error}"
+    );
+}

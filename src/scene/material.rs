@@ -3,6 +3,10 @@
 use super::TextureId;
 use crate::color::Rgb;
 
+/// How far a material's summed lobe weights may exceed 1 (rounding in hand-written
+/// decimals) before it is refused for creating light.
+pub const ENERGY_TOLERANCE: f32 = 1e-6;
+
 /// Index of a material in [`super::Scene::materials`].
 pub type MaterialId = u32;
 
@@ -158,7 +162,8 @@ impl Material {
         })
     }
 
-    /// Largest per-channel sum of the reflected and transmitted fractions (must be ≤ 1).
+    /// Largest per-channel sum of the reflected and transmitted fractions (must be ≤ 1, up
+    /// to [`ENERGY_TOLERANCE`]).
     pub fn albedo_bound(&self) -> f32 {
         Lobe::ALL
             .iter()

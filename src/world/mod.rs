@@ -55,8 +55,19 @@ pub struct World {
 }
 
 impl World {
-    /// Flattens `scene` and builds the accelerator `kind` over it.
+    /// Flattens `scene` and builds the accelerator `kind` over it; refuses a degenerate shape
+    /// and a material that scatters more than it receives.
     pub fn new(scene: Scene, kind: AccelKind) -> Result<World, GeometryError> {
+        // Scene files check this with the file's place; scenes built in code meet it here.
+        if let Some(m) = scene.materials.iter().find(|m| {
+            let sum = m.albedo_bound();
+            sum.is_nan() || sum > 1.0 + crate::scene::ENERGY_TOLERANCE
+        }) {
+            return Err(GeometryError::CreatesLight {
+                material: m.name.clone(),
+                sum: m.albedo_bound(),
+            });
+        }
         let geometry = SceneGeometry::new(&scene)?;
         let start = Instant::now();
         let accel = kind.build(&geometry);

@@ -69,6 +69,18 @@ pub enum GeometryError {
         /// What is wrong.
         reason: String,
     },
+    /// A material scatters more light than it receives (its lobe weights sum above 1 in
+    /// some channel, or are not numbers): every method would create light with it.
+    #[error(
+        "material '{material}' scatters more than it receives: its weights sum to {sum} in \
+         some channel (must be ≤ 1)"
+    )]
+    CreatesLight {
+        /// The material's name.
+        material: String,
+        /// The largest per-channel sum of its lobe weights.
+        sum: f32,
+    },
 }
 
 /// The scene's geometry in world space, ready for ray queries.

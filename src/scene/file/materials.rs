@@ -7,12 +7,9 @@ use super::photometry;
 use super::textures::TextureCache;
 use super::value::{ColorSpaceName, TextureEntry, WrapName};
 use crate::color::Rgb;
-use crate::scene::{ColorSpace, Material, Scene, TextureId, Wrap};
+use crate::scene::{ColorSpace, ENERGY_TOLERANCE, Material, Scene, TextureId, Wrap};
 use std::path::Path;
 use toml::Spanned;
-
-/// Allowed excess of the summed weights over 1 (rounding in hand-written decimals).
-const ENERGY_TOLERANCE: f32 = 1e-6;
 
 /// Where textures come from while building materials.
 pub(super) struct TextureContext<'a> {

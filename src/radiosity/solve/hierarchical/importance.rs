@@ -13,8 +13,8 @@
 //! `w_S = 1/P_S` (`P_S` the power `S` received in the last gather, both sides, luminance; at
 //! least [`NEGLIGIBLE_SHARE`] of what all surfaces receive: a 2 × 2 cm measuring patch in a
 //! room, a millionth of it or less, is held to its own power, and one that received nothing
-//! yet — all its links blocked so far — is looked at again), and the importance of a watt arriving at node `i` is
-//! `Γ_i = w_i + ρ_i·Σ_j F_ij^T Γ_j + τ_i·(the same for the other side)`: the adjoint of the
+//! yet — all its links blocked so far — is looked at again), and the importance of a watt
+//! arriving at node `i` is `Γ_i = w_i + ρ_i·Σ_j F_ij^T Γ_j + τ_i·(the same for the other side)`: the adjoint of the
 //! radiosity system, solved over the same links with the transport reversed (a link's
 //! receiver passes `F·A_r/A_e·Γ_r` to its emitter) and the same push-pull. A link onto a
 //! node of area `a` on a surface of area `A` is then also held to `Γ_r·δ ≤ ε·√(a/A)` (`δ`
@@ -25,8 +25,8 @@
 //! accurate at many times the links; holding it to ε alone hardly changed a face's error:
 //! its error is the sum of many small ones of one sign.) Cluster links carry no importance,
 //! but each is held to the smallest threshold of the surfaces it brings light to: measuring
-//! patches far from the light they read get it over cluster links. Before the first gather nothing is known, and the
-//! scene-wide threshold alone applies.
+//! patches far from the light they read get it over cluster links. Before the first gather
+//! nothing is known, and the scene-wide threshold alone applies.
 
 use super::links::Link;
 use super::nodes::{Nodes, node, split_node};
@@ -76,8 +76,8 @@ impl Importance {
     }
 
     /// The error threshold of a link onto `receiver` (a node of `mesh`), W: the scene-wide
-    /// threshold `scene_error` (W), or `ε·√(a/A)/Γ` when that is smaller. A node created since the
-    /// last update takes the importance of its nearest known ancestor.
+    /// threshold `scene_error` (W), or `ε·√(a/A)/Γ` when that is smaller. A node created
+    /// since the last update takes the importance of its nearest known ancestor.
     pub fn error(&self, mesh: &PatchMesh, receiver: u32, scene_error: f64) -> f64 {
         if self.per_node.is_empty() {
             return scene_error;
@@ -149,14 +149,14 @@ impl Importance {
                 );
                 leaving[e] += link.coupling * ar / ae * gamma[r];
             }
+            let sweep = Sweep {
+                mesh,
+                nodes,
+                direct: &direct,
+                leaving: &leaving,
+            };
             let (mut change, mut total) = (0.0, 0.0);
             for &root in &mesh.roots {
-                let sweep = Sweep {
-                    mesh,
-                    nodes,
-                    direct: &direct,
-                    leaving: &leaving,
-                };
                 let (c, t) = sweep.descend(root, [0.0; 2], &mut gamma);
                 change += c;
                 total += t;

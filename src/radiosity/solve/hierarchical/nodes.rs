@@ -108,6 +108,13 @@ impl Nodes {
         }
     }
 
+    /// The radiosity node `n` scatters when the irradiance on it is `own` and on the other
+    /// side of its patch `other` (W·m⁻²): `ρ·own + τ·other`.
+    #[inline]
+    pub fn scattered(&self, n: usize, own: Rgb64, other: Rgb64) -> Rgb64 {
+        self.reflectance[n] * own + self.translucency[n] * other
+    }
+
     /// Push-pull over every tree (seed §6.8): irradiance gathered at a node is handed down to
     /// its leaves, where it becomes radiosity `E + ρ·H + τ·H̄` (`H̄` on the other side), and the leaves' radiosity is pulled
     /// up as area-weighted means. Returns `(Σ A·Y(|ΔB|), Σ A·Y(S))` over the leaves: the
@@ -163,13 +170,10 @@ impl Nodes {
                 let (mut change, mut source) = (0.0, 0.0);
                 for s in 0..2 {
                     let n = nodes[s];
-                    let scattered = |own: Rgb64, other: Rgb64| {
-                        self.reflectance[n] * own + self.translucency[n] * other
-                    };
-                    let b = self.emission[n] + scattered(h[s], h[1 - s]);
+                    let b = self.emission[n] + self.scattered(n, h[s], h[1 - s]);
                     change += area * (b - self.radiosity[n]).map(f64::abs).luminance();
-                    source +=
-                        area * (self.emission[n] + scattered(h_lit[s], h_lit[1 - s])).luminance();
+                    let lit = self.scattered(n, h_lit[s], h_lit[1 - s]);
+                    source += area * (self.emission[n] + lit).luminance();
                     let y = b.luminance();
                     self.radiosity[n] = b;
                     self.irradiance[n] = h[s];

@@ -523,8 +523,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             {
                 let (n, other) = (node(c, side), node(c, side.other()));
                 let b = nodes.emission[n]
-                    + nodes.reflectance[n] * nodes.irradiance[n]
-                    + nodes.translucency[n] * nodes.irradiance[other];
+                    + nodes.scattered(n, nodes.irradiance[n], nodes.irradiance[other]);
                 nodes.radiosity[n] = b;
                 nodes.range[n] = (b.luminance(), b.luminance());
             }
