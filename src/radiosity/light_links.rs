@@ -26,11 +26,32 @@ use std::f64::consts::PI;
 /// Sky directions per axis at each receiver point of a patch (`n × n` cosine-weighted strata).
 pub const SKY_DIRECTIONS_PER_AXIS: u32 = 4;
 
+/// What a light sends to a patch ([`light_arrival`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightArrival {
+    /// Irradiance averaged over the patch, W·m⁻².
+    pub irradiance: Rgb64,
+    /// Whether a shadow edge crosses the patch: some of its receiver points see the light
+    /// and some do not (never set for the sky, whose share varies without an edge).
+    pub partly_shadowed: bool,
+    /// The irradiance the patch would receive without shadows, W·m⁻² (the sky's: what
+    /// arrives).
+    pub unshadowed: Rgb64,
+}
+
+impl LightArrival {
+    /// Nothing arrives.
+    const NONE: LightArrival = LightArrival {
+        irradiance: Rgb64::BLACK,
+        partly_shadowed: false,
+        unshadowed: Rgb64::BLACK,
+    };
+}
+
 /// Irradiance in W·m⁻² that `light` sends to side `side` of `patch`, averaged over the patch,
-/// with shadows from every surface of `world` (for patches of curved shapes, the world
-/// of [`super::Visibility::world`], whose surfaces they lie on); the visible share is estimated at
-/// `samples × samples` receiver points (the centroid for `samples ≤ 1`). The sky gives `π·L`
-/// times the share of the hemisphere that reaches it.
+/// with shadows from every surface of `world`, estimated at `samples × samples` receiver
+/// points (what `light_arrival` in this module measures, without telling whether a shadow
+/// edge crosses the patch).
 pub fn light_irradiance(
     world: &World,
     light: &LightKind,
@@ -38,6 +59,21 @@ pub fn light_irradiance(
     side: Side,
     samples: u32,
 ) -> Rgb64 {
+    light_arrival(world, light, patch, side, samples).irradiance
+}
+
+/// What `light` sends to side `side` of `patch`, with shadows from every surface of `world`
+/// (for patches of curved shapes, the world of [`super::Visibility::world`], whose surfaces
+/// they lie on); the visible share is estimated at `samples × samples` receiver points (the
+/// centroid for `samples ≤ 1`). The sky gives `π·L` times the share of the hemisphere that
+/// reaches it.
+pub fn light_arrival(
+    world: &World,
+    light: &LightKind,
+    patch: &Patch,
+    side: Side,
+    samples: u32,
+) -> LightArrival {
     let normal = side.normal(patch);
     let points = receiver_points(patch, samples);
     match *light {
@@ -45,22 +81,35 @@ pub fn light_irradiance(
             // About the same rays whatever the points: 4 × 4 directions at each of 2 × 2
             // points, one at each of 8 × 8.
             let per_axis = (SKY_DIRECTIONS_PER_AXIS * 2 / samples.max(1)).max(1);
-            radiance.to_f64() * (PI * sky_share(world, &points, normal, per_axis))
+            let irradiance = radiance.to_f64() * (PI * sky_share(world, &points, normal, per_axis));
+            LightArrival {
+                irradiance,
+                partly_shadowed: false,
+                unshadowed: irradiance,
+            }
         }
         LightKind::Directional { direction, .. } => {
             let Some(inc) = light.incidence(patch.centroid.as_vec3()) else {
-                return Rgb64::BLACK;
+                return LightArrival::NONE;
             };
             let cos = normal.dot(-direction.as_dvec3().normalize_or_zero());
             if cos <= 0.0 {
-                return Rgb64::BLACK;
+                return LightArrival::NONE;
             }
-            let seen: f64 = points
-                .iter()
-                .filter(|(x, _)| sees_light(world, *x, normal, light))
-                .map(|(_, w)| w)
-                .sum();
-            inc.irradiance.to_f64() * (cos * seen)
+            let (mut seen, mut hidden) = (0.0, false);
+            for &(x, w) in &points {
+                if sees_light(world, x, normal, light) {
+                    seen += w;
+                } else {
+                    hidden = true;
+                }
+            }
+            let unshadowed = inc.irradiance.to_f64() * cos;
+            LightArrival {
+                irradiance: unshadowed * seen,
+                partly_shadowed: hidden && seen > 0.0,
+                unshadowed,
+            }
         }
         LightKind::Point {
             position,
@@ -78,10 +127,10 @@ pub fn light_irradiance(
         } => {
             let at = position.as_dvec3();
             if normal.dot(at - patch.centroid) <= 0.0 {
-                return Rgb64::BLACK;
+                return LightArrival::NONE;
             }
-            let mut weighted = 0.0;
-            let mut total = 0.0;
+            let (mut weighted, mut total, mut reaching) = (0.0, 0.0, 0.0);
+            let (mut lit, mut hidden) = (false, false);
             for &(x, w) in &points {
                 let d = at - x;
                 let d2 = d.length_squared();
@@ -91,15 +140,26 @@ pub fn light_irradiance(
                 let solid_angle = w * normal.dot(d).max(0.0) / (d2 * d2.sqrt());
                 total += solid_angle;
                 let falloff = falloff(light, x);
-                if falloff > 0.0 && sees_light(world, x, normal, light) {
-                    weighted += solid_angle * falloff;
+                reaching += solid_angle * falloff;
+                if falloff > 0.0 {
+                    if sees_light(world, x, normal, light) {
+                        weighted += solid_angle * falloff;
+                        lit = true;
+                    } else {
+                        hidden = true;
+                    }
                 }
             }
             if total <= 0.0 {
-                return Rgb64::BLACK;
+                return LightArrival::NONE;
             }
-            let omega = solid_angle(at, patch.corners());
-            intensity.to_f64() * (omega / patch.area * weighted / total)
+            let per_weight =
+                intensity.to_f64() * (solid_angle(at, patch.corners()) / patch.area / total);
+            LightArrival {
+                irradiance: per_weight * weighted,
+                partly_shadowed: lit && hidden,
+                unshadowed: per_weight * reaching,
+            }
         }
     }
 }

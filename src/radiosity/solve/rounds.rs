@@ -26,7 +26,8 @@ pub struct RoundStats {
     pub gathers: u32,
     /// Seconds spent creating links (initial linking in the first round).
     pub seconds_linking: f64,
-    /// Seconds spent judging links.
+    /// Seconds spent judging links, with the importance solve that sets their thresholds
+    /// under `--surface-error`.
     pub seconds_refine: f64,
     /// Seconds spent gathering.
     pub seconds_gather: f64,

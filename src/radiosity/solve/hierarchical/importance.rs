@@ -137,7 +137,7 @@ impl Importance {
                 weight[self.table.entry(patch.object, patch.face)]
             })
             .collect();
-        let mut gamma = direct.clone();
+        let mut gamma = self.warm_start(mesh, &direct);
         let mut leaving = vec![0.0; count];
         for _ in 0..MAX_SWEEPS {
             leaving.iter_mut().for_each(|l| *l = 0.0);
@@ -166,6 +166,28 @@ impl Importance {
             }
         }
         self.per_node = gamma;
+    }
+
+    /// The importance the solve starts from: the last update's, a node created since taking
+    /// its parent's (the children of a split node share its light), and the direct importance
+    /// before the first update. Started from the last solution, a few sweeps settle what the
+    /// refinement changed (from the direct importance alone it took up to 50).
+    fn warm_start(&self, mesh: &PatchMesh, direct: &[f64]) -> Vec<f64> {
+        if self.per_node.is_empty() {
+            return direct.to_vec();
+        }
+        let mut gamma = self.per_node.clone();
+        // Patches are numbered after their parents: a parent's value is set before its
+        // children's.
+        let known = gamma.len();
+        for (n, &own) in direct.iter().enumerate().skip(known) {
+            let (patch, side) = split_node(n);
+            gamma.push(match mesh.patch(patch).parent {
+                Some(parent) => gamma[node(parent, side)],
+                None => own,
+            });
+        }
+        gamma
     }
 
     /// Per surface, the direct importance `1/P_S` of a watt arriving there, 1/W; `None`

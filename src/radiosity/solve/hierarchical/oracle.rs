@@ -216,6 +216,7 @@ mod tests {
             blocked_rays: rays,
             shares: None,
             receiver_weights: [0.0; 4],
+            receiver_shadow_pending: false,
         };
         (link, mesh)
     }

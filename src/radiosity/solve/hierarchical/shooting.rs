@@ -245,7 +245,7 @@ impl Shots {
             self.grow(solver);
             // Taken after the splits of this level, which may have split a kept link's
             // receiver (through its other side) or emitter.
-            solver.linker.complete_shares(&solver.mesh, &mut kept);
+            solver.linker.complete_weights(&solver.mesh, &mut kept);
             for link in kept {
                 let sent = link.emitter_radiosity(&solver.mesh, &self.unshot) * link.coupling;
                 for (n, irradiance) in link.divide(&solver.mesh, sent) {

@@ -119,9 +119,11 @@ pub fn solve_hierarchical(
     let mut interrupted = false;
     for _ in 0..settings.max_rounds {
         solver.gather_to_convergence(&mut round, cancel);
+        let t = Instant::now();
         solver
             .importance
             .update(&solver.mesh, &solver.nodes, &solver.links);
+        round.seconds_refine += t.elapsed().as_secs_f64();
         round.links = solver.link_count() as u64;
         round.cluster_links = solver.cluster_links.len() as u64;
         round.blocked_links = solver.links.iter().filter(|l| l.is_blocked()).count() as u64;
@@ -470,7 +472,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             let applied = self.apply(&decisions, &light_decisions);
             let refined = applied.refined + self.refine_textures();
             let (created_clusters, refined_clusters) = self.refine_clusters(cancel);
-            self.linker.complete_shares(&self.mesh, &mut self.links);
+            self.linker.complete_weights(&self.mesh, &mut self.links);
             let (created, refined) = (
                 applied.created + created_clusters,
                 refined + refined_clusters,
