@@ -23,6 +23,9 @@ pub enum Quantity {
     MeanIlluminance,
     /// Mean indirect illuminance over all surfaces (lux), for methods that tell it apart.
     MeanIndirect,
+    /// Illuminance on the reported surface `k` (lux): its incident power over its area, as a
+    /// small measuring patch reads it.
+    Surface(usize),
 }
 
 /// One figure to check.
@@ -52,6 +55,9 @@ pub struct Case {
     /// Quadtree levels of the flat radiosity solvers' mesh (the command line's default is
     /// 3; a tessellated sphere needs fewer for the full matrix to stay small).
     pub flat_mesh_levels: u32,
+    /// Hierarchical radiosity's error per reported surface (`--surface-error`; 0, the
+    /// default, everywhere but where small measuring patches are read).
+    pub surface_error: f64,
 }
 
 /// Luminous intensity of the point sources, cd.
@@ -68,6 +74,7 @@ pub fn all(quick: bool) -> Vec<Case> {
         reflected_once(),
         translucent_sheet(),
         occluder(),
+        meters(),
     ];
     let reflectances: &[f64] = if quick {
         &[0.05, 0.5]
@@ -183,6 +190,7 @@ fn point_over_plane(lambertian: bool) -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
+        surface_error: 0.0,
     }
 }
 
@@ -271,6 +279,7 @@ fn area_source_in_black_room() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
+        surface_error: 0.0,
     }
 }
 
@@ -320,6 +329,7 @@ fn reflected_once() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
+        surface_error: 0.0,
     }
 }
 
@@ -389,6 +399,7 @@ fn translucent_sheet() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
+        surface_error: 0.0,
     }
 }
 
@@ -401,37 +412,8 @@ fn occluder() -> Case {
         Vec3::new(7.0, 2.0, 6.0),
         Vec3::new(2.0, 1.0, 0.0),
     );
-    let black = s.add_material(Material::diffuse("black", Rgb::BLACK));
-    let lit = s.add_material(Material {
-        emission: white(LUMINANCE_CD_M2),
-        ..Material::diffuse("lit wall", Rgb::BLACK)
-    });
-    // The wall x = 0 facing +x: y ∈ [0, 2], z ∈ [−1, 1].
-    s.add_object(
-        "lit wall",
-        Shape::Parallelogram {
-            origin: Vec3::new(0.0, 0.0, -1.0),
-            edge_u: Vec3::Y * 2.0,
-            edge_v: Vec3::Z * 2.0,
-        },
-        lit,
-    );
-    let (near, far, top) = (2.5f64, 1.5f64, 1.0f64);
-    s.add_object(
-        "box",
-        Shape::Box {
-            min: Vec3::new(far as f32, 0.0, -3.0),
-            max: Vec3::new(near as f32, top as f32, 3.0),
-        },
-        black,
-    );
-    // Where the box's silhouette edge (the near top edge seen from below its top, the far one
-    // from above) cuts the wall, seen from height `y` at distance `x` from the wall.
-    let cut = |x: f64, y: f64| {
-        let edge = if y < top { near } else { far };
-        (y + (top - y) * x / (x - edge)).max(0.0)
-    };
-    let l = LUMINANCE_CD_M2;
+    wall_past_a_box(&mut s);
+    let (cut, l) = (silhouette_cut, LUMINANCE_CD_M2);
     let mut checks = Vec::new();
     for y in [0.75, 1.25, 1.75] {
         let x = 4.0;
@@ -453,6 +435,95 @@ fn occluder() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
+        surface_error: 0.0,
+    }
+}
+
+/// The near and far faces and the top of the black box of [`wall_past_a_box`], m.
+const BOX_NEAR: f64 = 2.5;
+const BOX_FAR: f64 = 1.5;
+const BOX_TOP: f64 = 1.0;
+
+/// CIE 171 case 5.7's geometry in `s`: a 2 × 2 m wall of luminance 1000 cd/m² at x = 0 facing
+/// +x (y ∈ [0, 2], z ∈ [−1, 1]; object 0) and a black box 1 m high from x = 1.5 to 2.5 m,
+/// z ∈ [−3, 3] (object 1), with no ground.
+fn wall_past_a_box(s: &mut Scene) {
+    let black = s.add_material(Material::diffuse("black", Rgb::BLACK));
+    let lit = s.add_material(Material {
+        emission: white(LUMINANCE_CD_M2),
+        ..Material::diffuse("lit wall", Rgb::BLACK)
+    });
+    s.add_object(
+        "lit wall",
+        Shape::Parallelogram {
+            origin: Vec3::new(0.0, 0.0, -1.0),
+            edge_u: Vec3::Y * 2.0,
+            edge_v: Vec3::Z * 2.0,
+        },
+        lit,
+    );
+    s.add_object(
+        "box",
+        Shape::Box {
+            min: Vec3::new(BOX_FAR as f32, 0.0, -3.0),
+            max: Vec3::new(BOX_NEAR as f32, BOX_TOP as f32, 3.0),
+        },
+        black,
+    );
+}
+
+/// Where the box's silhouette edge (the near top edge seen from below its top, the far one
+/// from above) cuts the wall of [`wall_past_a_box`], seen from height `y` at distance `x`
+/// from the wall, m.
+fn silhouette_cut(x: f64, y: f64) -> f64 {
+    let edge = if y < BOX_TOP { BOX_NEAR } else { BOX_FAR };
+    (y + (BOX_TOP - y) * x / (x - edge)).max(0.0)
+}
+
+/// The occluder case read as a user without sensors would: black one-sided 2 × 2 cm
+/// measuring patches facing up, 1 mm above the ground line at 6, 8 and 12 m from the wall,
+/// each about 10⁻⁷ of the scene's power. Expected: `E = π·L·F` from the patch's centre to the
+/// part of the wall above the box's silhouette (the closed form at the centre differs from
+/// the patch's mean by well under 0.1 %).
+fn meters() -> Case {
+    let mut s = scene("meters", Vec3::new(7.0, 2.0, 6.0), Vec3::new(2.0, 1.0, 0.0));
+    wall_past_a_box(&mut s);
+    let meter = s.add_material(Material {
+        one_sided: true,
+        ..Material::diffuse("meter", Rgb::BLACK)
+    });
+    let (height, half) = (0.001f64, 0.01f32);
+    let checks = [6.0f64, 8.0, 12.0]
+        .into_iter()
+        .map(|x| {
+            let name = format!("meter x={x}");
+            s.add_object(
+                &name,
+                Shape::Parallelogram {
+                    origin: Vec3::new(x as f32 - half, height as f32, half),
+                    edge_u: Vec3::X * 2.0 * half,
+                    edge_v: Vec3::NEG_Z * 2.0 * half,
+                },
+                meter,
+            );
+            let cut = silhouette_cut(x, height);
+            let f = perpendicular_rectangle((-1.0, 1.0), (cut - height, 2.0 - height), x);
+            Check {
+                label: format!("E({name})"),
+                quantity: Quantity::Surface(s.objects.len() - 1),
+                expected: PI * LUMINANCE_CD_M2 * f,
+                expected_direct: None,
+            }
+        })
+        .collect();
+    Case {
+        name: "meters".to_string(),
+        description: "The occluder case read by 2 x 2 cm black patches on the ground: E = pi \
+                      L F of the part of the wall above the box's silhouette",
+        scene: s,
+        checks,
+        flat_mesh_levels: 3,
+        surface_error: 0.01,
     }
 }
 
@@ -494,6 +565,7 @@ fn interreflection_cube(rho: f64) -> Case {
             },
         ],
         flat_mesh_levels: 3,
+        surface_error: 0.0,
     }
 }
 
@@ -551,6 +623,7 @@ fn furnace_box() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
+        surface_error: 0.0,
     }
 }
 
@@ -575,5 +648,6 @@ fn furnace_sphere() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 1,
+        surface_error: 0.0,
     }
 }

@@ -107,7 +107,11 @@ pub fn run_suite(
             if checks.is_empty() {
                 continue;
             }
-            let Some(run) = suite_method(method, (effort, seed), case.flat_mesh_levels) else {
+            let Some(run) = suite_method(
+                method,
+                (effort, seed),
+                (case.flat_mesh_levels, case.surface_error),
+            ) else {
                 continue;
             };
             let outcome =
@@ -134,12 +138,22 @@ pub fn run_suite(
 
 /// Whether `check` applies to `method`: sensors to every method (the direct-light ray
 /// tracer only where the case gives the direct light), surface totals to the methods that
-/// report surfaces, the indirect mean to the light model (the one that tells it apart).
+/// report surfaces, the indirect mean to the light model (the one that tells it apart), a
+/// measuring patch to the radiosity solvers that can hold each surface to its own error (the
+/// flat ones, and hierarchical radiosity at the case's [`Case::surface_error`]). The light
+/// model reads a point through a sensor: a 2 × 2 cm patch catches a few of millions of
+/// photons. Hierarchical shooting keeps no links to weigh each surface's error over
+/// (measured on `meters`: −42 %, −5 %, +24 %).
 fn applies(check: &Check, method: MethodKind) -> bool {
     match check.quantity {
         Quantity::Sensor(_) => method.counts_reflections() || check.expected_direct.is_some(),
         Quantity::TotalFlux | Quantity::MeanIlluminance => method.reports_surfaces(),
         Quantity::MeanIndirect => method == MethodKind::LightTrace,
+        Quantity::Surface(_) => {
+            method.reports_surfaces()
+                && !method.is_monte_carlo()
+                && method != MethodKind::Radiosity(crate::method::SolverKind::HierarchicalShooting)
+        }
     }
 }
 
@@ -186,6 +200,17 @@ fn measured(check: &Check, method: MethodKind, outcome: &Outcome) -> (f64, f64, 
                 }
                 _ => (check.expected, luminous(reading.irradiance()), se),
             }
+        }
+        Quantity::Surface(k) => {
+            let Some(power) = outcome.measurement.as_ref().map(|m| &m.power) else {
+                return (check.expected, f64::NAN, None);
+            };
+            let area = power.table().surfaces()[k].area;
+            (
+                check.expected,
+                luminous(power.balance(k).incident) / area,
+                None,
+            )
         }
         Quantity::TotalFlux | Quantity::MeanIlluminance | Quantity::MeanIndirect => {
             let Some(power) = outcome.measurement.as_ref().map(|m| &m.power) else {
@@ -250,6 +275,7 @@ mod tests {
             scene: crate::scene::Scene::empty("c"),
             checks: Vec::new(),
             flat_mesh_levels: 3,
+            surface_error: 0.0,
         };
         let check = Check {
             label: "E".into(),
