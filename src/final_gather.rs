@@ -38,13 +38,8 @@ impl FinalGather<'_> {
     /// and the one behind a translucent surface.
     fn indirect(&self, sp: &ShadingPoint, sampler: &mut Sampler) -> Rgb {
         let n_side = (self.gather_rays.max(1) as f32).sqrt().ceil() as u32;
-        let sides: &[f32] = if sp.material.is_translucent() {
-            &[1.0, -1.0]
-        } else {
-            &[1.0]
-        };
         let mut total = Rgb::BLACK;
-        for &sign in sides {
+        for &sign in sp.material.hemispheres() {
             let frame = Frame::from_normal(sp.n * sign);
             let mut sum = Rgb::BLACK;
             for k in 0..n_side * n_side {

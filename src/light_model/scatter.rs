@@ -1,7 +1,6 @@
-//! What happens to a photon at a surface: absorbed, or scattered by one of the material's
-//! lobes ([`Lobe`]: Lambert, translucent, normalised Phong, ideal mirror, smooth dielectric
-//! with Fresnel),
-//! chosen at random so that the expected outgoing power is exactly the material's.
+//! What happens to a photon at a surface: absorbed, or scattered by one of the material's lobes
+//! ([`Lobe`]: Lambert, translucent, normalised Phong, ideal mirror, smooth dielectric with
+//! Fresnel), chosen at random so that the expected outgoing power is exactly the material's.
 //!
 //! The lobe k is chosen with probability `pₖ = Σ_c Φ_c·wₖ_c / Σ_c Φ_c` (Φ the photon's RGB
 //! power, wₖ the lobe's RGB weight) and the photon continues with `Φ·wₖ/pₖ`; with probability

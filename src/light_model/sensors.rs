@@ -62,12 +62,7 @@ pub(super) fn connect_reflection(
     let side = if hit.front_face { 1.0 } else { -1.0 };
     // Sensors on the side the photon came from see it reflected; those behind a translucent
     // surface see it passed through.
-    let sides: &[f32] = if m.is_translucent() {
-        &[1.0, -1.0]
-    } else {
-        &[1.0]
-    };
-    for &toward in sides {
+    for &toward in m.hemispheres() {
         let (ng, ns) = (hit.ng * (side * toward), hit.ns * (side * toward));
         connect(world, hit.p, ng, (&mut *out, part), |to_sensor| {
             let cos = f64::from(ng.dot(to_sensor));

@@ -1,8 +1,8 @@
-//! The unknowns of radiosity: one side of one patch. Every surface has two sides, each with
-//! its own radiosity, as the ray tracers and the light model see it: a side reflects when the
-//! material does on that side, a translucent material passes light to the other side (the back of a `one_sided` material reflects nothing but still
-//! absorbs what reaches it) and emits when the material emits there (the back only for a
-//! `two_sided` emitter).
+//! The unknowns of radiosity: one side of one patch. Every surface has two sides, each with its
+//! own radiosity, as the ray tracers and the light model see it: a side reflects when the
+//! material does on that side, a translucent material passes light to the other side (the back
+//! of a `one_sided` material reflects nothing but still absorbs what reaches it) and emits when
+//! the material emits there (the back only for a `two_sided` emitter).
 
 use super::clip::Plane;
 use super::mesh::{Patch, PatchId};

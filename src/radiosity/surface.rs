@@ -1,6 +1,7 @@
-//! What one side of a patch does with light: the radiosity it emits, the share it reflects
-//! and the share it passes diffusely to the other side (translucency), from its material with textures averaged over the patch (for the solvers) or
-//! taken at a point (for the display, which shows the texture at full resolution).
+//! What one side of a patch does with light: the radiosity it emits, the share it reflects and
+//! the share it passes diffusely to the other side (translucency), from its material with
+//! textures averaged over the patch (for the solvers) or taken at a point (for the display,
+//! which shows the texture at full resolution).
 //!
 //! An alpha texture cuts a surface: over a patch, only the share it leaves in place
 //! ([`coverage`]) emits and reflects, so a patch's emitted radiosity and reflectance are per

@@ -56,7 +56,8 @@ pub fn seen_directly(
 }
 
 /// Radiance reflected toward the viewer (or passed through a translucent surface) from
-/// light arriving directly from all lights. Area lights and the sky each get `samples` shadow rays (stratified and jittered).
+/// light arriving directly from all lights. Area lights and the sky each get `samples`
+/// shadow rays (stratified and jittered).
 pub fn direct_light(
     world: &World,
     sp: &ShadingPoint,
@@ -125,8 +126,7 @@ pub fn direct_light(
     if let Some(sky) = world.lights.sky {
         // The sky in front, and behind a translucent surface: `count` cosine-distributed
         // directions about the normal on each side.
-        let sides: &[f32] = if through { &[1.0, -1.0] } else { &[1.0] };
-        for &sign in sides {
+        for &sign in sp.material.hemispheres() {
             let frame = Frame::from_normal(sp.n * sign);
             let mut sum = Rgb::BLACK;
             for k in 0..count {

@@ -59,13 +59,14 @@ impl World {
     /// and a material that scatters more than it receives.
     pub fn new(scene: Scene, kind: AccelKind) -> Result<World, GeometryError> {
         // Scene files check this with the file's place; scenes built in code meet it here.
-        if let Some(m) = scene.materials.iter().find(|m| {
+        let creates_light = scene.materials.iter().find_map(|m| {
             let sum = m.albedo_bound();
-            sum.is_nan() || sum > 1.0 + crate::scene::ENERGY_TOLERANCE
-        }) {
+            (sum.is_nan() || sum > 1.0 + crate::scene::ENERGY_TOLERANCE).then_some((m, sum))
+        });
+        if let Some((m, sum)) = creates_light {
             return Err(GeometryError::CreatesLight {
                 material: m.name.clone(),
-                sum: m.albedo_bound(),
+                sum,
             });
         }
         let geometry = SceneGeometry::new(&scene)?;

@@ -82,6 +82,17 @@ impl SurfaceMaterial {
         !self.translucency.is_black()
     }
 
+    /// The hemispheres the surface scatters light between, as signs of the normal on the
+    /// viewer's side: in front (`1`), and behind (`-1`) when it is translucent.
+    #[inline]
+    pub fn hemispheres(&self) -> &'static [f32] {
+        if self.is_translucent() {
+            &[1.0, -1.0]
+        } else {
+            &[1.0]
+        }
+    }
+
     /// The non-delta scattering function `f(wo, wi)` (1/sr), the sum of the lobes with a
     /// density, for unit directions `wo` (toward the viewer, on the side of the unit normal
     /// `n`) and `wi` (toward the light): the reflecting lobes when `wi` is on the viewer's

@@ -5,11 +5,11 @@
 //! (`B_ī += τ_i ΔH_i`, `ΔB_ī += τ_i ΔH_i`).
 //!
 //! The shot `s` is the unshot radiosity `ΔB_j`, or with overshooting (negative radiosity)
-//! `ΔB_j + (ρ_j + τ_j) × ambient`: the light the patch will still receive is sent ahead, leaving a
-//! negative unshot amount that later shots correct (shooting just that amount, no more light
-//! ahead); the fixed point is unchanged. The ambient
-//! term (Cohen et al. 1988) is `R · Σ_k ΔB_k A_k / Σ_k A_k` with `R = 1 / (1 − ρ̄)` and `ρ̄`
-//! the area-averaged albedo `ρ + τ`; it is kept in the solution for display.
+//! `ΔB_j + (ρ_j + τ_j) × ambient`: the light the patch will still receive is sent ahead,
+//! leaving a negative unshot amount that later shots correct (shooting just that amount, no
+//! more light ahead); the fixed point is unchanged. The ambient term (Cohen et al. 1988) is
+//! `R · Σ_k ΔB_k A_k / Σ_k A_k` with `R = 1 / (1 − ρ̄)` and `ρ̄` the area-averaged albedo
+//! `ρ + τ`; it is kept in the solution for display.
 //!
 //! Columns already computed are cached up to [`COLUMN_CACHE_BYTES`]: a leaf shot again costs
 //! no form factors.

@@ -9,10 +9,11 @@
 //! - `ρ_i`: diffuse reflectance (the material's diffuse part times its texture averaged over
 //!   the patch); 0 on the back of a `one_sided` material, which absorbs what reaches it.
 //!   Specular, mirror and transmission parts are ignored.
-//! - `τ_i`: diffuse transmittance (translucency): the share of the irradiance on the other
-//!   side `ī` that leaves side `i`, the coupling of a leaf's two sides; 0 for a `one_sided`
-//!   material. Where an alpha texture cuts the surface, `E_i`, `ρ_i` and `τ_i` are scaled by the share `c_i` of the patch left in place, and
-//!   the element intercepts `c_i·A_i·H_i` of the light reaching it (`coverage`).
+//! - `τ_i`: diffuse transmittance (translucency): the share of the irradiance on the other side
+//!   `ī` that leaves side `i`, the coupling of a leaf's two sides; 0 for a `one_sided`
+//!   material. Where an alpha texture cuts the surface, `E_i`, `ρ_i` and `τ_i` are scaled by
+//!   the share `c_i` of the patch left in place, and the element intercepts `c_i·A_i·H_i` of
+//!   the light reaching it (`coverage`).
 //! - `H_light,i`: irradiance from point, spot and directional lights and the sky through
 //!   emitter-only links (seed §9.3.1, [`light_irradiance`]): these lights send and never
 //!   receive.

@@ -1,11 +1,11 @@
 //! The lobes a material scatters by ([`Lobe`]), one file each: the Lambertian lobe
-//! (`lambert.rs`), diffuse transmission (`translucent.rs`), the normalised Phong lobe (`phong.rs`), the ideal mirror (`mirror.rs`)
-//! and the smooth dielectric (`dielectric.rs`). What every algorithm asks of a lobe is here,
-//! dispatched by an exhaustive `match`: its value and density (path tracer, final gather,
-//! light sampling), a sampled direction (path tracer), a photon's direction (light model),
-//! and the deterministic branches of a delta lobe (the standard ray tracer). Adding a lobe
-//! adds its file, a variant of [`Lobe`] with the material's weight for it, and the arms the
-//! compiler asks for here.
+//! (`lambert.rs`), diffuse transmission (`translucent.rs`), the normalised Phong lobe
+//! (`phong.rs`), the ideal mirror (`mirror.rs`) and the smooth dielectric (`dielectric.rs`).
+//! What every algorithm asks of a lobe is here, dispatched by an exhaustive `match`: its value
+//! and density (path tracer, final gather, light sampling), a sampled direction (path tracer),
+//! a photon's direction (light model), and the deterministic branches of a delta lobe (the
+//! standard ray tracer). Adding a lobe adds its file, a variant of [`Lobe`] with the material's
+//! weight for it, and the arms the compiler asks for here.
 
 mod dielectric;
 mod lambert;

@@ -12,21 +12,21 @@
 //! With `--surface-error ε`, a watt arriving on surface `S` has the direct importance
 //! `w_S = 1/P_S` (`P_S` the power `S` received in the last gather, both sides, luminance; at
 //! least [`NEGLIGIBLE_SHARE`] of what all surfaces receive: a 2 × 2 cm measuring patch in a
-//! room, a millionth of it or less, is held to its own power, and one that received nothing
-//! yet — all its links blocked so far — is looked at again), and the importance of a watt
-//! arriving at node `i` is `Γ_i = w_i + ρ_i·Σ_j F_ij^T Γ_j + τ_i·(the same for the other side)`: the adjoint of the
-//! radiosity system, solved over the same links with the transport reversed (a link's
-//! receiver passes `F·A_r/A_e·Γ_r` to its emitter) and the same push-pull. A link onto a
-//! node of area `a` on a surface of area `A` is then also held to `Γ_r·δ ≤ ε·√(a/A)` (`δ`
-//! the uncertainty of the power it brings, W): the errors of the `A/a` nodes that cover a
-//! surface add up like a random sum, `√(A/a)` times one of them, so each surface's error
-//! stays near the share ε of its power, counting what it receives directly and through
-//! what its neighbours reflect. (Holding each node to its area's share of ε, `a/A`, was as
-//! accurate at many times the links; holding it to ε alone hardly changed a face's error:
-//! its error is the sum of many small ones of one sign.) Cluster links carry no importance,
-//! but each is held to the smallest threshold of the surfaces it brings light to: measuring
-//! patches far from the light they read get it over cluster links. Before the first gather
-//! nothing is known, and the scene-wide threshold alone applies.
+//! room, a millionth of it or less, is held to its own power, and one that received nothing yet
+//! — all its links blocked so far — is looked at again), and the importance of a watt arriving
+//! at node `i` is `Γ_i = w_i + ρ_i·Σ_j F_ij^T Γ_j + τ_i·(the same for the other side)`: the
+//! adjoint of the radiosity system, solved over the same links with the transport reversed (a
+//! link's receiver passes `F·A_r/A_e·Γ_r` to its emitter) and the same push-pull. A link onto a
+//! node of area `a` on a surface of area `A` is then also held to `Γ_r·δ ≤ ε·√(a/A)` (`δ` the
+//! uncertainty of the power it brings, W): the errors of the `A/a` nodes that cover a surface
+//! add up like a random sum, `√(A/a)` times one of them, so each surface's error stays near the
+//! share ε of its power, counting what it receives directly and through what its neighbours
+//! reflect. (Holding each node to its area's share of ε, `a/A`, was as accurate at many times
+//! the links; holding it to ε alone hardly changed a face's error: its error is the sum of many
+//! small ones of one sign.) Cluster links carry no importance, but each is held to the smallest
+//! threshold of the surfaces it brings light to: measuring patches far from the light they read
+//! get it over cluster links. Before the first gather nothing is known, and the scene-wide
+//! threshold alone applies.
 
 use super::links::Link;
 use super::nodes::{Nodes, node, split_node};

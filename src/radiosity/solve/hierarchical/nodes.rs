@@ -116,9 +116,10 @@ impl Nodes {
     }
 
     /// Push-pull over every tree (seed §6.8): irradiance gathered at a node is handed down to
-    /// its leaves, where it becomes radiosity `E + ρ·H + τ·H̄` (`H̄` on the other side), and the leaves' radiosity is pulled
-    /// up as area-weighted means. Returns `(Σ A·Y(|ΔB|), Σ A·Y(S))` over the leaves: the
-    /// change of radiosity and the source term `S = E + ρ·H_lights + τ·H̄_lights`, both as power.
+    /// its leaves, where it becomes radiosity `E + ρ·H + τ·H̄` (`H̄` on the other side), and
+    /// the leaves' radiosity is pulled up as area-weighted means. Returns
+    /// `(Σ A·Y(|ΔB|), Σ A·Y(S))` over the leaves: the change of radiosity and the source term
+    /// `S = E + ρ·H_lights + τ·H̄_lights`, both as power.
     pub fn push_pull(&mut self, mesh: &PatchMesh) -> (f64, f64) {
         let mut change = 0.0;
         let mut source = 0.0;
