@@ -22,6 +22,9 @@
 //!    node's emission and reflectance are the exact means of its textures, so its children
 //!    resolve the texture in the light they pass on.
 //! 4. Steps 2 and 3 repeat until nothing is refined.
+//! 5. Every link whose emitter has been split gathers from then on from the emitter's pieces,
+//!    each weighed by its form factor from the receiver (`fine_gather.rs`), and step 2 runs
+//!    until the radiosity settles again.
 //!
 //! Link creation, the oracle and the gather run on all threads of the current rayon pool, in
 //! an order that does not depend on the thread count.
@@ -32,6 +35,7 @@
 //! asks, and what a receiver takes is pushed to the leaves.
 
 mod clusters;
+mod fine_gather;
 mod importance;
 mod links;
 mod nodes;
@@ -84,11 +88,15 @@ pub struct HierarchicalSettings {
     /// Group the root patches into clusters that exchange light as a whole while they are
     /// small against their distance.
     pub clustering: bool,
+    /// Once refinement is done, links whose emitter has been split gather from its pieces,
+    /// each weighed by its form factor from the receiver (`fine_gather.rs`).
+    pub fine_gather: bool,
 }
 
 impl Default for HierarchicalSettings {
     /// Lischinski's oracle at an error of 10⁻⁴ of the emitted power, minimum area 2·10⁻⁵
-    /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds, clustering on.
+    /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds, clustering and the
+    /// final gather over the emitters' pieces on.
     fn default() -> Self {
         HierarchicalSettings {
             oracle: Oracle::Lischinski,
@@ -99,6 +107,7 @@ impl Default for HierarchicalSettings {
             tolerance: 1e-4,
             max_rounds: 100,
             clustering: true,
+            fine_gather: true,
         }
     }
 }

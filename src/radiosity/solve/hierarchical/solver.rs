@@ -2,6 +2,7 @@
 //! refinement until no link is refined (the steps of the module documentation).
 
 use super::clusters::{ClusterLink, ClusterTree, End, Split};
+use super::fine_gather::FineGather;
 use super::importance::Importance;
 use super::links::{LightLink, Link, Linker, Prior};
 use super::nodes::{Nodes, node, split_node};
@@ -70,6 +71,8 @@ pub(super) struct Solver<'w, 'v> {
     gather_sums: std::sync::Mutex<Vec<Vec<Rgb64>>>,
     /// How much the light each node receives matters to the reported surfaces.
     importance: Importance,
+    /// The emitters' pieces of the final gather, once refinement is done.
+    fine: Option<FineGather>,
     pub(super) settings: HierarchicalSettings,
 }
 
@@ -144,6 +147,14 @@ pub fn solve_hierarchical(
             break;
         }
     }
+    if settings.fine_gather
+        && !interrupted
+        && let Some(last) = rounds.last_mut()
+    {
+        solver.fine_gather(last, cancel);
+        interrupted = cancel.is_requested();
+        converged &= last.residual <= settings.tolerance;
+    }
     progress.finish();
     for r in &rounds {
         times.form_factors += r.seconds_linking + r.seconds_refine;
@@ -193,6 +204,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             },
             gather_sums: std::sync::Mutex::new(Vec::new()),
             importance: Importance::new(world, settings.surface_error),
+            fine: None,
             settings: *settings,
             mesh,
         };
@@ -385,6 +397,21 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         }
     }
 
+    /// Once refinement is done: every link whose emitter is split gathers from the
+    /// emitter's pieces from now on ([`FineGather`]), until the radiosity settles again; the
+    /// time counts in `round`, the last round (the pieces' form factors as refinement).
+    fn fine_gather(&mut self, round: &mut RoundStats, cancel: &Cancel) {
+        let t = Instant::now();
+        self.fine = Some(FineGather::new(
+            &self.mesh,
+            &self.nodes,
+            &self.links,
+            &self.linker.form_factors,
+        ));
+        round.seconds_refine += t.elapsed().as_secs_f64();
+        self.gather_to_convergence(round, cancel);
+    }
+
     /// Every node gathers `Σ F·V·B` over its links (seed §6.7).
     fn gather(&mut self) {
         let mut gathered = std::mem::take(&mut self.nodes.gathered);
@@ -412,8 +439,17 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 ((k + 1) * chunk).min(patch_links + cluster_links),
             );
             let patch_range = start.min(patch_links)..end.min(patch_links);
-            for link in self.links[patch_range].iter().filter(|l| !l.is_blocked()) {
-                let h = link.emitter_radiosity(&self.mesh, b) * link.coupling;
+            for (k, link) in self.links[patch_range.clone()]
+                .iter()
+                .enumerate()
+                .filter(|(_, l)| !l.is_blocked())
+            {
+                let pieces = self
+                    .fine
+                    .as_ref()
+                    .and_then(|f| f.emitter_radiosity(patch_range.start + k, b));
+                let h =
+                    pieces.unwrap_or_else(|| link.emitter_radiosity(&self.mesh, b)) * link.coupling;
                 for (n, h) in link.divide(&self.mesh, h) {
                     sum[n] += h;
                 }
