@@ -1,11 +1,11 @@
 //! Per-surface accuracy of hierarchical radiosity: the built-in Cornell box with every face of
 //! every object reported on its own, against the light model at 2·10⁸ photons (recorded in
 //! `tests/data/cornell_per_face_light_model.json`, its three standard errors 0.2–0.6 % on the
-//! dim block faces). At the default settings the dim block faces are 5–8 % too bright;
+//! dim block faces). At the default settings the dim block faces are 3–5 % too bright;
 //! `surface_error` (importance-driven budgets per reported surface) brings them to the
 //! reference. A live light-model run checks that the recording still describes the code.
 //! And measuring patches: small black quads reading the light of CIE 171's lit wall past an
-//! occluder (case 5.7, `strahl validate`'s `meters`), against the closed form.
+//! occluder (case 5.7, `strahl validate`'s `meters`), against the closed form at the defaults.
 
 use serde_json::Value;
 use std::collections::HashMap;
@@ -156,15 +156,15 @@ fn the_recorded_reference_is_the_light_model_of_this_code() {
 
 /// `validate`'s `meters` case (CIE 171 case 5.7's lit wall past a black box, read by black
 /// one-sided 2 × 2 cm patches on the ground at 6, 8 and 12 m) solved by hierarchical radiosity
-/// at `surface_error`: each patch's relative deviation from its closed form.
-fn meter_errors(surface_error: f64) -> Vec<f64> {
+/// with clustering on or off: each patch's relative deviation from its closed form.
+fn meter_errors(clustering: bool) -> Vec<f64> {
     let case = strahl::validate::cases::all(true)
         .into_iter()
         .find(|c| c.name == "meters")
         .unwrap();
     let world = Arc::new(World::new(case.scene, AccelKind::Bvh).unwrap());
     let mut settings = RadiositySettings::new(SolverKind::Hierarchical);
-    settings.hierarchical.surface_error = surface_error;
+    settings.hierarchical.clustering = clustering;
     let outcome = run(
         &world,
         &Method::Radiosity(settings),
@@ -187,15 +187,18 @@ fn meter_errors(surface_error: f64) -> Vec<f64> {
 }
 
 #[test]
-fn surface_error_reads_small_measuring_patches_right() {
-    // The defaults: the patches' share of the scene's power (about 10⁻⁷ each) is far below
-    // the scene-wide error, and light reaches them past the box only through a narrow gap
-    // (measured: all three read nothing).
-    let default = meter_errors(0.0);
-    assert!(default.iter().any(|e| e.abs() > 0.2), "{default:?}");
-    // Held to their own power, every patch reads its closed form within 1 % (measured:
-    // +0.02 %, +0.23 %, +0.17 %; the closed form at the centre differs from the patch's mean
-    // by well under 0.1 %).
-    let budgeted = meter_errors(0.01);
-    assert!(budgeted.iter().all(|e| e.abs() < 0.01), "{budgeted:?}");
+fn small_measuring_patches_read_their_closed_form_at_the_defaults() {
+    // The patches hold about 10⁻⁷ of the scene's power each, far below the scene-wide error,
+    // and light reaches them past the box only through a narrow gap: as measuring patches
+    // (black, passing nothing) they are held to 1 % of their own light whatever
+    // `--surface-error` says. Measured: +0.02 %, +0.23 %, +0.17 % (before that rule all three
+    // read nothing); without clustering −0.34 %, +0.13 %, +0.49 % (before: −42 %, −5 %,
+    // +24 %). The closed form at the centre differs from the patch's mean by well under 0.1 %.
+    for clustering in [true, false] {
+        let errors = meter_errors(clustering);
+        assert!(
+            errors.iter().all(|e| e.abs() < 0.01),
+            "clustering {clustering}: {errors:?}"
+        );
+    }
 }

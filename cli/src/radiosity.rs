@@ -87,7 +87,7 @@ pub struct RadiosityArgs {
     /// hierarchical: largest uncertainty of the power a link brings, as a share of all power emitted in the scene.
     #[arg(long, default_value_t = HierarchicalSettings::default().error, value_parser = finite::<f64>)]
     pub error: f64,
-    /// hierarchical: also hold every reported surface (object, or face with per_face) to about this share of its own power, weighing each link by the importance of its light to every surface (0: off). Dim faces and small leaves then come out right, at many times the links (0.003 takes the built-in Cornell box with per-face reports from 0.17 s to 2.5 s on two threads, its worst face from +4.8 % to +1.4 %).
+    /// hierarchical: also hold every reported surface (object, or face with per_face) to about this share of its own power, weighing each link by the importance of its light to every surface (0: off; a measuring patch, a surface that scatters and emits nothing, is held to 1 % regardless). Dim faces and small leaves then come out right, at many times the links (0.003 takes the built-in Cornell box with per-face reports from 0.17 s to 2.5 s on two threads, its worst face from +4.8 % to +1.4 %).
     #[arg(long, default_value_t = HierarchicalSettings::default().surface_error, value_parser = finite::<f64>)]
     pub surface_error: f64,
     /// hierarchical: nodes are not split below this fraction of the scene's surface area.

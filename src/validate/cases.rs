@@ -55,9 +55,6 @@ pub struct Case {
     /// Quadtree levels of the flat radiosity solvers' mesh (the command line's default is
     /// 3; a tessellated sphere needs fewer for the full matrix to stay small).
     pub flat_mesh_levels: u32,
-    /// Hierarchical radiosity's error per reported surface (`--surface-error`; 0, the
-    /// default, everywhere but where small measuring patches are read).
-    pub surface_error: f64,
 }
 
 /// Luminous intensity of the point sources, cd.
@@ -190,7 +187,6 @@ fn point_over_plane(lambertian: bool) -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
-        surface_error: 0.0,
     }
 }
 
@@ -279,7 +275,6 @@ fn area_source_in_black_room() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
-        surface_error: 0.0,
     }
 }
 
@@ -329,7 +324,6 @@ fn reflected_once() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
-        surface_error: 0.0,
     }
 }
 
@@ -399,7 +393,6 @@ fn translucent_sheet() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
-        surface_error: 0.0,
     }
 }
 
@@ -435,7 +428,6 @@ fn occluder() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
-        surface_error: 0.0,
     }
 }
 
@@ -523,7 +515,6 @@ fn meters() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
-        surface_error: 0.01,
     }
 }
 
@@ -565,7 +556,6 @@ fn interreflection_cube(rho: f64) -> Case {
             },
         ],
         flat_mesh_levels: 3,
-        surface_error: 0.0,
     }
 }
 
@@ -623,7 +613,6 @@ fn furnace_box() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 3,
-        surface_error: 0.0,
     }
 }
 
@@ -648,6 +637,5 @@ fn furnace_sphere() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 1,
-        surface_error: 0.0,
     }
 }

@@ -53,12 +53,11 @@ impl Effort {
 /// The method `kind` as the suite runs it with the work of `effort` and the seed `seed`: the
 /// ray tracers at the sensors, the light model, the flat radiosity solvers on `flat_levels`
 /// quadtree levels per face and the hierarchical ones from the root patches at the error of
-/// `effort` and the error per surface `surface_error` (the case's). `None` for a kind the
-/// suite does not run.
+/// `effort`. `None` for a kind the suite does not run.
 pub fn suite_method(
     kind: MethodKind,
     (effort, seed): (Effort, u64),
-    (flat_levels, surface_error): (u32, f64),
+    flat_levels: u32,
 ) -> Option<method::Method> {
     let method = match kind {
         MethodKind::Direct | MethodKind::PathTrace => {
@@ -79,7 +78,6 @@ pub fn suite_method(
                 settings.system.mesh.size = MeshSize::Levels(flat_levels);
             }
             settings.hierarchical.error = effort.error;
-            settings.hierarchical.surface_error = surface_error;
             method::Method::Radiosity(settings)
         }
         MethodKind::RayTrace | MethodKind::RadiosityImage | MethodKind::FinalGather => {

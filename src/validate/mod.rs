@@ -107,11 +107,7 @@ pub fn run_suite(
             if checks.is_empty() {
                 continue;
             }
-            let Some(run) = suite_method(
-                method,
-                (effort, seed),
-                (case.flat_mesh_levels, case.surface_error),
-            ) else {
+            let Some(run) = suite_method(method, (effort, seed), case.flat_mesh_levels) else {
                 continue;
             };
             let outcome =
@@ -140,7 +136,8 @@ pub fn run_suite(
 /// tracer only where the case gives the direct light), surface totals to the methods that
 /// report surfaces, the indirect mean to the light model (the one that tells it apart), a
 /// measuring patch to the radiosity solvers that can hold each surface to its own error (the
-/// flat ones, and hierarchical radiosity at the case's [`Case::surface_error`]). The light
+/// flat ones, and hierarchical radiosity, which holds every measuring patch to 1 % of its own
+/// light, `importance.rs`). The light
 /// model reads a point through a sensor: a 2 × 2 cm patch catches a few of millions of
 /// photons. Hierarchical shooting keeps no links to weigh each surface's error over
 /// (measured on `meters`: −42 %, −5 %, +24 %).
@@ -275,7 +272,6 @@ mod tests {
             scene: crate::scene::Scene::empty("c"),
             checks: Vec::new(),
             flat_mesh_levels: 3,
-            surface_error: 0.0,
         };
         let check = Check {
             label: "E".into(),

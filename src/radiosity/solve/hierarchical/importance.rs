@@ -10,14 +10,14 @@
 //! surfaces next to it (the floor in the block's shadow that the face sees).
 //!
 //! With `--surface-error ε`, a watt arriving on surface `S` has the direct importance
-//! `w_S = 1/P_S` (`P_S` the power `S` received in the last gather, both sides, luminance; at
+//! `w_S = 1/(ε·P_S)` (`P_S` the power `S` received in the last gather, both sides, luminance; at
 //! least [`NEGLIGIBLE_SHARE`] of what all surfaces receive: a 2 × 2 cm measuring patch in a
 //! room, a millionth of it or less, is held to its own power, and one that received nothing yet
 //! — all its links blocked so far — is looked at again), and the importance of a watt arriving
 //! at node `i` is `Γ_i = w_i + ρ_i·Σ_j F_ij^T Γ_j + τ_i·(the same for the other side)`: the
 //! adjoint of the radiosity system, solved over the same links with the transport reversed (a
 //! link's receiver passes `F·A_r/A_e·Γ_r` to its emitter) and the same push-pull. A link onto a
-//! node of area `a` on a surface of area `A` is then also held to `Γ_r·δ ≤ ε·√(a/A)` (`δ` the
+//! node of area `a` on a surface of area `A` is then also held to `Γ_r·δ ≤ √(a/A)` (`δ` the
 //! uncertainty of the power it brings, W): the errors of the `A/a` nodes that cover a surface
 //! add up like a random sum, `√(A/a)` times one of them, so each surface's error stays near the
 //! share ε of its power, counting what it receives directly and through what its neighbours
@@ -27,9 +27,18 @@
 //! threshold of the surfaces it brings light to: measuring patches far from the light they read
 //! get it over cluster links. Before the first gather nothing is known, and the scene-wide
 //! threshold alone applies.
+//!
+//! A measuring patch — a surface whose every leaf scatters and emits nothing (black, passing
+//! nothing through), such as a 2 × 2 cm quad placed to read the light — is held to
+//! [`MEASURING_PATCH_ERROR`] even without `--surface-error` (its `ε_S`, the smaller where
+//! both apply; surfaces without an error of their own weigh nothing): the light it receives
+//! goes nowhere else, so its links and those of what it sees are all the budget costs.
+//! Measured on `meters` (validate): the three patches from −100 % to +0.02 … +0.23 % at the
+//! defaults, 0.006 → 0.010 s.
 
 use super::links::Link;
 use super::nodes::{Nodes, node, split_node};
+use crate::color::Rgb;
 use crate::measure::SurfaceTable;
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
@@ -38,6 +47,12 @@ use crate::world::World;
 /// Surfaces receiving less than this share of the power all surfaces receive get the
 /// importance of one at this share (a bound for the surfaces that receive nothing).
 pub const NEGLIGIBLE_SHARE: f64 = 1e-9;
+
+/// The relative error a surface that scatters and emits nothing (a measuring patch: black,
+/// passing nothing through) is held to whatever `--surface-error` says, unless that is
+/// smaller: the light it receives goes nowhere else, so refining its links changes no other
+/// figure and costs only its own links and those of what it sees.
+pub const MEASURING_PATCH_ERROR: f64 = 0.01;
 
 /// Sweeps of the importance solve at most.
 const MAX_SWEEPS: usize = 50;
@@ -48,8 +63,11 @@ const SWEEP_TOLERANCE: f64 = 1e-3;
 /// The importance of the power each node receives, for the error budgets of the oracle.
 #[derive(Clone, Debug)]
 pub struct Importance {
-    /// The relative error ε per surface (0: no budgets).
+    /// The relative error ε asked of every surface (0: none but the measuring patches').
     relative: f64,
+    /// Per scene object: true when its material scatters and emits nothing (no lobe, no
+    /// emission, no textures): its surface is a measuring patch.
+    measures: Vec<bool>,
     /// The report's surfaces.
     table: SurfaceTable,
     /// Per node: the importance of a watt arriving there, 1/W (empty until known).
@@ -62,10 +80,24 @@ impl Importance {
     /// Importance for the surfaces `world` reports at relative error `relative` (nothing
     /// known yet).
     pub fn new(world: &World, relative: f64) -> Self {
+        let scene = &world.scene;
+        let measures: Vec<bool> = scene
+            .objects
+            .iter()
+            .map(|o| {
+                let m = &scene.materials[o.material as usize];
+                m.albedo_bound() == 0.0
+                    && m.diffuse_texture.is_none()
+                    && m.emission == Rgb::BLACK
+                    && m.emission_texture.is_none()
+            })
+            .collect();
+        let may_measure = measures.contains(&true);
         Importance {
             relative,
+            measures,
             // Measuring the surfaces costs a pass over the geometry: only when asked for.
-            table: if relative > 0.0 {
+            table: if relative > 0.0 || may_measure {
                 SurfaceTable::new(&world.scene, &world.geometry)
             } else {
                 SurfaceTable::default()
@@ -94,7 +126,7 @@ impl Importance {
         let patch = mesh.patch(receiver / 2);
         let area = self.surface_area[self.table.entry(patch.object, patch.face)];
         if gamma > 0.0 && area > 0.0 {
-            scene_error.min(self.relative / gamma * (patch.area / area).sqrt())
+            scene_error.min((patch.area / area).sqrt() / gamma)
         } else {
             scene_error
         }
@@ -124,7 +156,7 @@ impl Importance {
     /// gather (`nodes`) over the patch links `links`; nothing to do without a relative
     /// error.
     pub fn update(&mut self, mesh: &PatchMesh, nodes: &Nodes, links: &[Link]) {
-        if self.relative <= 0.0 {
+        if self.relative <= 0.0 && !self.measures.contains(&true) {
             return;
         }
         let Some(weight) = self.surface_weights(mesh, nodes) else {
@@ -190,10 +222,13 @@ impl Importance {
         gamma
     }
 
-    /// Per surface, the direct importance `1/P_S` of a watt arriving there, 1/W; `None`
-    /// while no surface receives anything.
+    /// Per surface, the direct importance `1/(ε_S·P_S)` of a watt arriving there, 1/W (`ε_S`
+    /// the surface's relative error: the one asked of every surface, or for a measuring
+    /// patch at most [`MEASURING_PATCH_ERROR`]; 0 where no error is asked of it); `None`
+    /// while no surface receives anything or none is held to an error.
     fn surface_weights(&mut self, mesh: &PatchMesh, nodes: &Nodes) -> Option<Vec<f64>> {
         let mut power = vec![0.0; self.table.len()];
+        let mut measures = vec![true; self.table.len()];
         self.surface_area = vec![0.0; self.table.len()];
         for leaf in mesh.leaves() {
             let patch = mesh.patch(leaf);
@@ -204,9 +239,25 @@ impl Importance {
             let surface = self.table.entry(patch.object, patch.face);
             power[surface] += h * patch.area;
             self.surface_area[surface] += patch.area;
+            measures[surface] &= self.measures[patch.object as usize];
         }
         let floor = NEGLIGIBLE_SHARE * power.iter().sum::<f64>();
-        (floor > 0.0).then(|| power.iter().map(|&p| 1.0 / p.max(floor)).collect())
+        let relative = |s: usize| match (measures[s], self.relative > 0.0) {
+            (true, true) => self.relative.min(MEASURING_PATCH_ERROR),
+            (true, false) => MEASURING_PATCH_ERROR,
+            (false, _) => self.relative,
+        };
+        let weights: Vec<f64> = (0..power.len())
+            .map(|s| {
+                let e = relative(s);
+                if e > 0.0 {
+                    1.0 / (e * power[s].max(floor))
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        (floor > 0.0 && weights.iter().any(|&w| w > 0.0)).then_some(weights)
     }
 }
 

@@ -74,7 +74,9 @@ pub struct HierarchicalSettings {
     /// Per-surface error (the hierarchical solver; hierarchical shooting ignores it): each
     /// link is also held to about this share of the power of every reported surface its
     /// light reaches, weighed by importance (`importance.rs`); 0 leaves the scene-wide
-    /// `error` alone.
+    /// `error` alone but for measuring patches (surfaces that scatter and emit nothing), which
+    /// are held to 1 % of their own light (`importance.rs`) whatever this says, unless it is
+    /// smaller.
     pub surface_error: f64,
     /// Nodes are not split below this fraction of the scene's surface area.
     pub min_area: f64,
