@@ -202,3 +202,71 @@ fn small_measuring_patches_read_their_closed_form_at_the_defaults() {
         );
     }
 }
+
+/// Per leaf: absorbed power, W per channel, and the reference's relative standard error.
+type Leaves = HashMap<String, ([f64; 3], [f64; 3])>;
+
+/// The recorded light model of `canopy:300` at 10⁹ photons (three standard errors 0.27–0.42 %
+/// per leaf).
+fn canopy_reference() -> Leaves {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data/canopy300_per_leaf_light_model.json"),
+    )
+    .unwrap();
+    let json: Value = serde_json::from_str(&text).unwrap();
+    json["leaves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|leaf| {
+            let incident = triple(&leaf["incident_power"]);
+            let error = triple(&leaf["incident_power_standard_error"]);
+            let relative = std::array::from_fn(|c| error[c] / incident[c]);
+            let name = leaf["name"].as_str().unwrap().to_string();
+            (name, (triple(&leaf["absorbed_power"]), relative))
+        })
+        .collect()
+}
+
+#[test]
+fn every_leaf_of_the_canopy_absorbs_what_the_light_model_says() {
+    // canopy:300 (translucent leaves under sky and sun) at the defaults of both hierarchical
+    // solvers, leaf by leaf against the recording: each leaf within 1 % plus three of the
+    // reference's standard errors, the RMS over leaves and channels under 0.5 %. Measured:
+    // hierarchical radiosity worst +1.20 % (leaf 8-10, green; its reference's 3σ 0.42 %), RMS
+    // 0.37 % — the leaves' light from each other over cluster links, within 0.98 % without
+    // clustering; hierarchical shooting worst +0.98 %, RMS 0.24 %. Before the light links
+    // looked for shadows at the leaves' edges, two leaves a sliver in another's shadow read
+    // +1.56 % and +1.43 %.
+    let reference = canopy_reference();
+    let world = Arc::new(
+        World::new(
+            builtin::load("canopy:300").unwrap().unwrap(),
+            AccelKind::Bvh,
+        )
+        .unwrap(),
+    );
+    for solver in [SolverKind::Hierarchical, SolverKind::HierarchicalShooting] {
+        let method = Method::Radiosity(RadiositySettings::new(solver));
+        let outcome = run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+        let report = Report::new("canopy", outcome.measurement.as_ref().unwrap());
+        let (mut squares, mut count) = (0.0, 0);
+        for leaf in &report.objects {
+            let (expected, sigma) = reference[&leaf.name];
+            for c in 0..3 {
+                let e = leaf.absorbed_power.to_array()[c] / expected[c] - 1.0;
+                assert!(
+                    e.abs() < 0.01 + 3.0 * sigma[c],
+                    "{solver:?} {} channel {c}: {:+.2} %",
+                    leaf.name,
+                    100.0 * e
+                );
+                squares += e * e;
+                count += 1;
+            }
+        }
+        let rms = (squares / f64::from(count)).sqrt();
+        assert!(rms < 0.005, "{solver:?}: RMS {rms}");
+    }
+}

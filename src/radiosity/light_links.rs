@@ -62,6 +62,11 @@ pub fn light_irradiance(
     light_arrival(world, light, patch, side, samples).irradiance
 }
 
+/// How far the boundary points of [`boundary_hidden`] are pulled towards the centroid (a
+/// share of the way), so that a point on an edge shared with a neighbour is not shadowed by
+/// it.
+const BOUNDARY_INSET: f64 = 1e-2;
+
 /// What `light` sends to side `side` of `patch`, with shadows from every surface of `world`
 /// (for patches of curved shapes, the world of [`super::Visibility::world`], whose surfaces
 /// they lie on); the visible share is estimated at `samples × samples` receiver points (the
@@ -107,7 +112,8 @@ pub fn light_arrival(
             let unshadowed = inc.irradiance.to_f64() * cos;
             LightArrival {
                 irradiance: unshadowed * seen,
-                partly_shadowed: hidden && seen > 0.0,
+                partly_shadowed: seen > 0.0
+                    && (hidden || boundary_hidden(world, patch, normal, light)),
                 unshadowed,
             }
         }
@@ -157,11 +163,24 @@ pub fn light_arrival(
                 intensity.to_f64() * (solid_angle(at, patch.corners()) / patch.area / total);
             LightArrival {
                 irradiance: per_weight * weighted,
-                partly_shadowed: lit && hidden,
+                partly_shadowed: lit && (hidden || boundary_hidden(world, patch, normal, light)),
                 unshadowed: per_weight * reaching,
             }
         }
     }
+}
+
+/// True when `light` is hidden from a corner or the middle of an edge of `patch` (pulled in
+/// by [`BOUNDARY_INSET`] of the way to the centroid): a shadow that covers a sliver along an
+/// edge lies between the rows of the receiver points (`canopy:300`: a leaf 1.5 % in another's
+/// shadow read fully lit at 8 × 8 points).
+fn boundary_hidden(world: &World, patch: &Patch, normal: DVec3, light: &LightKind) -> bool {
+    let corners = patch.corners();
+    let n = corners.len();
+    let inset = |x: DVec3| x + (patch.centroid - x) * BOUNDARY_INSET;
+    (0..n)
+        .flat_map(|k| [corners[k], 0.5 * (corners[k] + corners[(k + 1) % n])])
+        .any(|x| falloff(light, x) > 0.0 && !sees_light(world, inset(x), normal, light))
 }
 
 /// The share of the intensity that `light` sends toward `x`: the spot falloff, the cosine

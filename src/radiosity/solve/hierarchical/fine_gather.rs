@@ -45,7 +45,7 @@ const FAR_RATIO: f64 = 2.0;
 /// leaves each (summing to 1); none where the link gathers as before.
 pub(super) struct FineGather {
     /// Where link `k`'s pieces lie in `pieces`: `offsets[k]..offsets[k + 1]`.
-    offsets: Vec<u32>,
+    offsets: Vec<usize>,
     /// Node and weight of every piece.
     pieces: Vec<(u32, f32)>,
 }
@@ -67,7 +67,7 @@ impl FineGather {
         offsets.push(0);
         for (p, n) in per_link {
             all.extend(p);
-            offsets.push(u32::try_from(all.len()).unwrap_or(u32::MAX));
+            offsets.push(all.len());
             evaluated += n;
         }
         form_factors.fetch_add(evaluated, Ordering::Relaxed);
@@ -81,7 +81,7 @@ impl FineGather {
     /// none (its emitter is a leaf, the link is blocked, or nothing of it faces the
     /// receiver).
     pub(super) fn emitter_radiosity(&self, k: usize, radiosity: &[Rgb64]) -> Option<Rgb64> {
-        let range = self.offsets[k] as usize..self.offsets[k + 1] as usize;
+        let range = self.offsets[k]..self.offsets[k + 1];
         (!range.is_empty()).then(|| {
             self.pieces[range]
                 .iter()
