@@ -8,7 +8,8 @@
 //! The modules form layers; each imports only the layers below it (`docs/ARCHITECTURE.md`
 //! has the map):
 //!
-//! 1. [`color`], [`geometry`], [`lanes`], [`sampling`], [`progress`], [`choice`] — foundations;
+//! 1. [`color`], [`geometry`], [`lanes`], [`sampling`], [`progress`], [`choice`],
+//!    [`atomic_file`] — foundations;
 //! 2. [`scene`] — the scene model, its files and the built-in scenes;
 //! 3. [`accel`] — acceleration structures over any primitive set;
 //! 4. [`world`] — the scene compiled for ray queries;
@@ -34,6 +35,7 @@
 #![warn(missing_docs)]
 
 pub mod accel;
+pub mod atomic_file;
 pub mod choice;
 pub mod color;
 pub mod final_gather;

@@ -2,8 +2,8 @@
 //! imports only the modules this table allows (the layers below it), the three algorithms
 //! never import each other, the library neither names nor depends on the command line's
 //! crates (argument parser, progress bars, Ctrl-C handler, `anyhow`), and the command line
-//! reaches the library only through the method API and the scene, report, image and
-//! validation modules.
+//! reaches the library only through the method API and the scene, report, image, validation
+//! and output-file modules.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -15,6 +15,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("lanes", &[]),
     ("choice", &[]),
     ("progress", &[]),
+    ("atomic_file", &[]),
     ("geometry", &["lanes"]),
     ("sampling", &["geometry", "lanes"]),
     // The scene model and acceleration structures.
@@ -63,15 +64,25 @@ const ALLOWED: &[(&str, &[&str])] = &[
         ],
     ),
     // Files made from what was measured.
-    ("image", &["choice", "color", "measure"]),
-    ("report", &["color", "image", "measure", "scene"]),
+    ("image", &["atomic_file", "choice", "color", "measure"]),
+    (
+        "report",
+        &["atomic_file", "color", "image", "measure", "scene"],
+    ),
     // The validation suite, over the method API.
     ("validate", &["color", "method", "scene"]),
 ];
 
 /// The library modules the command line (`cli/src`) may import: the method API and the
-/// scene, report, image and validation modules.
-const FRONT_END_MODULES: &[&str] = &["image", "method", "report", "scene", "validate"];
+/// scene, report, image, validation and output-file modules.
+const FRONT_END_MODULES: &[&str] = &[
+    "atomic_file",
+    "image",
+    "method",
+    "report",
+    "scene",
+    "validate",
+];
 
 /// What every algorithm may import: everything below the algorithms.
 const ALGORITHM_BASE: &[&str] = &[

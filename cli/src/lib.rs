@@ -81,10 +81,24 @@ pub fn main() -> std::process::ExitCode {
         Ok(()) if progress::interrupted() => std::process::ExitCode::from(130),
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", describe(&e));
             std::process::ExitCode::FAILURE
         }
     }
+}
+
+/// `e` and its causes, joined by `: `, leaving out a cause the message before already
+/// quotes (the library's errors name their operating-system cause in their own words).
+fn describe(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain().map(ToString::to_string) {
+        if text.is_empty() {
+            text = cause;
+        } else if !text.contains(&cause) {
+            text = format!("{text}: {cause}");
+        }
+    }
+    text
 }
 
 /// Runs `f` on a rayon pool of `threads` threads (0 = one per core).

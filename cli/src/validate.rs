@@ -82,7 +82,7 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
     );
     if let Some(path) = &args.report {
         let text = serde_json::to_string_pretty(&rows)?;
-        std::fs::write(path, text + "\n")
+        strahl::atomic_file::write(path, (text + "\n").as_bytes())
             .with_context(|| format!("cannot write {}", path.display()))?;
     }
     if progress::interrupted() {

@@ -2,12 +2,12 @@
 
 use super::error::ImageError;
 use super::pfm::{read_pfm, write_pfm};
+use crate::atomic_file::AtomicFile;
 use crate::measure::Film;
 
 use super::tonemap::ToneMapping;
 use crate::color::Rgb;
 use crate::color::{linear_to_srgb, srgb_to_linear};
-use std::io::{BufWriter, Write};
 use std::path::Path;
 
 /// An image file format, chosen by file extension (case-insensitive).
@@ -73,8 +73,13 @@ fn save_png(film: &Film, path: &Path, tone_mapping: &ToneMapping) -> Result<(), 
         .flat_map(Rgb::to_array)
         .map(|v| (linear_to_srgb(v) * 255.0).round() as u8)
         .collect();
-    ::image::save_buffer_with_format(
-        path,
+    let io_error = |source| ImageError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let mut out = AtomicFile::create(path).map_err(io_error)?;
+    ::image::write_buffer_with_format(
+        &mut out,
         &bytes,
         film.width(),
         film.height(),
@@ -84,7 +89,8 @@ fn save_png(film: &Film, path: &Path, tone_mapping: &ToneMapping) -> Result<(), 
     .map_err(|source| ImageError::Png {
         path: path.to_path_buf(),
         source,
-    })
+    })?;
+    out.commit().map_err(io_error)
 }
 
 fn load_png(path: &Path) -> Result<Film, ImageError> {
@@ -108,12 +114,24 @@ fn load_png(path: &Path) -> Result<Film, ImageError> {
 }
 
 fn save_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
+    use exr::prelude::{Image, SpecificChannels, Vec2, WritableImage};
     let width = film.width() as usize;
-    exr::prelude::write_rgb_file(path, width, film.height() as usize, |x, y| {
+    let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
         let p = film.pixels()[y * width + x];
         (p.r, p.g, p.b)
-    })
-    .map_err(|source| ImageError::Exr {
+    });
+    let mut out = AtomicFile::create(path).map_err(|source| ImageError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Image::from_channels((width, film.height() as usize), channels)
+        .write()
+        .to_buffered(&mut out)
+        .map_err(|source| ImageError::Exr {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    out.commit().map_err(|source| ImageError::Io {
         path: path.to_path_buf(),
         source,
     })
@@ -140,9 +158,9 @@ fn save_pfm(film: &Film, path: &Path) -> Result<(), ImageError> {
         path: path.to_path_buf(),
         source,
     };
-    let mut out = BufWriter::new(std::fs::File::create(path).map_err(io_error)?);
+    let mut out = AtomicFile::create(path).map_err(io_error)?;
     write_pfm(film, &mut out).map_err(io_error)?;
-    out.flush().map_err(io_error)
+    out.commit().map_err(io_error)
 }
 
 fn load_pfm(path: &Path) -> Result<Film, ImageError> {

@@ -21,6 +21,7 @@
 //!
 //! Tone mapping acts on the radiance `B/π` of the vertices as on an image's pixels.
 
+use crate::atomic_file;
 use crate::color::{Rgb, linear_to_srgb};
 use crate::image::ToneMapping;
 use crate::measure::{Film, LitMesh};
@@ -149,10 +150,10 @@ pub fn export_lit_mesh(
         source,
     };
     match format {
-        ExportFormat::Ply => std::fs::write(path, ply(&mesh)).map_err(io),
+        ExportFormat::Ply => atomic_file::write(path, ply(&mesh).as_bytes()).map_err(io),
         ExportFormat::Glb => {
             let (json, bin) = gltf_parts(&mesh, None);
-            std::fs::write(path, glb(&json, &bin)).map_err(io)
+            atomic_file::write(path, &glb(&json, &bin)).map_err(io)
         }
         ExportFormat::Gltf => {
             let bin_path = path.with_extension("bin");
@@ -161,11 +162,11 @@ pub fn export_lit_mesh(
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
             let (json, bin) = gltf_parts(&mesh, Some(&bin_name));
-            std::fs::write(&bin_path, bin).map_err(|source| ExportError::Io {
+            atomic_file::write(&bin_path, &bin).map_err(|source| ExportError::Io {
                 path: bin_path.display().to_string(),
                 source,
             })?;
-            std::fs::write(path, json).map_err(io)
+            atomic_file::write(path, json.as_bytes()).map_err(io)
         }
     }
 }

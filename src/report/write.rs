@@ -13,9 +13,9 @@
 //! indirect_illuminance_lux, standard_error_lux, irradiance_{r,g,b}` (irradiance in W·m⁻²).
 
 use super::schema::Report;
+use crate::atomic_file::AtomicFile;
 use crate::color::Rgb64;
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
 
 /// Report file formats.
@@ -80,8 +80,7 @@ pub fn write_report(report: &Report, path: &Path) -> Result<(), ReportError> {
         path: name(),
         source,
     };
-    let file = File::create(path).map_err(io)?;
-    let mut out = BufWriter::new(file);
+    let mut out = AtomicFile::create(path).map_err(io)?;
     match format {
         ReportFormat::Json => {
             serde_json::to_writer_pretty(&mut out, report)
@@ -94,21 +93,23 @@ pub fn write_report(report: &Report, path: &Path) -> Result<(), ReportError> {
                 source,
             })?;
             if !report.sensors.is_empty() {
+                // The sensor table is put in place first: a report never names rows that
+                // are not there.
                 let sensors_path = sensors_csv_path(path);
-                let file = File::create(&sensors_path).map_err(|source| ReportError::Io {
+                let sensors_io = |source| ReportError::Io {
+                    path: sensors_path.display().to_string(),
+                    source,
+                };
+                let mut sensors = AtomicFile::create(&sensors_path).map_err(sensors_io)?;
+                write_sensors_csv(report, &mut sensors).map_err(|source| ReportError::Csv {
                     path: sensors_path.display().to_string(),
                     source,
                 })?;
-                write_sensors_csv(report, BufWriter::new(file)).map_err(|source| {
-                    ReportError::Csv {
-                        path: sensors_path.display().to_string(),
-                        source,
-                    }
-                })?;
+                sensors.commit().map_err(sensors_io)?;
             }
         }
     }
-    out.flush().map_err(io)
+    out.commit().map_err(io)
 }
 
 /// Where the sensor rows of a CSV report at `path` go: `<stem>.sensors.csv` beside it.

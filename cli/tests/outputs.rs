@@ -1,0 +1,104 @@
+//! Output files are written whole or not at all: every output goes to a temporary file beside
+//! the target and replaces it only once completely written (`strahl::atomic_file`). A full
+//! device is an error with a message, and a finished run leaves nothing but its outputs.
+
+use std::path::Path;
+
+mod common;
+
+use common::strahl;
+
+/// The names of the files in `folder`, sorted.
+fn names(folder: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn every_output_replaces_the_last_and_leaves_nothing_else() {
+    let image = common::temp("outputs-ok", "cornell.png");
+    let folder = image.parent().unwrap().to_path_buf();
+    for name in [
+        "cornell.png",
+        "report.csv",
+        "report.sensors.csv",
+        "solution.ply",
+    ] {
+        std::fs::write(folder.join(name), "the last run's").unwrap();
+    }
+    let render = strahl(&[
+        "render",
+        "cornell",
+        "-o",
+        image.to_str().unwrap(),
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--spp",
+        "1",
+        "-q",
+    ]);
+    assert!(render.status.success(), "{render:?}");
+    let report = folder.join("report.csv");
+    let solution = folder.join("solution.ply");
+    let solve = strahl(&[
+        "solve",
+        "cornell",
+        "--solver",
+        "hierarchical",
+        "--error",
+        "1e-2",
+        "--report",
+        report.to_str().unwrap(),
+        "--export",
+        solution.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(solve.status.success(), "{solve:?}");
+    for name in ["cornell.png", "report.csv", "solution.ply"] {
+        let bytes = std::fs::read(folder.join(name)).unwrap();
+        assert_ne!(bytes, b"the last run's", "{name} was not replaced");
+    }
+    // No temporary file is left (the sensor table of the last run stays: this one has none).
+    assert_eq!(
+        names(&folder),
+        [
+            "cornell.png",
+            "report.csv",
+            "report.sensors.csv",
+            "solution.ply"
+        ]
+    );
+    std::fs::remove_dir_all(folder).unwrap();
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_device_fails_the_run_with_a_message() {
+    // An image path that leads to /dev/full: every write is refused for want of space.
+    let link = common::temp("outputs-full", "full.png");
+    let _ = std::fs::remove_file(&link);
+    std::os::unix::fs::symlink("/dev/full", &link).unwrap();
+    let out = strahl(&[
+        "render",
+        "cornell",
+        "-o",
+        link.to_str().unwrap(),
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--spp",
+        "1",
+        "-q",
+    ]);
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{message}");
+    assert!(message.contains("No space left on device"), "{message}");
+    std::fs::remove_dir_all(link.parent().unwrap()).unwrap();
+}
