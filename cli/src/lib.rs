@@ -5,6 +5,7 @@ mod bench;
 mod choice;
 mod info;
 mod limits;
+mod outputs;
 mod progress;
 mod radiosity;
 mod render;

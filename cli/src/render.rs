@@ -96,6 +96,14 @@ impl RenderArgs {
     /// sample counts, an explicit image size and the radiosity options against their limits.
     pub fn check(&self) -> Result<()> {
         image::FileFormat::from_path(&self.output)?;
+        super::outputs::check_distinct(
+            &self.scene,
+            &[
+                ("-o", Some(&self.output)),
+                ("--aa-map", self.aa_map.as_deref()),
+                ("--export", self.radiosity.solve.export.as_deref()),
+            ],
+        )?;
         if let Some(map) = &self.aa_map {
             image::FileFormat::from_path(map)?;
             if self.aa != AntialiasMode::Adaptive {

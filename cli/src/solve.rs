@@ -72,9 +72,20 @@ impl SolveArgs {
     /// Checks the arguments that need no scene: the report and export formats, the solver's
     /// options and their limits.
     pub fn check(&self) -> Result<()> {
-        if let Some(path) = &self.report {
-            ReportFormat::from_path(path)?;
+        let mut sensors = None;
+        if let Some(path) = &self.report
+            && ReportFormat::from_path(path)? == ReportFormat::Csv
+        {
+            sensors = Some(strahl::report::sensors_csv_path(path));
         }
+        super::outputs::check_distinct(
+            &self.scene,
+            &[
+                ("--report", self.report.as_deref()),
+                ("--report's sensor table", sensors.as_deref()),
+                ("--export", self.radiosity.export.as_deref()),
+            ],
+        )?;
         if let Some(path) = &self.radiosity.export {
             ExportFormat::from_path(path)?;
         }

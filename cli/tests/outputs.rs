@@ -1,6 +1,7 @@
 //! Output files are written whole or not at all: every output goes to a temporary file beside
 //! the target and replaces it only once completely written (`strahl::atomic_file`). A full
-//! device is an error with a message, and a finished run leaves nothing but its outputs.
+//! device is an error with a message, a finished run leaves nothing but its outputs, and one
+//! file named by two outputs of a run is refused before any work.
 
 use std::path::Path;
 
@@ -101,4 +102,29 @@ fn a_full_device_fails_the_run_with_a_message() {
     assert!(!out.status.success(), "{message}");
     assert!(message.contains("No space left on device"), "{message}");
     std::fs::remove_dir_all(link.parent().unwrap()).unwrap();
+}
+
+#[test]
+fn one_file_named_by_two_outputs_is_refused_before_any_work() {
+    let image = common::temp("outputs-twice", "image.png");
+    std::fs::write(&image, "the last run's").unwrap();
+    let same = image.parent().unwrap().join(".").join("image.png");
+    let out = strahl(&[
+        "render",
+        "cornell",
+        "-o",
+        image.to_str().unwrap(),
+        "--aa",
+        "adaptive",
+        "--aa-map",
+        same.to_str().unwrap(),
+    ]);
+    let message = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{message}");
+    assert!(
+        message.contains("--aa-map") && message.contains("-o writes too"),
+        "{message}"
+    );
+    assert_eq!(std::fs::read(&image).unwrap(), b"the last run's");
+    std::fs::remove_dir_all(image.parent().unwrap()).unwrap();
 }

@@ -9,4 +9,4 @@ mod write;
 
 pub use export::{ExportError, ExportFormat, export_lit_mesh};
 pub use schema::{ObjectReport, Report, SensorReport, Units};
-pub use write::{ReportError, ReportFormat, write_report};
+pub use write::{ReportError, ReportFormat, sensors_csv_path, write_report};
