@@ -38,17 +38,18 @@ fn triple(v: &Value) -> [f64; 3] {
     std::array::from_fn(|c| v[c].as_f64().unwrap())
 }
 
+/// The entries under `key` of the recording `tests/data/{file}`.
+fn recorded(file: &str, key: &str) -> Vec<Value> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(file);
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    json[key].as_array().unwrap().clone()
+}
+
 /// The recorded reference.
 fn reference() -> Faces {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("tests/data/cornell_per_face_light_model.json"),
-    )
-    .unwrap();
-    let json: Value = serde_json::from_str(&text).unwrap();
-    json["faces"]
-        .as_array()
-        .unwrap()
+    recorded("cornell_per_face_light_model.json", "faces")
         .iter()
         .map(|f| {
             let name = format!("{}#{}", f["object"].as_str().unwrap(), f["face"]);
@@ -209,15 +210,7 @@ type Leaves = HashMap<String, ([f64; 3], [f64; 3])>;
 /// The recorded light model of `canopy:300` at 10⁹ photons (three standard errors 0.27–0.42 %
 /// per leaf).
 fn canopy_reference() -> Leaves {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("tests/data/canopy300_per_leaf_light_model.json"),
-    )
-    .unwrap();
-    let json: Value = serde_json::from_str(&text).unwrap();
-    json["leaves"]
-        .as_array()
-        .unwrap()
+    recorded("canopy300_per_leaf_light_model.json", "leaves")
         .iter()
         .map(|leaf| {
             let incident = triple(&leaf["incident_power"]);
