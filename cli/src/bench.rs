@@ -5,7 +5,7 @@
 //! vertical field of view.
 
 use super::choice::choice;
-use super::with_threads;
+use super::{useful_threads, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use serde::Serialize;
@@ -51,11 +51,12 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     let scene = strahl::scene::open(&args.scene, &strahl::scene::LoadOptions::default())?;
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
-    let bench = with_threads(args.threads, || bench_rays(&world, args.rays, args.repeat))??;
+    let threads = useful_threads(args.threads);
+    let bench = with_threads(threads, || bench_rays(&world, args.rays, args.repeat))??;
     let result = BenchResult {
         scene: &args.scene,
         accel: args.accel.name(),
-        threads: args.threads,
+        threads,
         rays: args.rays.name(),
         ray_count: bench.ray_count,
         primitives: world.accel_stats().primitives,

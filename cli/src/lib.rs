@@ -102,8 +102,29 @@ fn describe(e: &anyhow::Error) -> String {
     text
 }
 
-/// Runs `f` on a rayon pool of `threads` threads (0 = one per core).
+/// Threads per core at most: more never speed anything up, and results do not depend on the
+/// count (`--threads 100000` spent minutes starting threads before).
+const THREADS_PER_CORE: usize = 4;
+
+/// `threads`, or [`THREADS_PER_CORE`] per core where it asks for more (with a warning).
+fn useful_threads(threads: usize) -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let most = THREADS_PER_CORE * cores;
+    if threads > most {
+        eprintln!(
+            "warning: --threads {threads} is more than {THREADS_PER_CORE} per core; using {most} \
+             (results do not depend on the count)"
+        );
+        most
+    } else {
+        threads
+    }
+}
+
+/// Runs `f` on a rayon pool of `threads` threads (0 = one per core), at most
+/// [`THREADS_PER_CORE`] per core ([`useful_threads`]).
 fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> anyhow::Result<T> {
+    let threads = useful_threads(threads);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

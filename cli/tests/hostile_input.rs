@@ -149,6 +149,19 @@ const RENDER: &[Case] = &[
 /// `solve cornell` followed by these.
 const SOLVE: &[Case] = &[
     case(&["--photons", "0"], &["--photons", "0 is not in 1.."]),
+    // No round, sweep or shot: the report would hold a negative indirect part.
+    case(
+        &["--solver", "hierarchical", "--max-rounds", "0"],
+        &["--max-rounds must be at least 1"],
+    ),
+    case(
+        &["--solver", "matrix", "--max-iterations", "0"],
+        &["--max-iterations must be at least 1"],
+    ),
+    case(
+        &["--solver", "progressive", "--max-shots", "0"],
+        &["--max-shots must be at least 1"],
+    ),
     case(&["--photons", "1e6"], &["--photons", "1e6"]),
     case(
         &["--export", "x.ply"],
@@ -222,6 +235,34 @@ fn bench_refuses_zero_repeats() {
         &["bench", "cornell", "--repeat", "0"],
         &["--repeat", "0 is not in 1.."],
     );
+}
+
+#[test]
+fn an_absurd_thread_count_is_capped_with_a_warning() {
+    // 100,000 threads took minutes to start; now four per core at most, the same image.
+    let out = temp("threads.png");
+    let start = Instant::now();
+    let run = strahl(&[
+        "render",
+        "cornell",
+        "-o",
+        out.to_str().unwrap(),
+        "--threads",
+        "100000",
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--spp",
+        "1",
+    ]);
+    let message = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{message}");
+    assert!(
+        message.contains("--threads 100000 is more than 4 per core"),
+        "{message}"
+    );
+    assert!(start.elapsed() < Duration::from_secs(10));
 }
 
 #[test]

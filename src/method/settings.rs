@@ -193,10 +193,18 @@ impl RadiositySettings {
             ));
         }
         let system = &self.system;
+        // A solve of no rounds, sweeps or shots gathers nothing past the direct light: its
+        // report would be the direct light with a negative indirect part.
         for (setting, count) in [
-            ("segments", system.mesh.segments),
-            ("receiver-samples", system.form_factor.receiver_samples),
-            ("link-samples", system.link_samples),
+            ("segments", u64::from(system.mesh.segments)),
+            (
+                "receiver-samples",
+                u64::from(system.form_factor.receiver_samples),
+            ),
+            ("link-samples", u64::from(system.link_samples)),
+            ("max-rounds", u64::from(h.max_rounds)),
+            ("max-iterations", u64::from(self.matrix.max_iterations)),
+            ("max-shots", self.shooting.max_shots),
         ] {
             if count == 0 {
                 return Err(SettingError::new(setting, "must be at least 1"));
