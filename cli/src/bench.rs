@@ -25,8 +25,8 @@ pub struct BenchArgs {
     /// Worker threads.
     #[arg(long, default_value_t = 1)]
     pub threads: usize,
-    /// Repetitions of each query pass; the fastest is reported.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..))]
+    /// Repetitions of each query pass; the fastest is reported (at most 1000).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=i64::from(super::limits::MAX_REPEATS)))]
     pub repeat: u32,
 }
 

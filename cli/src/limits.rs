@@ -9,6 +9,13 @@ use clap::Args;
 use strahl::method::usable_memory_bytes;
 use strahl::scene::LoadOptions;
 
+/// Most photons one light-model run may trace (`--photons` of `solve` and `validate`): 10¹²,
+/// about three days on two cores; a run of more would not end in any useful time.
+pub const MAX_PHOTONS: u64 = 1_000_000_000_000;
+
+/// Most repetitions of `bench`'s query passes.
+pub const MAX_REPEATS: u32 = 1000;
+
 /// The bounds on how much work one command may ask for.
 #[derive(Clone, Copy, Debug, Args)]
 #[command(next_help_heading = "Limits")]

@@ -18,8 +18,8 @@ use strahl::report::{ExportFormat, ObjectReport, Report, ReportFormat, write_rep
 #[derive(Debug, Args)]
 #[command(next_help_heading = "Light tracing (--solver light-trace)")]
 pub struct LightTraceArgs {
-    /// Photons to trace.
-    #[arg(long, default_value_t = LightTraceSettings::default().photons, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Photons to trace (at most 10¹²).
+    #[arg(long, default_value_t = LightTraceSettings::default().photons, value_parser = clap::value_parser!(u64).range(1..=super::limits::MAX_PHOTONS))]
     pub photons: u64,
     /// Scattering events after which a photon is absorbed where it is.
     #[arg(long, default_value_t = LightTraceSettings::default().max_bounces)]

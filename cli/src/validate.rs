@@ -22,8 +22,8 @@ pub struct ValidateArgs {
     /// Also write the table as JSON.
     #[arg(long)]
     pub report: Option<PathBuf>,
-    /// Photons of the light model (default 10⁶ with --quick, else 8·10⁶).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    /// Photons of the light model (default 10⁶ with --quick, else 8·10⁶; at most 10¹²).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=super::limits::MAX_PHOTONS))]
     pub photons: Option<u64>,
     /// Points per emitting surface and rays per sensor of the ray tracers (default 2¹⁸ with
     /// --quick, else 2²⁰).

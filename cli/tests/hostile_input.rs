@@ -149,6 +149,13 @@ const RENDER: &[Case] = &[
 /// `solve cornell` followed by these.
 const SOLVE: &[Case] = &[
     case(&["--photons", "0"], &["--photons", "0 is not in 1.."]),
+    case(
+        &["--photons", "18446744073709551615"],
+        &[
+            "--photons",
+            "18446744073709551615 is not in 1..=1000000000000",
+        ],
+    ),
     // No round, sweep or shot: the report would hold a negative indirect part.
     case(
         &["--solver", "hierarchical", "--max-rounds", "0"],
@@ -230,10 +237,14 @@ fn solve_refuses_every_malformed_flag_with_a_message() {
 }
 
 #[test]
-fn bench_refuses_zero_repeats() {
+fn bench_refuses_repeats_out_of_bounds() {
     assert_refused(
         &["bench", "cornell", "--repeat", "0"],
         &["--repeat", "0 is not in 1.."],
+    );
+    assert_refused(
+        &["bench", "cornell", "--repeat", "4294967295"],
+        &["--repeat", "4294967295 is not in 1..=1000"],
     );
 }
 
