@@ -62,7 +62,7 @@ pub fn light_irradiance(
     light_arrival(world, light, patch, side, samples).irradiance
 }
 
-/// How far the boundary points of [`boundary_hidden`] are pulled towards the centroid (a
+/// How far the boundary points of [`shadow_at_edges`] are pulled towards the centroid (a
 /// share of the way), so that a point on an edge shared with a neighbour is not shadowed by
 /// it.
 const BOUNDARY_INSET: f64 = 1e-2;
@@ -112,8 +112,7 @@ pub fn light_arrival(
             let unshadowed = inc.irradiance.to_f64() * cos;
             LightArrival {
                 irradiance: unshadowed * seen,
-                partly_shadowed: seen > 0.0
-                    && (hidden || boundary_hidden(world, patch, normal, light)),
+                partly_shadowed: hidden && seen > 0.0,
                 unshadowed,
             }
         }
@@ -163,18 +162,23 @@ pub fn light_arrival(
                 intensity.to_f64() * (solid_angle(at, patch.corners()) / patch.area / total);
             LightArrival {
                 irradiance: per_weight * weighted,
-                partly_shadowed: lit && (hidden || boundary_hidden(world, patch, normal, light)),
+                partly_shadowed: lit && hidden,
                 unshadowed: per_weight * reaching,
             }
         }
     }
 }
 
-/// True when `light` is hidden from a corner or the middle of an edge of `patch` (pulled in
-/// by [`BOUNDARY_INSET`] of the way to the centroid): a shadow that covers a sliver along an
-/// edge lies between the rows of the receiver points (`canopy:300`: a leaf 1.5 % in another's
-/// shadow read fully lit at 8 × 8 points).
-fn boundary_hidden(world: &World, patch: &Patch, normal: DVec3, light: &LightKind) -> bool {
+/// True when `light` is hidden from a corner or the middle of an edge of side `side` of
+/// `patch` (pulled in by [`BOUNDARY_INSET`] of the way to the centroid): a shadow that covers
+/// a sliver along an edge lies between the rows of the receiver points of [`light_arrival`]
+/// (`canopy:300`: a leaf 1.5 % in another's shadow read fully lit at 8 × 8 points). Never
+/// for the sky, whose share varies without an edge.
+pub fn shadow_at_edges(world: &World, light: &LightKind, patch: &Patch, side: Side) -> bool {
+    if matches!(light, LightKind::Sky { .. }) {
+        return false;
+    }
+    let normal = side.normal(patch);
     let corners = patch.corners();
     let n = corners.len();
     let inset = |x: DVec3| x + (patch.centroid - x) * BOUNDARY_INSET;

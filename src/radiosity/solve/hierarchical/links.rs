@@ -29,7 +29,7 @@ use crate::color::Rgb64;
 use crate::radiosity::element::Side;
 use crate::radiosity::facing::{Facing, facing};
 use crate::radiosity::form_factor::{FactorList, points_to_side};
-use crate::radiosity::light_links::{SKY_DIRECTIONS_PER_AXIS, light_arrival};
+use crate::radiosity::light_links::{SKY_DIRECTIONS_PER_AXIS, light_arrival, shadow_at_edges};
 use crate::radiosity::mesh::{Patch, PatchMesh};
 use crate::radiosity::visibility::{Blockers, Visibility};
 use crate::scene::LightKind;
@@ -494,7 +494,11 @@ impl Linker<'_> {
         let kind: &LightKind = &self.world.scene.lights[light as usize].kind;
         let shadows = self.visibility.world();
         let mut arrival = light_arrival(shadows, kind, patch, rs, self.link_samples);
-        if arrival.partly_shadowed {
+        // Every point lit: a shadow may still lie along an edge, between the rows.
+        let edge_shadow = !arrival.partly_shadowed
+            && arrival.irradiance.luminance() > 0.0
+            && shadow_at_edges(shadows, kind, patch, rs);
+        if arrival.partly_shadowed || edge_shadow {
             // The grid of points misses a shadow edge by up to half a row: where one crosses,
             // the lit share is measured again on a grid twice as fine (canopy:300, leaf by
             // leaf against the light model: RMS 1.5 → 1.2 %, the worst 4.9 → 3.2 %; four times
