@@ -28,7 +28,8 @@ pub struct AtomicFile {
 impl AtomicFile {
     /// Starts writing `path`: a new temporary file in its folder (with the permissions of the
     /// file it will replace, if any), or `path` itself when that exists and is not a regular
-    /// file. A symbolic link is followed: the file it points to is replaced, not the link.
+    /// file; a folder is refused. A symbolic link is followed: the file it points to is
+    /// replaced, not the link.
     pub fn create(path: &Path) -> io::Result<Self> {
         let linked = std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink());
         let resolved = if linked {
@@ -38,10 +39,13 @@ impl AtomicFile {
         };
         let path = resolved.as_path();
         let existing = std::fs::metadata(path).ok();
-        if existing
-            .as_ref()
-            .is_some_and(|m| !m.is_file() && !m.is_dir())
-        {
+        if existing.as_ref().is_some_and(std::fs::Metadata::is_dir) {
+            return Err(io::Error::new(
+                io::ErrorKind::IsADirectory,
+                "a folder, not a file",
+            ));
+        }
+        if existing.as_ref().is_some_and(|m| !m.is_file()) {
             return Ok(AtomicFile {
                 out: BufWriter::new(File::create(path)?),
                 target: path.to_path_buf(),
@@ -185,6 +189,14 @@ mod tests {
             "the last good image"
         );
         assert_eq!(folder.names(), ["image.png"]);
+    }
+
+    #[test]
+    fn a_folder_is_no_target() {
+        let folder = Folder::new("folder");
+        let error = AtomicFile::create(&folder.0).err().unwrap();
+        assert_eq!(error.kind(), io::ErrorKind::IsADirectory);
+        assert!(folder.names().is_empty());
     }
 
     #[test]

@@ -253,20 +253,7 @@ fn an_absurd_thread_count_is_capped_with_a_warning() {
     // 100,000 threads took minutes to start; now four per core at most, the same image.
     let out = temp("threads.png");
     let start = Instant::now();
-    let run = strahl(&[
-        "render",
-        "cornell",
-        "-o",
-        out.to_str().unwrap(),
-        "--threads",
-        "100000",
-        "--width",
-        "16",
-        "--height",
-        "12",
-        "--spp",
-        "1",
-    ]);
+    let run = common::small_render(&out, &["--threads", "100000"]);
     let message = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{message}");
     assert!(

@@ -7,24 +7,7 @@ use std::path::Path;
 
 mod common;
 
-use common::strahl;
-
-/// A small render of the Cornell box to `image`.
-fn render_to(image: &Path) -> std::process::Output {
-    strahl(&[
-        "render",
-        "cornell",
-        "-o",
-        image.to_str().unwrap(),
-        "--width",
-        "16",
-        "--height",
-        "12",
-        "--spp",
-        "1",
-        "-q",
-    ])
-}
+use common::{small_render, strahl};
 
 /// The names of the files in `folder`, sorted.
 fn names(folder: &Path) -> Vec<String> {
@@ -48,7 +31,7 @@ fn every_output_replaces_the_last_and_leaves_nothing_else() {
     ] {
         std::fs::write(folder.join(name), "the last run's").unwrap();
     }
-    let render = render_to(&image);
+    let render = small_render(&image, &["-q"]);
     assert!(render.status.success(), "{render:?}");
     let report = folder.join("report.csv");
     let solution = folder.join("solution.ply");
@@ -90,7 +73,7 @@ fn a_full_device_fails_the_run_with_a_message() {
     let link = common::temp("outputs-full", "full.png");
     let _ = std::fs::remove_file(&link);
     std::os::unix::fs::symlink("/dev/full", &link).unwrap();
-    let out = render_to(&link);
+    let out = small_render(&link, &["-q"]);
     let message = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{message}");
     assert!(message.contains("No space left on device"), "{message}");

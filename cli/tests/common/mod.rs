@@ -1,6 +1,6 @@
 //! What the command-line tests share: running the built `strahl` binary and a scratch folder.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Runs the `strahl` binary with `args` and waits for it.
@@ -9,6 +9,29 @@ pub fn strahl(args: &[&str]) -> Output {
         .args(args)
         .output()
         .expect("the binary runs")
+}
+
+/// A small render of the Cornell box (16 × 12 pixels, one sample) to `image`, with `extra`
+/// arguments after the others.
+#[allow(
+    dead_code,
+    reason = "each test crate compiles this module; not all of them render"
+)]
+pub fn small_render(image: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "render",
+        "cornell",
+        "-o",
+        image.to_str().unwrap(),
+        "--width",
+        "16",
+        "--height",
+        "12",
+        "--spp",
+        "1",
+    ];
+    args.extend_from_slice(extra);
+    strahl(&args)
 }
 
 /// A path named `name` in this test process's scratch folder `strahl-{suite}-{pid}` under the
