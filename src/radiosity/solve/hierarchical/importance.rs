@@ -28,8 +28,8 @@
 //! get it over cluster links. Before the first gather nothing is known, and the scene-wide
 //! threshold alone applies.
 //!
-//! A measuring patch — a surface whose every leaf scatters and emits nothing (black, passing
-//! nothing through), such as a 2 × 2 cm quad placed to read the light — is held to
+//! A measuring patch — a surface whose material scatters and emits nothing (black, passing
+//! nothing through, untextured), such as a 2 × 2 cm quad placed to read the light — is held to
 //! [`MEASURING_PATCH_ERROR`] even without `--surface-error` (its `ε_S`, the smaller where
 //! both apply; surfaces without an error of their own weigh nothing): the light it receives
 //! goes nowhere else, so its links and those of what it sees are all the budget costs.
@@ -108,8 +108,9 @@ impl Importance {
     }
 
     /// The error threshold of a link onto `receiver` (a node of `mesh`), W: the scene-wide
-    /// threshold `scene_error` (W), or `ε·√(a/A)/Γ` when that is smaller. A node created
-    /// since the last update takes the importance of its nearest known ancestor.
+    /// threshold `scene_error` (W), or `√(a/A)/Γ` when that is smaller (`Γ` holds the ε of the
+    /// surfaces its light reaches). A node created since the last update takes the importance
+    /// of its nearest known ancestor.
     pub fn error(&self, mesh: &PatchMesh, receiver: u32, scene_error: f64) -> f64 {
         if self.per_node.is_empty() {
             return scene_error;
@@ -154,7 +155,7 @@ impl Importance {
 
     /// Solves the importance on `mesh` for the irradiance the leaves received in the last
     /// gather (`nodes`) over the patch links `links`; nothing to do without a relative
-    /// error.
+    /// error or a measuring patch.
     pub fn update(&mut self, mesh: &PatchMesh, nodes: &Nodes, links: &[Link]) {
         if self.relative <= 0.0 && !self.measures.contains(&true) {
             return;
