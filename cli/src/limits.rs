@@ -13,6 +13,11 @@ use strahl::scene::LoadOptions;
 /// about three days on two cores; a run of more would not end in any useful time.
 pub const MAX_PHOTONS: u64 = 1_000_000_000_000;
 
+/// Most points per emitting surface and rays per sensor of `validate`'s ray tracers
+/// (`--samples`): 2²⁴, sixteen times the default; the suite's largest case takes about a
+/// minute per 2²⁰ on two cores.
+pub const MAX_VALIDATE_SAMPLES: u32 = 1 << 24;
+
 /// Most repetitions of `bench`'s query passes.
 pub const MAX_REPEATS: u32 = 1000;
 

@@ -26,11 +26,11 @@ pub struct ValidateArgs {
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=super::limits::MAX_PHOTONS))]
     pub photons: Option<u64>,
     /// Points per emitting surface and rays per sensor of the ray tracers (default 2¹⁸ with
-    /// --quick, else 2²⁰).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    /// --quick, else 2²⁰; at most 2²⁴).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(super::limits::MAX_VALIDATE_SAMPLES)))]
     pub samples: Option<u32>,
     /// Error threshold of hierarchical radiosity and hierarchical shooting, relative to all
-    /// power emitted in the scene.
+    /// power emitted in the scene (10⁻⁸ to 1).
     #[arg(long)]
     pub error: Option<f64>,
     /// Seed of all random numbers.

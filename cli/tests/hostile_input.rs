@@ -126,15 +126,15 @@ const RENDER: &[Case] = &[
     ),
     case(
         &["--method", "radiosity", "--error=-1"],
-        &["--error", "positive"],
+        &["--error", "between 1e-8 and 1"],
     ),
     case(
         &["--method", "radiosity", "--min-area", "2"],
-        &["--min-area", "between 0 and 1"],
+        &["--min-area", "between 1e-8 and 1"],
     ),
     case(
         &["--method", "radiosity", "--surface-error", "1.5"],
-        &["--surface-error", "between 0 (off) and 1"],
+        &["--surface-error", "0 (off) or lie between 1e-4 and 1"],
     ),
     case(
         &["--method", "radiosity", "--tolerance", "inf"],
@@ -201,6 +201,24 @@ const SOLVE: &[Case] = &[
         &["--oracle", "psychic"],
     ),
     case(&["--solver", "raytrace"], &["--solver", "raytrace"]),
+    // Ran until killed: links without end.
+    case(
+        &["--solver", "hierarchical", "--error", "1e-300"],
+        &["--error", "between 1e-8 and 1"],
+    ),
+    case(
+        &["--solver", "hierarchical", "--surface-error", "1e-9"],
+        &["--surface-error", "between 1e-4 and 1"],
+    ),
+    // Stopped before any bounce: the report held the direct light alone, marked complete.
+    case(
+        &["--solver", "progressive", "--tolerance", "1e308"],
+        &["--tolerance", "before light bounced once"],
+    ),
+    case(
+        &["--solver", "matrix", "--tolerance", "0"],
+        &["--tolerance", "between 1e-12 and 1"],
+    ),
 ];
 
 fn assert_refused(args: &[&str], says: &[&str]) {
@@ -293,6 +311,65 @@ fn a_scene_without_light_is_refused_by_solve_and_warned_about_by_render() {
     ]);
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("warning: ") && image.exists());
+}
+
+#[test]
+fn validate_refuses_samples_out_of_bounds() {
+    // Said only "22 validation checks failed".
+    assert_refused(
+        &["validate", "--quick", "--samples", "4294967295"],
+        &["--samples", "4294967295 is not in 1..=16777216"],
+    );
+    assert_refused(
+        &["validate", "--quick", "--error", "1e-300"],
+        &["error", "between 1e-8 and 1"],
+    );
+}
+
+#[test]
+fn a_closed_box_that_reflects_all_light_stops_every_radiosity_solver() {
+    // No steady state exists (B = E/(1 − ρ) with ρ = 1): hierarchical radiosity and the
+    // radiosity display ran until killed, progressive for a million shots.
+    let scene = temp("white_box.toml");
+    std::fs::write(
+        &scene,
+        "[materials.white]\ndiffuse = 1.0\n\n\
+         [materials.lamp]\ndiffuse = 1.0\nemission = 1.0\n\n\
+         [[objects]]\nname = \"box\"\ntype = \"box\"\nmaterial = \"white\"\n\
+         min = [0, 0, 0]\nmax = [1, 1, 1]\n\n\
+         [[objects]]\nname = \"lamp\"\ntype = \"quad\"\nmaterial = \"lamp\"\n\
+         vertices = [[0.4, 0.99, 0.4], [0.6, 0.99, 0.4], [0.6, 0.99, 0.6], [0.4, 0.99, 0.6]]\n",
+    )
+    .unwrap();
+    let path = scene.to_str().unwrap();
+    let image = temp("white_box.png");
+    let says = [
+        "no steady state",
+        "reflect all light",
+        "reflectance below 0.999",
+    ];
+    for solver in [
+        "matrix",
+        "progressive",
+        "hierarchical",
+        "hierarchical-shooting",
+    ] {
+        let start = Instant::now();
+        assert_refused(&["solve", path, "--solver", solver, "-q"], &says);
+        assert!(start.elapsed() < Duration::from_secs(10), "{solver}");
+    }
+    let start = Instant::now();
+    let render = [
+        "render",
+        path,
+        "-o",
+        image.to_str().unwrap(),
+        "--method",
+        "radiosity",
+        "-q",
+    ];
+    assert_refused(&render, &says);
+    assert!(start.elapsed() < Duration::from_secs(10) && !image.exists());
 }
 
 /// Starts `args`, sends SIGINT after `after`, and returns the exit status and how long the

@@ -38,8 +38,9 @@ pub use kind::MethodKind;
 pub use outcome::{Outcome, SolvedRadiosity};
 pub use run::{run, solve_radiosity};
 pub use settings::{
-    Antialias, FinalGatherSettings, ImageSize, LinkSelection, PathTraceSettings,
-    RadiosityImageSettings, RadiositySettings, RayTraceSettings, SensorTraceSettings,
+    Antialias, FinalGatherSettings, ImageSize, LinkSelection, MIN_AREA, MIN_ERROR,
+    MIN_SURFACE_ERROR, MIN_TOLERANCE, PathTraceSettings, RadiosityImageSettings, RadiositySettings,
+    RayTraceSettings, SensorTraceSettings,
 };
 
 // The vocabulary a front end needs besides this module's own types — the settings' parts,

@@ -8,6 +8,7 @@
 use super::SolveError;
 use super::solution::{Solution, power_fraction};
 use super::solver_kind::SolverKind;
+use super::steady_state::{Bounce, BounceWatch};
 use super::system::{Couplings, RadiositySystem};
 use crate::color::Rgb64;
 use crate::progress::{Cancel, ProgressListener};
@@ -98,6 +99,7 @@ pub fn solve_matrix(
     progress.start(settings.max_iterations as u64);
     let source: Vec<Rgb64> = (0..n).map(|k| system.source(k)).collect();
     let b = &mut solution.radiosity;
+    let mut bounces = BounceWatch::new(system.largest_albedo());
     for _ in 0..settings.max_iterations {
         if cancel.is_requested() {
             solution.interrupted = true;
@@ -112,6 +114,9 @@ pub fn solve_matrix(
         progress.advance(1);
         if residual <= settings.tolerance {
             solution.converged = true;
+            break;
+        }
+        if let Bounce::Gaining(_) = bounces.gathered(residual, 1.0)? {
             break;
         }
     }

@@ -15,6 +15,7 @@ mod rounds;
 mod sensors;
 mod solution;
 mod solver_kind;
+pub mod steady_state;
 mod system;
 mod unshot_progress;
 
@@ -54,5 +55,15 @@ pub enum SolveError {
         patches: usize,
         /// Largest number of entries allowed.
         limit: u64,
+    },
+    /// The light is hardly ever absorbed and never leaves (`steady_state.rs`).
+    #[error(
+        "no steady state: each bounce keeps {:.3} % of the light, so the radiosity grows without bound (surfaces that reflect all light in a closed scene); give some surface a reflectance below {}",
+        100.0 * kept,
+        steady_state::MAX_KEPT
+    )]
+    NoSteadyState {
+        /// Share of the light the last bounce kept.
+        kept: f64,
     },
 }

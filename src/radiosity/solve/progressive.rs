@@ -15,8 +15,9 @@
 //! no form factors.
 
 use super::SolveError;
-use super::solution::{Solution, power_fraction};
+use super::solution::{Solution, power_fraction, source_power};
 use super::solver_kind::SolverKind;
+use super::steady_state::{Bounce, BounceWatch};
 use super::system::{Couplings, RadiositySystem};
 use super::unshot_progress::UnshotProgress;
 use crate::choice::Choice;
@@ -80,6 +81,8 @@ pub fn solve_progressive(
     let mut form_factor_seconds = 0.0;
     let mut fraction = power_fraction(system, &unshot);
     solution.ambient = ambient(system, &unshot, total_area, interreflection);
+    let mut bounces = BounceWatch::new(system.largest_albedo());
+    let source = source_power(system).max(f64::MIN_POSITIVE);
     while fraction > settings.tolerance && (solution.iterations() as u64) < settings.max_shots {
         if cancel.is_requested() {
             solution.interrupted = true;
@@ -111,7 +114,12 @@ pub fn solve_progressive(
             distribute(system, column, shot, &mut solution, &mut unshot);
         }
         unshot[j] -= shot;
+        let before = fraction;
         fraction = power_fraction(system, &unshot);
+        let sent = shot.map(f64::abs).luminance() * system.area[j];
+        if let Bounce::Gaining(_) = bounces.shot(sent / source, before, fraction)? {
+            break;
+        }
         solution.ambient = ambient(system, &unshot, total_area, interreflection);
         solution.convergence.push(fraction);
         bar.reach(fraction);

@@ -10,7 +10,9 @@
 //! `τ_i` already include `c_i`), summed per reported surface. Scene-wide, the point,
 //! spot and directional lights count with the power they send into the mesh
 //! (`Σ A_i H_light,i`), and the escaped power is what is emitted but not absorbed by any
-//! patch (light leaving an open scene, plus the small imbalance of the discretisation).
+//! patch (light leaving an open scene, plus the small imbalance of the discretisation), at
+//! least zero: where the form factors of a closed scene add up to a little more than one, the
+//! patches absorb a little more than is emitted, and that shows in the absorbed power.
 
 use super::interpolate::vertex_radiosity;
 use super::lightmap;
@@ -170,7 +172,7 @@ impl Solution {
             .sum();
         power.add_light_emission(light_power);
         let totals = power.totals();
-        power.add_escaped(totals.emitted_power - totals.absorbed_power);
+        power.add_escaped((totals.emitted_power - totals.absorbed_power).map(|p| p.max(0.0)));
         power
     }
 

@@ -278,6 +278,13 @@ impl RadiositySystem {
         self.reflectance[k] + self.translucency[k]
     }
 
+    /// The largest reflectance plus translucency of any element, any channel.
+    pub fn largest_albedo(&self) -> f64 {
+        (0..self.len())
+            .map(|k| self.albedo(k).max_channel())
+            .fold(0.0, f64::max)
+    }
+
     /// True when some element is translucent (the two sides of its leaf are coupled).
     pub fn has_translucency(&self) -> bool {
         self.translucency.iter().any(|t| !t.is_black())

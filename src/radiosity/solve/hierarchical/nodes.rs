@@ -115,6 +115,15 @@ impl Nodes {
         self.reflectance[n] * own + self.translucency[n] * other
     }
 
+    /// The largest reflectance plus translucency of any node, any channel.
+    pub fn largest_albedo(&self) -> f64 {
+        self.reflectance
+            .iter()
+            .zip(&self.translucency)
+            .map(|(&r, &t)| (r + t).max_channel())
+            .fold(0.0, f64::max)
+    }
+
     /// Push-pull over every tree (seed §6.8): irradiance gathered at a node is handed down to
     /// its leaves, where it becomes radiosity `E + ρ·H + τ·H̄` (`H̄` on the other side), and
     /// the leaves' radiosity is pulled up as area-weighted means. Returns

@@ -31,6 +31,7 @@ use super::{HierarchicalSettings, RefinePass};
 use crate::color::Rgb64;
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::rounds::RoundStats;
+use crate::radiosity::solve::steady_state::{Bounce, BounceWatch};
 use crate::radiosity::solve::unshot_progress::UnshotProgress;
 use crate::radiosity::solve::{
     PhaseTimes, RadiositySystem, ShootingSettings, Solution, SolveError, SolverKind, SystemOptions,
@@ -70,14 +71,16 @@ pub fn solve_hierarchical_shooting(
     let mut bar = UnshotProgress::start(progress, shooting.tolerance);
     let mut interrupted = false;
     let source = source.max(f64::MIN_POSITIVE);
-    let (mut shooter, unshot) = shots.unshot_power(&solver);
+    let (mut shooter, mut unshot) = shots.unshot_power(&solver);
     let mut fraction = unshot / source;
+    let mut bounces = BounceWatch::new(solver.nodes.largest_albedo());
     while fraction > shooting.tolerance && (convergence.len() as u64) < shooting.max_shots {
         if cancel.is_requested() {
             interrupted = true;
             break;
         }
         let t = Instant::now();
+        let sent = shots.unshot_below(&solver, shooter);
         shots.take_unshot(&solver, shooter);
         let received = shots.shoot(&mut solver, shooter);
         times.form_factors += t.elapsed().as_secs_f64();
@@ -87,11 +90,15 @@ pub fn solve_hierarchical_shooting(
         }
         solver.refine_textures();
         shots.grow(&solver);
-        let (next, unshot) = shots.unshot_power(&solver);
+        let (next, after) = shots.unshot_power(&solver);
         times.iterations += t.elapsed().as_secs_f64();
-        (shooter, fraction) = (next, unshot / source);
+        let bounce = bounces.shot(sent, unshot, after)?;
+        (shooter, unshot, fraction) = (next, after, after / source);
         convergence.push(fraction);
         bar.reach(fraction);
+        if let Bounce::Gaining(_) = bounce {
+            break;
+        }
     }
     bar.finish();
     // Every leaf already holds what was pushed to it; this makes the inner nodes' means and

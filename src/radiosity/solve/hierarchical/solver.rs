@@ -14,6 +14,7 @@ use crate::measure::peak_resident_bytes;
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
+use crate::radiosity::solve::steady_state::{Bounce, BounceWatch};
 use crate::radiosity::solve::{
     LinkSegment, PhaseTimes, RadiositySystem, RoundStats, Solution, SolveError, SolverKind,
     SystemOptions,
@@ -121,7 +122,7 @@ pub fn solve_hierarchical(
     let mut converged = false;
     let mut interrupted = false;
     for _ in 0..settings.max_rounds {
-        solver.gather_to_convergence(&mut round, cancel);
+        solver.gather_to_convergence(&mut round, cancel)?;
         let t = Instant::now();
         solver
             .importance
@@ -151,7 +152,7 @@ pub fn solve_hierarchical(
         && !interrupted
         && let Some(last) = rounds.last_mut()
     {
-        solver.fine_gather(last, cancel);
+        solver.fine_gather(last, cancel)?;
         interrupted = cancel.is_requested();
         converged &= last.residual <= settings.tolerance;
     }
@@ -380,8 +381,15 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         }
     }
 
-    /// Gathers and push-pulls until a gather changes the radiosity by at most the tolerance.
-    fn gather_to_convergence(&mut self, round: &mut RoundStats, cancel: &Cancel) {
+    /// Gathers and push-pulls until a gather changes the radiosity by at most the tolerance,
+    /// or until the gathers stop losing light (`steady_state.rs`: an error where a surface
+    /// reflects all of it).
+    fn gather_to_convergence(
+        &mut self,
+        round: &mut RoundStats,
+        cancel: &Cancel,
+    ) -> Result<(), SolveError> {
+        let mut bounces = BounceWatch::new(self.nodes.largest_albedo());
         for _ in 0..MAX_GATHERS {
             let t = Instant::now();
             self.gather();
@@ -394,13 +402,18 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             if round.residual <= self.settings.tolerance || cancel.is_requested() {
                 break;
             }
+            // Light gained by links too coarse: the refinement that follows splits them.
+            if let Bounce::Gaining(_) = bounces.gathered(change, source)? {
+                break;
+            }
         }
+        Ok(())
     }
 
     /// Once refinement is done: every link whose emitter is split gathers from the
     /// emitter's pieces from now on ([`FineGather`]), until the radiosity settles again; the
     /// time counts in `round`, the last round (the pieces' form factors as refinement).
-    fn fine_gather(&mut self, round: &mut RoundStats, cancel: &Cancel) {
+    fn fine_gather(&mut self, round: &mut RoundStats, cancel: &Cancel) -> Result<(), SolveError> {
         let t = Instant::now();
         self.fine = Some(FineGather::new(
             &self.mesh,
@@ -409,7 +422,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             &self.linker.form_factors,
         ));
         round.seconds_refine += t.elapsed().as_secs_f64();
-        self.gather_to_convergence(round, cancel);
+        self.gather_to_convergence(round, cancel)
     }
 
     /// Every node gathers `Σ F·V·B` over its links (seed §6.7).
