@@ -29,7 +29,7 @@ pub struct LimitArgs {
     #[arg(long, default_value_t = 1 << 26, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_pixels: u64,
     /// Largest sample count per pixel or per point (--spp, --light-samples, --gather-rays,
-    /// --first-hit-paths, --receiver-samples², --link-samples²).
+    /// --first-hit-paths, --receiver-samples², --link-samples², --vis-rays per pair).
     #[arg(long, default_value_t = 1 << 16, value_parser = clap::value_parser!(u32).range(1..))]
     pub max_samples: u32,
     /// Radiosity: most patches the initial mesh may have.

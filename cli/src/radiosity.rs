@@ -173,6 +173,9 @@ impl RadiosityArgs {
         let squared = |n: u32| u64::from(n) * u64::from(n);
         limits.check_samples("--receiver-samples²", squared(self.receiver_samples))?;
         limits.check_samples("--link-samples²", squared(self.link_samples))?;
+        if let VisRays::Fixed(rays) = self.vis_rays {
+            limits.check_samples("--vis-rays", rays.into())?;
+        }
         let mut settings = RadiositySettings::new(solver).with_tolerance(self.tolerance);
         settings.system = SystemOptions {
             mesh: MeshOptions {

@@ -95,7 +95,7 @@ impl RenderArgs {
     /// Checks the arguments that need no scene: output formats, the method's options, the
     /// sample counts, an explicit image size and the radiosity options against their limits.
     pub fn check(&self) -> Result<()> {
-        image::FileFormat::from_path(&self.output)?;
+        image::FileFormat::from_path(&self.output).context("-o")?;
         super::outputs::check_distinct(
             &self.scene,
             &[
@@ -104,8 +104,11 @@ impl RenderArgs {
                 ("--export", self.radiosity.solve.export.as_deref()),
             ],
         )?;
+        if let Some(path) = &self.radiosity.solve.export {
+            strahl::report::ExportFormat::from_path(path).context("--export")?;
+        }
         if let Some(map) = &self.aa_map {
-            image::FileFormat::from_path(map)?;
+            image::FileFormat::from_path(map).context("--aa-map")?;
             if self.aa != AntialiasMode::Adaptive {
                 bail!("--aa-map needs --aa adaptive");
             }

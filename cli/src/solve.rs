@@ -74,7 +74,7 @@ impl SolveArgs {
     pub fn check(&self) -> Result<()> {
         let mut sensors = None;
         if let Some(path) = &self.report
-            && ReportFormat::from_path(path)? == ReportFormat::Csv
+            && ReportFormat::from_path(path).context("--report")? == ReportFormat::Csv
         {
             sensors = Some(strahl::report::sensors_csv_path(path));
         }
@@ -87,7 +87,7 @@ impl SolveArgs {
             ],
         )?;
         if let Some(path) = &self.radiosity.export {
-            ExportFormat::from_path(path)?;
+            ExportFormat::from_path(path).context("--export")?;
         }
         self.method()?;
         Ok(())

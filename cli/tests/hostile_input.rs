@@ -74,6 +74,15 @@ const RENDER: &[Case] = &[
     case(&["--threads", "-1"], &["'-1'"]),
     case(&["--max-pixels", "0"], &["--max-pixels", "0 is not"]),
     case(&["--aa-map", "map.png"], &["--aa-map needs --aa adaptive"]),
+    // Said "' ': unsupported image file extension", naming no flag.
+    case(
+        &["--aa", "adaptive", "--aa-map", " "],
+        &["--aa-map: ' ': unsupported image file extension"],
+    ),
+    case(
+        &["--method", "radiosity", "--export", " "],
+        &["--export: ' ': an export file must end in"],
+    ),
     case(
         &["--method", "radiosity", "--segments", "100000"],
         &["--segments", "100000 is not in 3..=1024"],
@@ -174,7 +183,11 @@ const SOLVE: &[Case] = &[
         &["--export", "x.ply"],
         &["--export", "radiosity solution", "--solver"],
     ),
-    case(&["--report", "x.xml"], &["x.xml"]),
+    case(&["--report", "x.xml"], &["--report: 'x.xml'"]),
+    case(
+        &["--export", " "],
+        &["--export: ' ': an export file must end in"],
+    ),
     case(&["--solver", "matrix", "--segments", "2"], &["--segments"]),
     case(
         &["--solver", "matrix", "--mesh-size", "levels:20"],
@@ -201,6 +214,11 @@ const SOLVE: &[Case] = &[
         &["--oracle", "psychic"],
     ),
     case(&["--solver", "raytrace"], &["--solver", "raytrace"]),
+    // Tried to allocate 8 GiB of ray buffers and aborted.
+    case(
+        &["--solver", "matrix", "--vis-rays", "4294967295"],
+        &["--vis-rays 4294967295", "--max-samples"],
+    ),
     // Ran until killed: links without end.
     case(
         &["--solver", "hierarchical", "--error", "1e-300"],

@@ -60,7 +60,7 @@ pub enum ExportFormat {
 #[derive(Debug, thiserror::Error)]
 pub enum ExportError {
     /// The extension is not `.glb`, `.gltf` or `.ply`.
-    #[error("{path}: an export file must end in .glb, .gltf or .ply")]
+    #[error("'{path}': an export file must end in .glb, .gltf or .ply")]
     UnknownFormat {
         /// The path given.
         path: String,

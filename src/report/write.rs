@@ -32,7 +32,7 @@ pub enum ReportFormat {
 #[derive(Debug, thiserror::Error)]
 pub enum ReportError {
     /// The extension is neither `.json` nor `.csv`.
-    #[error("{path}: a report file must end in .json or .csv")]
+    #[error("'{path}': a report file must end in .json or .csv")]
     UnknownFormat {
         /// The path given.
         path: String,
