@@ -117,8 +117,8 @@ pub fn watch_memory(bound: Option<u64>) {
     }
 }
 
-/// The stop request set by Ctrl-C. The first Ctrl-C asks running work to stop and keep what
-/// it has; a second one ends the process at once.
+/// The stop request set by Ctrl-C, SIGTERM or SIGHUP. The first asks running work to stop and
+/// keep what it has; a second one ends the process at once.
 pub fn cancel_flag() -> &'static Cancel {
     static HANDLER: OnceLock<()> = OnceLock::new();
     HANDLER.get_or_init(|| {
