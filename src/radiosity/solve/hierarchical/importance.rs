@@ -107,6 +107,12 @@ impl Importance {
         }
     }
 
+    /// True when scene object `object` is a measuring patch (its material scatters and
+    /// emits nothing).
+    pub fn is_measuring_patch(&self, object: u32) -> bool {
+        self.measures.get(object as usize).copied().unwrap_or(false)
+    }
+
     /// The error threshold of a link onto `receiver` (a node of `mesh`), W: the scene-wide
     /// threshold `scene_error` (W), or `√(a/A)/Γ` when that is smaller (`Γ` holds the ε of the
     /// surfaces its light reaches). A node created since the last update takes the importance

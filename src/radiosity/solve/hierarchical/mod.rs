@@ -76,7 +76,7 @@ pub struct HierarchicalSettings {
     /// light reaches, weighed by importance (`importance.rs`); 0 leaves the scene-wide
     /// `error` alone but for measuring patches (surfaces that scatter and emit nothing), which
     /// are held to 1 % of their own light (`importance.rs`) whatever this says, unless it is
-    /// smaller.
+    /// smaller — by both hierarchical solvers (`shooting.rs`).
     pub surface_error: f64,
     /// Nodes are not split below this fraction of the scene's surface area.
     pub min_area: f64,

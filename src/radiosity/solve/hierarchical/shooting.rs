@@ -20,12 +20,19 @@
 //! from the edge). Shooting from the root, refined where needed, keeps the shots few and
 //! their links as fine as those of hierarchical radiosity.
 //!
+//! A measuring patch (a surface that scatters and emits nothing, `importance.rs`) takes each
+//! shot within [`MEASURING_PATCH_ERROR`] of what it has received so far or of what the shot's
+//! first link onto it brings, the larger (`Shots::limits_for`): the scene-wide threshold
+//! would accept any error on a patch that receives a millionth of the light. Measured on
+//! `meters`: −42 / −5 / +24 % → +0.17 / +0.13 / +0.49 %.
+//!
 //! Links are judged level by level: all links of one level are computed in parallel, in an
 //! order that does not depend on the thread count.
 
-use super::links::Prior;
+use super::importance::MEASURING_PATCH_ERROR;
+use super::links::{Link, Prior};
 use super::nodes::{node, split_node};
-use super::oracle::{Decision, decide};
+use super::oracle::{Decision, Limits, decide};
 use super::solver::{Solver, children, prepare};
 use super::{HierarchicalSettings, RefinePass};
 use crate::color::Rgb64;
@@ -129,6 +136,8 @@ struct Shots {
     unshot: Vec<Rgb64>,
     /// The luminance range of `unshot` over the leaves below each node, W·m⁻².
     range: Vec<(f64, f64)>,
+    /// Per scene object, the luminance of the power it has received so far, W.
+    measured: Vec<f64>,
 }
 
 impl Shots {
@@ -139,6 +148,7 @@ impl Shots {
             shot: vec![Rgb64::BLACK; n],
             unshot: vec![Rgb64::BLACK; n],
             range: vec![(0.0, 0.0); n],
+            measured: vec![0.0; solver.world.scene.objects.len()],
         }
     }
 
@@ -218,11 +228,40 @@ impl Shots {
         }
     }
 
+    /// The limits `link` is judged by: the scene-wide ones, but a link onto a measuring
+    /// patch (`importance.rs`) is held to [`MEASURING_PATCH_ERROR`] of what the patch has
+    /// received so far or of what this shot's first link onto it brings, the larger: each
+    /// shot's light reaches the patch within that share of its own. `thresholds` holds, per
+    /// scene object, the threshold of the current shot once its first link is judged.
+    fn limits_for(
+        &self,
+        solver: &Solver,
+        link: &Link,
+        limits: Limits,
+        thresholds: &mut [Option<f64>],
+    ) -> Limits {
+        let receiver = solver.mesh.patch(split_node(link.receiver as usize).0);
+        let object = receiver.object as usize;
+        if !solver.importance.is_measuring_patch(receiver.object) || link.is_blocked() {
+            return limits;
+        }
+        let threshold = *thresholds[object].get_or_insert_with(|| {
+            let brought = receiver.area
+                * link.coupling
+                * link
+                    .emitter_radiosity(&solver.mesh, &self.unshot)
+                    .luminance();
+            MEASURING_PATCH_ERROR * brought.max(self.measured[object])
+        });
+        limits.with_error(limits.error.min(threshold))
+    }
+
     /// Sends the unshot radiosity taken from root side `shooter` to every root side, each
     /// link refined at either end until the oracle keeps it (nodes split on the way).
     /// Returns the nodes that took light and the irradiance each took, W·m⁻².
     fn shoot(&mut self, solver: &mut Solver, shooter: usize) -> Vec<(usize, Rgb64)> {
         let mut received = Vec::new();
+        let mut thresholds = vec![None; self.measured.len()];
         let mut frontier: Vec<(usize, usize, Prior)> = solver
             .root_nodes()
             .into_iter()
@@ -235,6 +274,7 @@ impl Shots {
             let mut kept = Vec::new();
             for link in links {
                 let (r, e) = (link.receiver as usize, link.emitter as usize);
+                let limits = self.limits_for(solver, &link, limits, &mut thresholds);
                 match decide(oracle, &link, self.range[e], &solver.mesh, &limits) {
                     Decision::Keep => kept.push(link),
                     Decision::Receiver => {
@@ -258,6 +298,10 @@ impl Shots {
                 for (n, irradiance) in link.divide(&solver.mesh, sent) {
                     solver.nodes.gathered[n] += irradiance;
                     received.push((n, irradiance));
+                    let patch = solver.mesh.patch(split_node(n).0);
+                    if let Some(measured) = self.measured.get_mut(patch.object as usize) {
+                        *measured += irradiance.luminance() * patch.area;
+                    }
                 }
             }
             frontier = next;

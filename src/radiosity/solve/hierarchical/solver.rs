@@ -71,7 +71,7 @@ pub(super) struct Solver<'w, 'v> {
     /// The chunks' sums of the last gather, kept for the next one.
     gather_sums: std::sync::Mutex<Vec<Vec<Rgb64>>>,
     /// How much the light each node receives matters to the reported surfaces.
-    importance: Importance,
+    pub(super) importance: Importance,
     /// The emitters' pieces of the final gather, once refinement is done.
     fine: Option<FineGather>,
     pub(super) settings: HierarchicalSettings,
