@@ -28,6 +28,9 @@ pub struct BenchArgs {
     /// Repetitions of each query pass; the fastest is reported (at most 1000).
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=i64::from(super::limits::MAX_REPEATS)))]
     pub repeat: u32,
+    /// The memory bound.
+    #[command(flatten)]
+    pub memory: super::limits::MemoryArgs,
 }
 
 /// The JSON line `strahl bench` prints.

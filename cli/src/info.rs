@@ -15,6 +15,9 @@ pub struct InfoArgs {
     /// Accelerator whose statistics to show.
     #[arg(long, value_parser = choice::<AccelKind>(), default_value_t = AccelKind::Bvh)]
     pub accel: AccelKind,
+    /// The memory bound.
+    #[command(flatten)]
+    pub memory: super::limits::MemoryArgs,
 }
 
 /// Runs `strahl info`.

@@ -53,28 +53,27 @@ pub fn main() -> std::process::ExitCode {
             progress::watch_memory(args.limits.memory_bytes());
             solve::run(&args)
         }
-        Command::Validate(args) => validate::run(&args),
+        Command::Validate(args) => {
+            progress::watch_memory(args.memory.bytes());
+            validate::run(&args)
+        }
         Command::Scenes => {
             for (name, description) in strahl::scene::builtin::names() {
                 println!("{name:18} {description}");
             }
             Ok(())
         }
-        Command::Info(args) => info::run(&args),
-        Command::Bench(args) => bench::run(&args),
+        Command::Info(args) => {
+            progress::watch_memory(args.memory.bytes());
+            info::run(&args)
+        }
+        Command::Bench(args) => {
+            progress::watch_memory(args.memory.bytes());
+            bench::run(&args)
+        }
     };
     if let Some(bytes) = progress::over_memory() {
-        eprintln!(
-            "error: stopped at {} MiB of memory, over the bound (--max-memory, default three \
-             quarters of the machine's memory){}: raise --max-memory, or ask for less (a larger \
-             --error or --min-area, a coarser --mesh-size, a smaller image)",
-            bytes >> 20,
-            if result.is_ok() {
-                "; what was done is written, marked partial"
-            } else {
-                ""
-            }
-        );
+        progress::report_over_memory(bytes, result.is_ok());
         return std::process::ExitCode::FAILURE;
     }
     match result {

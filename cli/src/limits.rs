@@ -39,10 +39,31 @@ pub struct LimitArgs {
     /// before they are decoded.
     #[arg(long, default_value_t = strahl::scene::MAX_TEXELS, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_texels: u64,
+    /// The memory bound.
+    #[command(flatten)]
+    pub memory: MemoryArgs,
+}
+
+/// The memory bound alone, for the commands that take no images or meshes (`info`, `bench`,
+/// `validate`).
+#[derive(Clone, Copy, Debug, Args)]
+#[command(next_help_heading = "Limits")]
+pub struct MemoryArgs {
     /// Most resident memory the run may use, MiB (default: three quarters of the machine's
     /// memory). Over it, the work stops with a message instead of being killed.
     #[arg(long, value_name = "MIB", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_memory: Option<u64>,
+}
+
+impl MemoryArgs {
+    /// The memory bound, bytes: `--max-memory`, or three quarters of the machine's memory
+    /// (`None` where the system does not say how much it has).
+    pub fn bytes(&self) -> Option<u64> {
+        match self.max_memory {
+            Some(mib) => Some(mib.saturating_mul(1 << 20)),
+            None => usable_memory_bytes().map(|bytes| bytes / 4 * 3),
+        }
+    }
 }
 
 impl LimitArgs {
@@ -59,13 +80,9 @@ impl LimitArgs {
         Ok(())
     }
 
-    /// The memory bound, bytes: `--max-memory`, or three quarters of the machine's memory
-    /// (`None` where the system does not say how much it has).
+    /// The memory bound, bytes (see [`MemoryArgs::bytes`]).
     pub fn memory_bytes(&self) -> Option<u64> {
-        match self.max_memory {
-            Some(mib) => Some(mib.saturating_mul(1 << 20)),
-            None => usable_memory_bytes().map(|bytes| bytes / 4 * 3),
-        }
+        self.memory.bytes()
     }
 
     /// How scene files are to be read under these bounds.
@@ -112,7 +129,9 @@ mod tests {
             max_samples: 8,
             max_patches: 10,
             max_texels: 16,
-            max_memory: Some(3),
+            memory: MemoryArgs {
+                max_memory: Some(3),
+            },
         }
     }
 
@@ -136,11 +155,8 @@ mod tests {
     #[test]
     fn memory_bound_is_the_flag_or_a_share_of_the_machine() {
         assert_eq!(limits().memory_bytes(), Some(3 << 20));
-        let default = LimitArgs {
-            max_memory: None,
-            ..limits()
-        };
-        if let (Some(bound), Some(machine)) = (default.memory_bytes(), usable_memory_bytes()) {
+        let default = MemoryArgs { max_memory: None };
+        if let (Some(bound), Some(machine)) = (default.bytes(), usable_memory_bytes()) {
             assert!(bound < machine && bound >= machine / 2);
         }
     }

@@ -89,23 +89,45 @@ pub fn over_memory() -> Option<u64> {
     Some(OVER_MEMORY.load(Ordering::SeqCst)).filter(|&b| b > 0)
 }
 
+/// Prints why the run stopped at `bytes` of resident memory; `partial`: what was done has
+/// been written.
+pub fn report_over_memory(bytes: u64, partial: bool) {
+    eprintln!(
+        "error: stopped at {} MiB of memory, over the bound (--max-memory, default three \
+         quarters of the machine's memory){}: raise --max-memory, or ask for less (a larger \
+         --error or --min-area, a coarser --mesh-size, a smaller image or scene)",
+        bytes >> 20,
+        if partial {
+            "; what was done is written, marked partial"
+        } else {
+            ""
+        }
+    );
+}
+
 /// Watches the process's resident memory from a background thread (every 20 ms) and stops
 /// the work as Ctrl-C does when it exceeds `bound` bytes, so that the run ends with a
-/// message (see [`over_memory`]) instead of being killed by the system.
+/// message (see [`over_memory`]) instead of being killed by the system. Work that cannot be
+/// stopped (building a scene or its acceleration structure) and goes on growing, a quarter
+/// of the bound (at least 64 MiB) past it, ends the process there with the same message.
 pub fn watch_memory(bound: Option<u64>) {
     let Some(bound) = bound else {
         return;
     };
     let cancel = cancel_flag();
+    let last_resort = bound.saturating_add((bound / 4).max(64 << 20));
     let spawned = std::thread::Builder::new()
         .name("memory watch".into())
         .spawn(move || {
             loop {
                 match resident_bytes() {
-                    Some(bytes) if bytes > bound => {
+                    Some(bytes) if bytes > last_resort => {
+                        report_over_memory(bytes, false);
+                        std::process::exit(1);
+                    }
+                    Some(bytes) if bytes > bound && OVER_MEMORY.load(Ordering::SeqCst) == 0 => {
                         OVER_MEMORY.store(bytes, Ordering::SeqCst);
                         cancel.request();
-                        return;
                     }
                     Some(_) => std::thread::sleep(Duration::from_millis(20)),
                     None => return,

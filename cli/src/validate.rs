@@ -39,6 +39,9 @@ pub struct ValidateArgs {
     /// Worker threads (0 = one per core).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
+    /// The memory bound.
+    #[command(flatten)]
+    pub memory: super::limits::MemoryArgs,
 }
 
 /// Runs `strahl validate`.

@@ -332,6 +332,18 @@ fn a_scene_without_light_is_refused_by_solve_and_warned_about_by_render() {
 }
 
 #[test]
+fn building_a_scene_over_the_memory_bound_ends_with_a_message() {
+    // Building ten million spheres and their BVH (6 GB) cannot be stopped halfway: it aborted
+    // where the machine had less; the memory watch ends it past the bound instead.
+    let start = Instant::now();
+    assert_refused(
+        &["info", "spheres:10000000", "--max-memory", "300"],
+        &["over the bound (--max-memory", "raise --max-memory"],
+    );
+    assert!(start.elapsed() < Duration::from_secs(10));
+}
+
+#[test]
 fn validate_refuses_samples_out_of_bounds() {
     // Said only "22 validation checks failed".
     assert_refused(
