@@ -268,35 +268,35 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         while !cancel.is_requested() {
             let (mesh, b, error) = (&self.mesh, &self.nodes.radiosity, self.limits.error);
             let importance = &self.importance;
-            let refine: Vec<bool> = self.cluster_links[judged..]
+            // Judged and split in parallel: what replaces each link refined, in link order.
+            let splits: Vec<Option<Split>> = self.cluster_links[judged..]
                 .par_iter()
                 .map(|l| {
                     let members = tree.members(&l.receiver);
-                    tree.power_bound(mesh, l, b)
-                        > importance.error_for_members(mesh, members, error)
+                    let refine = tree.power_bound(mesh, l, b)
+                        > importance.error_for_members(mesh, members, error);
+                    refine.then(|| tree.split(mesh, l))
                 })
                 .collect();
-            let mut ends: Vec<(End, End)> = Vec::new();
-            let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
-            let mut decision = refine.iter();
-            let mut index = 0;
-            self.cluster_links.retain(|link| {
-                index += 1;
-                if index <= judged || !decision.next().copied().unwrap_or(false) {
-                    return true;
-                }
-                match tree.split(mesh, link) {
-                    Split::Links(new) => ends.extend(new),
-                    Split::Patches(r, e) => pairs.extend(Side::BOTH.into_iter().flat_map(|rs| {
-                        Side::BOTH.map(|es| (node(r, rs), node(e, es), Prior::Unknown))
-                    })),
-                }
-                false
-            });
-            let count = refine.iter().filter(|&&r| r).count() as u64;
+            let count = splits.iter().filter(|s| s.is_some()).count() as u64;
             if count == 0 {
                 return (created, refined);
             }
+            let mut ends: Vec<(End, End)> = Vec::new();
+            let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
+            for split in splits.iter().flatten() {
+                match split {
+                    Split::Links(new) => ends.extend(new),
+                    &Split::Patches(r, e) => pairs.extend(Side::BOTH.into_iter().flat_map(|rs| {
+                        Side::BOTH.map(|es| (node(r, rs), node(e, es), Prior::Unknown))
+                    })),
+                }
+            }
+            let mut index = 0;
+            self.cluster_links.retain(|_| {
+                index += 1;
+                index <= judged || splits[index - 1 - judged].is_none()
+            });
             refined += count;
             let visibility = self.linker.visibility;
             let new: Vec<(ClusterLink, u64)> = ends
