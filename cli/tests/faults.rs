@@ -10,6 +10,8 @@ use std::time::Duration;
 
 mod common;
 
+use common::names;
+
 /// What every output holds before a run.
 const LAST_RUN: &[u8] = b"the last run's";
 
@@ -22,16 +24,6 @@ fn folder_with_last_run(test: &str, names: &[&str]) -> PathBuf {
         std::fs::write(folder.join(name), LAST_RUN).unwrap();
     }
     folder
-}
-
-/// The sorted names of the files in `folder`.
-fn names(folder: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(folder)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 /// Whether `path` holds a complete output of its kind: a PNG up to its end chunk, JSON that

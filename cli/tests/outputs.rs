@@ -3,21 +3,9 @@
 //! device is an error with a message, a finished run leaves nothing but its outputs, and one
 //! file named by two outputs of a run is refused before any work.
 
-use std::path::Path;
-
 mod common;
 
-use common::{small_render, strahl};
-
-/// The names of the files in `folder`, sorted.
-fn names(folder: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(folder)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
+use common::{names, small_render, strahl};
 
 #[test]
 fn every_output_replaces_the_last_and_leaves_nothing_else() {

@@ -41,3 +41,17 @@ pub fn temp(suite: &str, name: &str) -> PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
 }
+
+/// The sorted names of the files in `folder`.
+#[allow(
+    dead_code,
+    reason = "each test crate compiles this module; not all of them list folders"
+)]
+pub fn names(folder: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
