@@ -73,3 +73,13 @@ fn a_glb_shorter_than_its_header_is_an_error() {
     let err = import::load_mesh(&path).unwrap_err().to_string();
     assert!(err.contains("fewer than the 12 of the header"), "{err}");
 }
+
+#[test]
+fn an_accessor_of_no_elements_is_an_error() {
+    // A release build wrapped `count − 1` and read nothing; a checked build panicked.
+    let input = std::fs::read("tests/data/fuzz/gltf_accessor_count_zero.gltf").unwrap();
+    let path = scratch().join("empty_accessor.gltf");
+    std::fs::write(&path, input).unwrap();
+    let err = import::load_mesh(&path).unwrap_err().to_string();
+    assert!(err.contains("POSITION (accessor 0): count 0"), "{err}");
+}

@@ -573,13 +573,17 @@ fn check_accessor(
         ));
     }
     let count = accessor.count();
-    let end = (count > 0).then(|| {
-        accessor
-            .offset()
-            .checked_add(stride.checked_mul(count - 1)?)?
-            .checked_add(size)
-    });
-    if end.flatten().is_none_or(|end| end > view.length()) && count > 0 {
+    if count == 0 {
+        // The `gltf` crate's reader takes `count − 1` (a panic in checked builds).
+        return Err(format!(
+            "{at}: count 0 (an accessor holds at least one element)"
+        ));
+    }
+    let end = accessor
+        .offset()
+        .checked_add(stride.saturating_mul(count - 1))
+        .and_then(|end| end.checked_add(size));
+    if end.is_none_or(|end| end > view.length()) {
         return Err(format!(
             "{at}: {count} elements from byte {} do not fit in buffer view {} ({} bytes)",
             accessor.offset(),
