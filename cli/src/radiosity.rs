@@ -69,7 +69,7 @@ pub struct RadiosityArgs {
     #[arg(long, value_parser = choice::<Iteration>(), default_value_t = MatrixSettings::default().iteration)]
     pub iteration: Iteration,
     /// Stop when the residual (matrix) or the unshot power (progressive) is at most this
-    /// fraction of the emitted power.
+    /// fraction of the emitted power (10⁻¹² up to 1, not included).
     #[arg(long, default_value_t = MatrixSettings::default().tolerance, value_parser = finite::<f64>)]
     pub tolerance: f64,
     /// matrix: most sweeps.
@@ -84,13 +84,13 @@ pub struct RadiosityArgs {
     /// hierarchical: the oracle that decides where links are refined.
     #[arg(long, value_parser = choice::<Oracle>(), default_value_t = HierarchicalSettings::default().oracle)]
     pub oracle: Oracle,
-    /// hierarchical: largest uncertainty of the power a link brings, as a share of all power emitted in the scene.
+    /// hierarchical: largest uncertainty of the power a link brings, as a share of all power emitted in the scene (10⁻⁸ to 1).
     #[arg(long, default_value_t = HierarchicalSettings::default().error, value_parser = finite::<f64>)]
     pub error: f64,
-    /// hierarchical: also hold every reported surface (object, or face with per_face) to about this share of its own power, weighing each link by the importance of its light to every surface (0: off; a measuring patch, a surface that scatters and emits nothing, is held to 1 % regardless). Dim faces and small leaves then come out right, at many times the links (0.003 takes the built-in Cornell box with per-face reports from 0.17 s to 2.5 s on two threads, its worst face from +4.8 % to +1.4 %).
+    /// hierarchical: also hold every reported surface (object, or face with per_face) to about this share of its own power, weighing each link by the importance of its light to every surface (0: off; a measuring patch, a surface that scatters and emits nothing, is held to 1 % regardless). Dim faces and small leaves then come out right, at many times the links (0.003 takes the built-in Cornell box with per-face reports from 0.17 s to 2.5 s on two threads, its worst face from +4.8 % to +1.4 %); 0, or 10⁻⁴ up to 1.
     #[arg(long, default_value_t = HierarchicalSettings::default().surface_error, value_parser = finite::<f64>)]
     pub surface_error: f64,
-    /// hierarchical: nodes are not split below this fraction of the scene's surface area.
+    /// hierarchical: nodes are not split below this fraction of the scene's surface area (10⁻⁸ up to 1).
     #[arg(long, default_value_t = HierarchicalSettings::default().min_area, value_parser = finite::<f64>)]
     pub min_area: f64,
     /// hierarchical: which links a refinement pass judges.
