@@ -47,6 +47,11 @@ use crate::world::World;
 use std::sync::Arc;
 use std::time::Instant;
 
+/// The least threshold a shot onto a measuring patch is held to, as a share of the
+/// scene-wide one: a patch whose first shot brings almost nothing is not refined down to the
+/// minimum area for it (the patches of `meters`, at 10⁻⁷ of the scene's power, need 10⁻⁵).
+const LEAST_PATCH_THRESHOLD: f64 = 1e-6;
+
 /// Solves `world`'s scene by hierarchical shooting: the oracle, error and minimum area come
 /// from `settings`, the tolerance and the most shots from `shooting` (overshooting is not
 /// used). `progress` advances on a log scale of the unshot power; `cancel` stops after the
@@ -253,6 +258,7 @@ impl Shots {
                     .luminance();
             MEASURING_PATCH_ERROR * brought.max(self.measured[object])
         });
+        let threshold = threshold.max(LEAST_PATCH_THRESHOLD * limits.error);
         limits.with_error(limits.error.min(threshold))
     }
 
