@@ -120,10 +120,11 @@ fn save_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
         let p = film.pixels()[y * width + x];
         (p.r, p.g, p.b)
     });
-    let mut out = AtomicFile::create(path).map_err(|source| ImageError::Io {
+    let io_error = |source| ImageError::Io {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    let mut out = AtomicFile::create(path).map_err(io_error)?;
     Image::from_channels((width, film.height() as usize), channels)
         .write()
         .to_buffered(&mut out)
@@ -131,10 +132,7 @@ fn save_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
             path: path.to_path_buf(),
             source,
         })?;
-    out.commit().map_err(|source| ImageError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    out.commit().map_err(io_error)
 }
 
 fn load_exr(path: &Path) -> Result<Film, ImageError> {
