@@ -17,7 +17,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("progress", &[]),
     ("atomic_file", &[]),
     ("geometry", &["lanes"]),
-    ("sampling", &["geometry", "lanes"]),
+    ("sampling", &["color", "geometry", "lanes"]),
     // The scene model and acceleration structures.
     ("scene", &["color", "geometry"]),
     ("accel", &["choice", "geometry"]),
@@ -34,12 +34,14 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("trace", ALGORITHM_BASE),
     ("light_model", ALGORITHM_BASE),
     ("radiosity", ALGORITHM_BASE),
-    // Images from two algorithms together.
+    // Two algorithms together: images and reported surfaces.
     (
         "final_gather",
         &[
             "color",
             "geometry",
+            "measure",
+            "progress",
             "radiosity",
             "sampling",
             "trace",

@@ -4,6 +4,8 @@
 //! dim block faces). At the default settings the dim block faces are 3–5 % too bright;
 //! `surface_error` (importance-driven budgets per reported surface) brings them to the
 //! reference. A live light-model run checks that the recording still describes the code.
+//! The final gather at the reported surfaces (`surface_gather`) brings them there too, at a
+//! stated standard error, for either hierarchical solver.
 //! And measuring patches: small black quads reading the light of CIE 171's lit wall past an
 //! occluder (case 5.7, `strahl validate`'s `meters`), against the closed form at the defaults.
 
@@ -125,6 +127,55 @@ fn surface_error_brings_every_face_of_the_cornell_box_to_the_light_model() {
         rms_budgeted < 0.005 && rms_budgeted < rms / 3.0,
         "{rms_budgeted} vs {rms}"
     );
+}
+
+#[test]
+fn the_final_gather_at_the_surfaces_brings_every_face_of_the_cornell_box_to_the_light_model() {
+    // Each face measured anew to a standard error of 0.5 % of its light. Measured (seed 0):
+    // hierarchical worst +0.46 % (tall block face 3), RMS 0.25 %, 2.6·10⁶ points; over
+    // seeds 0–3 the worst face 0.44–0.89 %; hierarchical shooting worst +0.94 % (tall block
+    // face 1: its solution, +13 % there, still weighs two reflections away).
+    let world = cornell_per_face();
+    let reference = reference();
+    for solver in [SolverKind::Hierarchical, SolverKind::HierarchicalShooting] {
+        let mut settings = RadiositySettings::new(solver);
+        settings.surface_gather = 0.005;
+        let computed = faces(&world, &Method::Radiosity(settings));
+        let (worst, rms, name) = deviation(&computed, &reference);
+        assert!(worst < 0.01 && rms < 0.004, "{solver:?}: {name}, RMS {rms}");
+        // The stated errors are those asked for, and they cover what is off: each face
+        // within three of them and three of the reference's.
+        for (face, (expected, reference_error)) in &reference {
+            let (got, error) = computed[face];
+            for c in 0..3 {
+                assert!(
+                    error[c] > 0.0 && error[c] <= 0.005 * got[c] * 1.0001,
+                    "{face} {c}"
+                );
+                let bound = 3.0 * (error[c] + reference_error[c]);
+                assert!(
+                    (got[c] - expected[c]).abs() < bound,
+                    "{solver:?} {face} {c}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_final_gather_at_the_surfaces_does_not_depend_on_the_thread_count() {
+    let world = cornell_per_face();
+    let mut settings = RadiositySettings::new(SolverKind::Hierarchical);
+    settings.surface_gather = 0.02;
+    let method = Method::Radiosity(settings);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| faces(&world, &method))
+    };
+    assert_eq!(run(1), run(3));
 }
 
 /// The recording agrees with the light model as it is now: 4·10⁶ photons within four

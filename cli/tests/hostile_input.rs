@@ -228,6 +228,14 @@ const SOLVE: &[Case] = &[
         &["--solver", "hierarchical", "--surface-error", "1e-9"],
         &["--surface-error", "between 1e-4 and 1"],
     ),
+    case(
+        &["--solver", "hierarchical", "--surface-gather", "1e-9"],
+        &["--surface-gather", "between 1e-4 and 1"],
+    ),
+    case(
+        &["--surface-gather", "0.01"],
+        &["--surface-gather", "needs --solver matrix"],
+    ),
     // Stopped before any bounce: the report held the direct light alone, marked complete.
     case(
         &["--solver", "progressive", "--tolerance", "1e308"],

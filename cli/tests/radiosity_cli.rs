@@ -118,3 +118,36 @@ fn command_line_solves_reports_exports_and_renders() {
     assert!(String::from_utf8_lossy(&refused.stderr).contains("--gather-rays"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn the_final_gather_at_the_surfaces_reports_a_standard_error_per_surface() {
+    let dir = std::env::temp_dir().join(format!("strahl-surface-gather-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let report = dir.join("cornell.json");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args(["solve", "cornell", "--solver", "hierarchical", "-q"])
+        .args([
+            "--surface-gather",
+            "0.02",
+            "--report",
+            report.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert!(json["stats"]["surface_gather_points"].as_u64().unwrap() > 8 * 2 * 1024);
+    for object in json["objects"].as_array().unwrap() {
+        for c in 0..3 {
+            let incident = object["incident_power"][c].as_f64().unwrap();
+            let error = object["incident_power_standard_error"][c].as_f64().unwrap();
+            assert!(error > 0.0 && error <= 0.02 * incident * 1.0001, "{object}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

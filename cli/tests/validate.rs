@@ -67,3 +67,33 @@ fn unknown_methods_are_refused() {
     assert!(!run.status.success());
     assert!(String::from_utf8_lossy(&run.stderr).contains("nonsense"));
 }
+
+#[test]
+fn the_quick_suite_passes_with_the_final_gather_at_the_surfaces() {
+    // Every radiosity solver's report measured anew at the reported surfaces: the furnaces,
+    // the translucent sheet, the measuring patches and the rest within 1 %.
+    let report = std::env::temp_dir().join(format!(
+        "strahl-validate-gather-{}.json",
+        std::process::id()
+    ));
+    let run = strahl(&[
+        "validate",
+        "--quick",
+        "--method",
+        "matrix,progressive,hierarchical-shooting,hierarchical",
+        "--surface-gather",
+        "0.01",
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stdout)
+    );
+    let rows: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    std::fs::remove_file(&report).unwrap();
+    assert!(rows.len() > 150, "{}", rows.len());
+    assert!(rows.iter().all(|r| r["pass"] == true));
+}

@@ -39,8 +39,8 @@ pub use outcome::{Outcome, SolvedRadiosity};
 pub use run::{run, solve_radiosity};
 pub use settings::{
     Antialias, FinalGatherSettings, ImageSize, LinkSelection, MIN_AREA, MIN_ERROR,
-    MIN_SURFACE_ERROR, MIN_TOLERANCE, PathTraceSettings, RadiosityImageSettings, RadiositySettings,
-    RayTraceSettings, SensorTraceSettings,
+    MIN_SURFACE_ERROR, MIN_SURFACE_GATHER, MIN_TOLERANCE, PathTraceSettings,
+    RadiosityImageSettings, RadiositySettings, RayTraceSettings, SensorTraceSettings,
 };
 
 // The vocabulary a front end needs besides this module's own types — the settings' parts,

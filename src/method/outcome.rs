@@ -6,7 +6,7 @@ use crate::final_gather::FinalGather;
 use crate::measure::{Film, LitMesh, Measurement, SensorReading};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::{
-    DisplaySettings, RadiosityLookup, RadiositySystem, Shading, Solution, render_solution,
+    DisplaySettings, RadiositySystem, Shading, Solution, render_solution,
 };
 use crate::scene::Camera;
 use crate::world::World;
@@ -109,13 +109,13 @@ impl SolvedRadiosity {
         light_samples: u32,
         gather_rays: u32,
     ) -> FinalGather<'_> {
-        let (system, solution) = (&self.system, &self.solution);
-        FinalGather {
-            reflected: RadiosityLookup::new(system, solution.reflected_radiosity(system), shading)
-                .with_texture_detail(solution.display_irradiance(), false),
+        FinalGather::over(
+            &self.system,
+            &self.solution,
+            shading,
             light_samples,
             gather_rays,
-        }
+        )
     }
 
     /// The solution shown through `camera` as `settings` ask; `None` for a degenerate camera.

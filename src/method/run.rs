@@ -7,6 +7,7 @@ use super::settings::{
 };
 use super::{Method, MethodError};
 use crate::choice::Choice;
+use crate::final_gather::gather_surfaces;
 use crate::light_model::{LightTraceSettings, trace_light};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::hierarchical::{solve_hierarchical, solve_hierarchical_shooting};
@@ -41,16 +42,7 @@ pub fn run(
         Method::FinalGather(s) => final_gather(world, s, progress, cancel)?,
         Method::SensorTrace(s) => sensor_trace(world, s),
         Method::LightTrace(s) => light_trace(world, s, progress, cancel)?,
-        Method::Radiosity(s) => {
-            let solved = solve_radiosity(world, s, progress, cancel)?;
-            Outcome {
-                measurement: Some(solved.measurement()),
-                summary: solved.summary(),
-                complete: !solved.solution.interrupted,
-                radiosity: Some(solved),
-                ..empty()
-            }
-        }
+        Method::Radiosity(s) => radiosity(world, s, progress, cancel)?,
     };
     outcome.seconds = start.elapsed().as_secs_f64();
     Ok(outcome)
@@ -68,6 +60,45 @@ fn empty() -> Outcome {
         complete: true,
         seconds: 0.0,
     }
+}
+
+/// A radiosity solve and its measurement: the solution's own, or, with
+/// `surface_gather`, the final gather's at the reported surfaces (phase `gathering`; if
+/// cancelled there, the solution's, the outcome marked incomplete).
+fn radiosity(
+    world: &Arc<World>,
+    s: &RadiositySettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Outcome, MethodError> {
+    let solved = solve_radiosity(world, s, progress, cancel)?;
+    let mut complete = !solved.solution.interrupted;
+    let mut summary = solved.summary();
+    let gathered = if s.surface_gather > 0.0 && complete {
+        progress.phase("gathering");
+        let (system, solution) = (&solved.system, &solved.solution);
+        let seed = s.system.visibility.seed;
+        gather_surfaces(system, solution, s.surface_gather, seed, progress, cancel)
+    } else {
+        None
+    };
+    let measurement = match &gathered {
+        Some(g) => {
+            summary += &format!("; final gather at {} points, {:.2} s", g.points, g.seconds);
+            solved.solution.measurement_with(&solved.system, g)
+        }
+        None => {
+            complete &= s.surface_gather == 0.0;
+            solved.measurement()
+        }
+    };
+    Ok(Outcome {
+        measurement: Some(measurement),
+        summary,
+        complete,
+        radiosity: Some(solved),
+        ..empty()
+    })
 }
 
 /// Meshes and solves `world` by the radiosity solver of `settings` (progress phases

@@ -131,6 +131,10 @@ pub const MIN_SURFACE_ERROR: f64 = 1e-4;
 /// Least minimum node area of the hierarchical solvers (a share of the scene's surface).
 pub const MIN_AREA: f64 = 1e-8;
 
+/// Least target of the final gather at the reported surfaces besides 0 (off): a standard
+/// error of 10⁻⁴ of a surface's light takes about 10⁸ points on a dim one.
+pub const MIN_SURFACE_GATHER: f64 = 1e-4;
+
 /// A radiosity solver with everything it is set up by. Only the settings of `solver` are
 /// used (`matrix` for the matrix solver, `shooting` for progressive refinement,
 /// `hierarchical` for hierarchical radiosity, both of the last two for hierarchical
@@ -147,6 +151,10 @@ pub struct RadiositySettings {
     pub shooting: ShootingSettings,
     /// The hierarchical solvers' oracle, error, minimum area and rounds.
     pub hierarchical: HierarchicalSettings,
+    /// Once the solve is done, the final gather measures the light of every reported surface
+    /// anew until its standard error is at most this share of it
+    /// (`final_gather::gather_surfaces`); 0: off, the solution's own values are reported.
+    pub surface_gather: f64,
 }
 
 impl RadiositySettings {
@@ -165,6 +173,7 @@ impl RadiositySettings {
             matrix: MatrixSettings::default(),
             shooting: ShootingSettings::default(),
             hierarchical: HierarchicalSettings::default(),
+            surface_gather: 0.0,
         }
     }
 
@@ -207,6 +216,15 @@ impl RadiositySettings {
                 format!(
                     "must be 0 (off) or lie between {MIN_SURFACE_ERROR:e} and 1 (got {})",
                     h.surface_error
+                ),
+            ));
+        }
+        let gather = self.surface_gather;
+        if !(gather.is_finite() && (gather == 0.0 || (MIN_SURFACE_GATHER..1.0).contains(&gather))) {
+            return Err(SettingError::new(
+                "surface-gather",
+                format!(
+                    "must be 0 (off) or lie between {MIN_SURFACE_GATHER:e} and 1 (got {gather})"
                 ),
             ));
         }

@@ -14,11 +14,12 @@
 //! - `illuminance_lux` = 683 lm/W × luminance Y of `irradiance`; it is lux only when lengths
 //!   are metres (otherwise lm per squared scene unit).
 //! - `luminous_flux_lm` = 683 lm/W × luminance Y of `incident_power`, lumens.
-//! - `direct_power` (the light model, the matrix and progressive solvers and hierarchical
-//!   radiosity): the part of `incident_power` that came straight from a light or emitting
+//! - `direct_power` (the light model, the matrix and progressive solvers, hierarchical
+//!   radiosity, and every radiosity solver with `--surface-gather`): the part of `incident_power` that came straight from a light or emitting
 //!   surface, W; `direct_illuminance_lux` and `indirect_illuminance_lux`
 //!   split `illuminance_lux` the same way.
-//! - `incident_power_standard_error` (Monte Carlo solvers): the standard error of
+//! - `incident_power_standard_error` (the light model, and the radiosity solvers with
+//!   `--surface-gather`, whose final gather measures each surface anew): the standard error of
 //!   `incident_power`, W; `illuminance_standard_error_lux` is 683 × the luminance of the
 //!   per-channel errors over the area (an upper bound of the error of the luminance).
 //!

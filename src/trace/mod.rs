@@ -25,7 +25,7 @@ pub use render::{
     AntialiasMode, ProgressiveOutput, ProgressiveSettings, RenderOutput, RenderSettings, render,
     render_progressive,
 };
-pub use sensors::{SensorSettings, sensor_readings};
+pub use sensors::{SensorSettings, irradiance_sample, sensor_readings};
 pub use whitted::StandardRayTracer;
 
 use crate::color::Rgb;

@@ -10,15 +10,19 @@
 //!
 //! Both carry the standard error of their mean (the strata treated as independent draws,
 //! which overstates it). Deterministic: each sensor draws from its own stream of the seed.
+//!
+//! [`irradiance_sample`] is one draw of the same two estimates at any surface point, for
+//! callers that spread their draws over many points (the final gather at reported surfaces).
 
 use super::Integrator;
 use crate::color::{Rgb, Rgb64};
 use crate::geometry::{Frame, Ray, offset_origin};
 use crate::measure::SensorReading;
+use crate::sampling::mis::power_heuristic;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
-use crate::sampling::{Sampler, SequenceKind};
+use crate::sampling::{Moments, Sampler, SequenceKind};
 use crate::scene::Sensor;
-use crate::world::{World, emitted, non_surface_irradiance, sees_point};
+use crate::world::{World, emitted, non_surface_irradiance, point_irradiance, sees_point};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -32,33 +36,6 @@ pub struct SensorSettings {
     pub paths: u32,
     /// Seed of all random numbers.
     pub seed: u64,
-}
-
-/// Running sums of samples for a mean and its standard error.
-#[derive(Clone, Copy, Default)]
-struct Moments {
-    n: u64,
-    sum: Rgb64,
-    squares: Rgb64,
-}
-
-impl Moments {
-    fn add(&mut self, x: Rgb64) {
-        self.n += 1;
-        self.sum += x;
-        self.squares += x * x;
-    }
-
-    fn mean(&self) -> Rgb64 {
-        self.sum / self.n.max(1) as f64
-    }
-
-    /// The variance of the mean, per channel.
-    fn variance_of_mean(&self) -> Rgb64 {
-        let n = self.n.max(2) as f64;
-        let mean = self.mean();
-        ((self.squares / n - mean * mean) / (n - 1.0)).map(|v| v.max(0.0))
-    }
 }
 
 /// The reading of every sensor of `world`'s scene: direct light only without an
@@ -136,6 +113,70 @@ fn area_sample(
         return Rgb64::BLACK;
     }
     le.to_f64() * f64::from(cos_x * cos_y.abs() / (d2 * s.pdf_area))
+}
+
+/// One estimate of the irradiance at the surface point `x` (unit normal `n` of the side
+/// that receives), W·m⁻², as `(direct, indirect)`: point, Lambertian, spot and directional
+/// lights exactly (a shadow ray each); each emitting surface by one point on it and by one
+/// cosine-distributed ray, the two weighed by multiple importance sampling (the power
+/// heuristic: a point on a large emitter right beside `x` would otherwise weigh without
+/// bound); the sky where that ray meets nothing (direct, `π·L`); and the indirect light along
+/// it, `π·(L − Lₑ)` of what `integrator` returns. Every random number comes from `sampler`:
+/// the point on each emitting surface first, then the ray's direction, then the
+/// integrator's.
+pub fn irradiance_sample(
+    world: &World,
+    integrator: &dyn Integrator,
+    (x, n): (Vec3, Vec3),
+    sampler: &mut Sampler,
+) -> (Rgb64, Rgb64) {
+    let (xd, nd) = (x.as_dvec3(), n.as_dvec3());
+    let mut direct = world
+        .lights
+        .delta
+        .iter()
+        .map(|light| point_irradiance(world, light, xd, nd, 1))
+        .fold(Rgb64::BLACK, |a, b| a + b);
+    let cosine_pdf = |cos: f32| cos.max(0.0) * std::f32::consts::FRAC_1_PI;
+    for light in 0..world.lights.area.len() {
+        let u_pick = sampler.next_1d();
+        let s = world
+            .lights
+            .sample_area(&world.geometry, light, u_pick, sampler.next_2d());
+        let d = s.p - x;
+        let wi = d.normalize_or_zero();
+        // A point seen edge-on (or `x` itself) brings nothing: no weight to find.
+        let light_pdf = s.pdf_area * d.length_squared() / s.n.dot(wi).abs();
+        if light_pdf.is_finite() && light_pdf > 0.0 {
+            let weight = power_heuristic(light_pdf, cosine_pdf(n.dot(wi)));
+            direct += area_sample(world, x, n, light, &s) * f64::from(weight);
+        }
+    }
+    let dir = Frame::from_normal(n).to_world(cosine_hemisphere(sampler.next_2d()));
+    let ray = Ray::new(offset_origin(x, n, dir), dir);
+    let indirect = match world.intersect(&ray) {
+        None => {
+            direct += world
+                .lights
+                .sky
+                .map_or(Rgb64::BLACK, |sky| sky.to_f64() * PI);
+            Rgb64::BLACK
+        }
+        Some(hit) => {
+            let le = emitted(&world.scene, &hit);
+            if let Some(light) = world.lights.area_light_of(hit.prim) {
+                let distance2 = (hit.p - x).length_squared();
+                let light_pdf = distance2 / (world.lights.area[light].area * hit.ng.dot(dir).abs());
+                if light_pdf.is_finite() {
+                    let weight = power_heuristic(cosine_pdf(n.dot(dir)), light_pdf);
+                    direct += le.to_f64() * (PI * f64::from(weight));
+                }
+            }
+            let reflected = integrator.radiance(world, &ray, sampler) - le;
+            reflected.to_f64().map(|c| c.max(0.0)) * PI
+        }
+    };
+    (direct, indirect)
 }
 
 /// Indirect irradiance at `sensor` (W·m⁻²) and the variance of its estimate.

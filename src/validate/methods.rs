@@ -31,6 +31,9 @@ pub struct Effort {
     pub error: f64,
     /// Whether the quick variants of the cases are run (leaving out the slowest).
     pub quick: bool,
+    /// The radiosity solvers' final gather at the reported surfaces (`--surface-gather`: the
+    /// standard error each surface is measured to, a share of its light; 0: off).
+    pub surface_gather: f64,
 }
 
 impl Effort {
@@ -40,6 +43,7 @@ impl Effort {
         samples: 1 << 18,
         error: 1e-4,
         quick: true,
+        surface_gather: 0.0,
     };
     /// The full run: 8·10⁶ photons, 2²⁰ samples, the default error.
     pub const FULL: Effort = Effort {
@@ -47,13 +51,14 @@ impl Effort {
         samples: 1 << 20,
         error: 1e-4,
         quick: false,
+        surface_gather: 0.0,
     };
 }
 
 /// The method `kind` as the suite runs it with the work of `effort` and the seed `seed`: the
 /// ray tracers at the sensors, the light model, the flat radiosity solvers on `flat_levels`
 /// quadtree levels per face and the hierarchical ones from the root patches at the error of
-/// `effort`. `None` for a kind the suite does not run.
+/// `effort`, each with the final gather at the reported surfaces `effort` asks for. `None` for a kind the suite does not run.
 pub fn suite_method(
     kind: MethodKind,
     (effort, seed): (Effort, u64),
@@ -78,6 +83,7 @@ pub fn suite_method(
                 settings.system.mesh.size = MeshSize::Levels(flat_levels);
             }
             settings.hierarchical.error = effort.error;
+            settings.surface_gather = effort.surface_gather;
             method::Method::Radiosity(settings)
         }
         MethodKind::RayTrace | MethodKind::RadiosityImage | MethodKind::FinalGather => {

@@ -26,7 +26,8 @@ pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};
 pub use rounds::RoundStats;
 pub use solution::{
-    CONVERGENCE_ROWS, LinkSegment, PhaseTimes, Solution, power_fraction, source_power,
+    CONVERGENCE_ROWS, GatheredIrradiance, LinkSegment, PhaseTimes, Solution, power_fraction,
+    source_power,
 };
 pub use solver_kind::SolverKind;
 pub use system::{Couplings, RadiositySystem, SystemOptions};

@@ -26,6 +26,22 @@ use crate::radiosity::element::Side;
 use glam::DVec3;
 use glam::{Vec2, Vec3};
 
+/// The irradiance of every element measured anew after a solve (the final gather at the
+/// reported surfaces, `final_gather::gather_surfaces`), in element order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GatheredIrradiance {
+    /// Irradiance, W·m⁻².
+    pub irradiance: Vec<Rgb64>,
+    /// The part of `irradiance` straight from the lights and emitting surfaces, W·m⁻².
+    pub direct: Vec<Rgb64>,
+    /// The variance of the estimate of `irradiance`, (W·m⁻²)².
+    pub variance: Vec<Rgb64>,
+    /// Points measured (each with its shadow rays and one gather ray).
+    pub points: u64,
+    /// Wall-clock seconds of the gather.
+    pub seconds: f64,
+}
+
 /// Wall-clock seconds per phase of a solve.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PhaseTimes {
@@ -135,14 +151,49 @@ impl Solution {
     pub fn measurement(&self, system: &RadiositySystem) -> Measurement {
         Measurement {
             solver: self.solver_name,
-            power: self.surface_power(system),
+            power: self.surface_power(system, &self.irradiance, self.direct_irradiance.as_deref()),
             sensors: self.sensor_readings(system),
             stats: self.stats(system),
         }
     }
 
-    /// The power per reported surface of `system`'s scene, W, as the module describes.
-    fn surface_power(&self, system: &RadiositySystem) -> SurfacePower {
+    /// [`Self::measurement`] with the irradiance of every element measured anew after the
+    /// solve (`gathered`): the power per reported surface from it, with the standard error of
+    /// each surface's incident power, and the gather's rays and time in the statistics.
+    pub fn measurement_with(
+        &self,
+        system: &RadiositySystem,
+        gathered: &GatheredIrradiance,
+    ) -> Measurement {
+        let mut power = self.surface_power(system, &gathered.irradiance, Some(&gathered.direct));
+        let mut variances = vec![Rgb64::BLACK; power.table().len()];
+        for k in 0..system.len() {
+            let patch = system.patch(k);
+            let weight = system.coverage[k] * system.area[k];
+            variances[power.table().entry(patch.object, patch.face)] +=
+                gathered.variance[k] * (weight * weight);
+        }
+        power.set_standard_errors(variances.into_iter().map(|v| v.map(f64::sqrt)).collect());
+        let mut stats = self.stats(system);
+        stats.insert("surface_gather_points", gathered.points);
+        stats.insert("seconds_surface_gather", gathered.seconds);
+        stats.seconds += gathered.seconds;
+        Measurement {
+            solver: self.solver_name,
+            power,
+            sensors: self.sensor_readings(system),
+            stats,
+        }
+    }
+
+    /// The power per reported surface of `system`'s scene, W, as the module describes, from
+    /// the irradiance per element `irradiance` (and its direct part `direct`), W·m⁻².
+    fn surface_power(
+        &self,
+        system: &RadiositySystem,
+        irradiance: &[Rgb64],
+        direct: Option<&[Rgb64]>,
+    ) -> SurfacePower {
         let world = system.world();
         let mut power = SurfacePower::new(SurfaceTable::new(&world.scene, &world.geometry));
         for k in 0..system.len() {
@@ -151,12 +202,12 @@ impl Solution {
             // What arrives on this side and is scattered back out of either side.
             let (a, h, e, r, c) = (
                 system.area[k],
-                self.irradiance[k],
+                irradiance[k],
                 system.emission[k],
                 system.albedo(k),
                 system.coverage[k],
             );
-            let direct = self.direct_irradiance.as_ref().map(|d| d[k] * (c * a));
+            let direct = direct.map(|d| d[k] * (c * a));
             let balance = power.balance_mut(entry);
             balance.incident += h * (c * a);
             balance.direct = direct.map(|d| balance.direct.unwrap_or(Rgb64::BLACK) + d);

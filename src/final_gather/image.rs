@@ -1,5 +1,5 @@
-//! Final gather (seed 000, requirement 5.0): an image that takes the direct light from the
-//! ray tracer and the indirect light from a radiosity solution.
+//! The final gather's image (seed 000, requirement 5.0): the direct light from the ray
+//! tracer and the indirect light from a radiosity solution.
 //!
 //! At the surface a camera ray meets, the light arriving straight from the lights and from
 //! emitting surfaces is traced with exact shadows (`trace::direct::seen_directly`); the light arriving
@@ -7,13 +7,11 @@
 //! land, the radiance the solution reflects there (its radiosity without its own emission,
 //! [`Solution::reflected_radiosity`], smooth across each leaf). Shadows and contact
 //! shading are therefore as sharp as the ray tracer's, and the radiosity mesh no longer
-//! shows in the image. It sits above the algorithms because it uses two of them.
-//!
-//! [`Solution::reflected_radiosity`]: crate::radiosity::solve::Solution::reflected_radiosity
+//! shows in the image.
 
 use crate::color::Rgb;
 use crate::geometry::{Frame, Ray, spawn_ray};
-use crate::radiosity::solve::RadiosityLookup;
+use crate::radiosity::solve::{RadiosityLookup, RadiositySystem, Shading, Solution};
 use crate::sampling::Sampler;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::trace::Integrator;
@@ -32,7 +30,25 @@ pub struct FinalGather<'s> {
     pub gather_rays: u32,
 }
 
-impl FinalGather<'_> {
+impl<'s> FinalGather<'s> {
+    /// The final gather over `solution` of `system`: direct light with `light_samples` shadow
+    /// rays per light, indirect light by `gather_rays` rays that read the light the solution
+    /// reflects where they land (looked up by `shading`).
+    pub fn over(
+        system: &'s RadiositySystem,
+        solution: &Solution,
+        shading: Shading,
+        light_samples: u32,
+        gather_rays: u32,
+    ) -> Self {
+        FinalGather {
+            reflected: RadiosityLookup::new(system, solution.reflected_radiosity(system), shading)
+                .with_texture_detail(solution.display_irradiance(), false),
+            light_samples,
+            gather_rays,
+        }
+    }
+
     /// Radiance reflected toward the viewer (or passed through a translucent surface) from
     /// the indirect light at `sp`, W·sr⁻¹·m⁻²: the gather rays cover the hemisphere in front,
     /// and the one behind a translucent surface.
