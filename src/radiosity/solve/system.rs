@@ -28,6 +28,7 @@ use super::SolveError;
 use crate::color::Rgb64;
 use crate::radiosity::element::{Element, Side};
 use crate::radiosity::surface;
+use crate::radiosity::visibility::Blockers;
 use crate::radiosity::{
     Facing, FormFactorOptions, MeshOptions, Patch, PatchId, PatchMesh, Visibility,
     VisibilityOptions, facing, form_factor, light_irradiance,
@@ -37,6 +38,10 @@ use rayon::prelude::*;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
+
+/// Visibility rays between a pair of patches one of which straddles the other's plane
+/// (an 8 × 8 grid on each, joined only where each end is in front of the other's side).
+const STRADDLING_RAYS: u32 = 64;
 
 /// How the system is set up.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -317,7 +322,8 @@ impl RadiositySystem {
         {
             return 0.0;
         }
-        if facing(receiver, ri.side, emitter, ej.side) == Facing::Away {
+        let facing = facing(receiver, ri.side, emitter, ej.side);
+        if facing == Facing::Away {
             return 0.0;
         }
         self.form_factors.fetch_add(1, Ordering::Relaxed);
@@ -331,7 +337,22 @@ impl RadiositySystem {
         if f <= 0.0 {
             return 0.0;
         }
-        let v = self.visibility.estimate(&self.mesh, ri.patch, ej.patch);
+        let v = match facing {
+            // One patch straddles the other's plane: only the parts in front of the sides
+            // that exchange light count, or the back of a block's top face would see, past
+            // the block's own walls, the part of a wall patch above the top that its front
+            // sees (the light leaked into the closed blocks of the Cornell box).
+            Facing::Partly => {
+                let (r, e) = (
+                    (ri.patch, ri.side.normal(receiver)),
+                    (ej.patch, ej.side.normal(emitter)),
+                );
+                let (a, b) = if ri.patch < ej.patch { (r, e) } else { (e, r) };
+                self.visibility
+                    .look(&self.mesh, a, b, STRADDLING_RAYS, Blockers::UNKNOWN)
+            }
+            _ => self.visibility.estimate(&self.mesh, ri.patch, ej.patch),
+        };
         self.visibility_rays.fetch_add(v.rays, Ordering::Relaxed);
         f * v.visible
     }
