@@ -1,20 +1,22 @@
 //! The radiosity solvers through the command line: a solve with its report and export, and a render.
 
+/// Runs `strahl` with `args` and asserts that it succeeded.
+fn run(args: &[&str]) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 #[test]
 fn command_line_solves_reports_exports_and_renders() {
     let dir = std::env::temp_dir().join(format!("strahl-radiosity-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let run = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-    };
     let report = dir.join("cornell.json");
     let export = dir.join("cornell.glb");
     run(&[
@@ -124,21 +126,17 @@ fn the_final_gather_at_the_surfaces_reports_a_standard_error_per_surface() {
     let dir = std::env::temp_dir().join(format!("strahl-surface-gather-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let report = dir.join("cornell.json");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
-        .args(["solve", "cornell", "--solver", "hierarchical", "-q"])
-        .args([
-            "--surface-gather",
-            "0.02",
-            "--report",
-            report.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    run(&[
+        "solve",
+        "cornell",
+        "--solver",
+        "hierarchical",
+        "-q",
+        "--surface-gather",
+        "0.02",
+        "--report",
+        report.to_str().unwrap(),
+    ]);
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert!(json["stats"]["surface_gather_points"].as_u64().unwrap() > 8 * 2 * 1024);

@@ -28,6 +28,7 @@ use super::FinalGather;
 use crate::color::Rgb64;
 use crate::measure::SurfaceTable;
 use crate::progress::{Cancel, ProgressListener};
+use crate::radiosity::Side;
 use crate::radiosity::solve::{GatheredIrradiance, RadiositySystem, Shading, Solution};
 use crate::sampling::{Moments, Sampler, SequenceKind};
 use crate::trace::irradiance_sample;
@@ -53,9 +54,8 @@ const DIM_CHANNEL: f64 = 0.01;
 /// `target` of it (in any channel but the very dim), as many more points as the error says
 /// it needs (2 to 16 times as many, up to [`MAX_POINTS`]), divided between its two sides by
 /// the spread of their points so far (the dark inside of a box gets none) and over each side
-/// by area. Element `k` draws the Sobol points of
-/// stream `k` of `seed` in order, so the result is the same whatever the threads. `None`
-/// when cancelled.
+/// by area. Element `k` draws the Sobol points of stream `k` of `seed` in order, so the
+/// result is the same whatever the threads. `None` when cancelled.
 pub fn gather_surfaces(
     system: &RadiositySystem,
     solution: &Solution,
@@ -65,73 +65,139 @@ pub fn gather_surfaces(
     cancel: &Cancel,
 ) -> Option<GatheredIrradiance> {
     let start = Instant::now();
-    let world = system.visibility().world();
     let integrator = FinalGather::over(system, solution, Shading::Flat, 1, 1);
-    let table = SurfaceTable::new(&system.world().scene, &system.world().geometry);
-    let surface_of: Vec<usize> = (0..system.len())
-        .map(|k| {
-            let patch = system.patch(k);
-            table.entry(patch.object, patch.face)
-        })
-        .collect();
-    // What a W·m⁻² on each element adds to its surface's incident power, m².
-    let weight: Vec<f64> = (0..system.len())
-        .map(|k| system.coverage[k] * system.area[k])
-        .collect();
-    let mut side_area = vec![0.0; table.len()];
-    for &leaf in &system.leaves {
-        let patch = system.mesh.patch(leaf);
-        side_area[table.entry(patch.object, patch.face)] += patch.area;
-    }
+    let surfaces = Surfaces::new(system);
     let mut wanted: Vec<u64> = (0..system.len())
         .map(|k| {
-            let share = system.area[k] / side_area[surface_of[k]];
+            let share = surfaces.side_share(system, k);
             ((FIRST_POINTS as f64 * share).ceil() as u64).max(MIN_POINTS_PER_SIDE)
         })
         .collect();
     let mut estimates = vec![Estimate::default(); system.len()];
-    let mut active = vec![true; table.len()];
+    let mut active = vec![true; surfaces.count];
     loop {
         let round: Vec<usize> = (0..system.len())
-            .filter(|&k| active[surface_of[k]] && estimates[k].moments.n < wanted[k])
+            .filter(|&k| active[surfaces.of[k]] && estimates[k].moments.n < wanted[k])
             .collect();
         progress.start(round.len() as u64);
         let drawn: Vec<Option<Estimate>> = round
             .par_iter()
             .map(|&k| {
-                if cancel.is_requested() {
-                    return None;
-                }
-                let mut estimate = estimates[k];
-                let patch = system.patch(k);
-                let normal = system.elements[k].side.normal(patch).as_vec3();
-                for i in estimate.moments.n..wanted[k] {
-                    let mut sampler = Sampler::new(SequenceKind::Sobol, seed, k as u64, i as u32);
-                    let [s, t] = sampler.next_2d().to_array().map(f64::from);
-                    let x = patch.point_at(s, t).as_vec3();
-                    let (direct, indirect) =
-                        irradiance_sample(world, &integrator, (x, normal), &mut sampler);
-                    estimate.add(direct, indirect);
-                }
+                let more = (estimates[k], wanted[k]);
+                let estimate = draw(system, &integrator, (k, seed), more, cancel);
                 progress.advance(1);
-                Some(estimate)
+                estimate
             })
             .collect();
         progress.finish();
         for (&k, estimate) in round.iter().zip(drawn) {
             estimates[k] = estimate?;
         }
+        let short = surfaces.short_of(&estimates, target, &mut active);
+        if !active.iter().any(|&a| a) {
+            break;
+        }
+        surfaces.spread_points(system, &estimates, &short, &mut wanted);
+    }
+    Some(GatheredIrradiance {
+        irradiance: estimates.iter().map(|e| e.moments.mean()).collect(),
+        direct: estimates
+            .iter()
+            .map(|e| e.direct / e.moments.n as f64)
+            .collect(),
+        variance: estimates
+            .iter()
+            .map(|e| e.moments.variance_of_mean())
+            .collect(),
+        points: estimates.iter().map(|e| e.moments.n).sum(),
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// `estimate` of element `k` with its points up to `wanted`, drawn from stream `k` of `seed`
+/// (the surfaces the patches lie on, curved shapes as their facets); `None` when cancelled.
+fn draw(
+    system: &RadiositySystem,
+    integrator: &FinalGather,
+    (k, seed): (usize, u64),
+    (mut estimate, wanted): (Estimate, u64),
+    cancel: &Cancel,
+) -> Option<Estimate> {
+    if cancel.is_requested() {
+        return None;
+    }
+    let world = system.visibility().world();
+    let patch = system.patch(k);
+    let normal = system.elements[k].side.normal(patch).as_vec3();
+    for i in estimate.moments.n..wanted {
+        let mut sampler = Sampler::new(SequenceKind::Sobol, seed, k as u64, i as u32);
+        let [s, t] = sampler.next_2d().to_array().map(f64::from);
+        let x = patch.point_at(s, t).as_vec3();
+        let (direct, indirect) = irradiance_sample(world, integrator, (x, normal), &mut sampler);
+        estimate.add(direct, indirect);
+    }
+    Some(estimate)
+}
+
+/// The reported surfaces of a system's elements.
+struct Surfaces {
+    /// How many.
+    count: usize,
+    /// Per element, its surface (an entry of the scene's `SurfaceTable`).
+    of: Vec<usize>,
+    /// Per element, what a W·m⁻² on it adds to its surface's incident power, m².
+    weight: Vec<f64>,
+    /// Per surface, the area of its leaves (one side), m².
+    side_area: Vec<f64>,
+}
+
+impl Surfaces {
+    fn new(system: &RadiositySystem) -> Self {
+        let table = SurfaceTable::new(&system.world().scene, &system.world().geometry);
+        let of: Vec<usize> = (0..system.len())
+            .map(|k| {
+                let patch = system.patch(k);
+                table.entry(patch.object, patch.face)
+            })
+            .collect();
+        let mut side_area = vec![0.0; table.len()];
+        for (k, &s) in of.iter().enumerate() {
+            if system.elements[k].side == Side::Front {
+                side_area[s] += system.area[k];
+            }
+        }
+        Surfaces {
+            count: table.len(),
+            weight: (0..system.len())
+                .map(|k| system.coverage[k] * system.area[k])
+                .collect(),
+            of,
+            side_area,
+        }
+    }
+
+    /// Element `k`'s share of its side of its surface, by area.
+    fn side_share(&self, system: &RadiositySystem, k: usize) -> f64 {
+        system.area[k] / self.side_area[self.of[k]]
+    }
+
+    /// Per surface still short of `target` (`active` ones only; the others are marked
+    /// inactive): the channel furthest off, and the points the surface is to have in all.
+    fn short_of(
+        &self,
+        estimates: &[Estimate],
+        target: f64,
+        active: &mut [bool],
+    ) -> Vec<Option<(usize, u64)>> {
         // Each surface's incident power, the variance of its estimate and its points.
-        let mut power = vec![(Rgb64::BLACK, Rgb64::BLACK, 0); table.len()];
+        let mut power = vec![(Rgb64::BLACK, Rgb64::BLACK, 0); self.count];
         for (k, e) in estimates.iter().enumerate() {
-            let (sum, variance, points) = &mut power[surface_of[k]];
-            *sum += e.moments.mean() * weight[k];
-            *variance += e.moments.variance_of_mean() * (weight[k] * weight[k]);
+            let (sum, variance, points) = &mut power[self.of[k]];
+            *sum += e.moments.mean() * self.weight[k];
+            *variance += e.moments.variance_of_mean() * (self.weight[k] * self.weight[k]);
             *points += e.moments.n;
         }
-        // The surfaces still short of the target: the channel furthest off, and the points
-        // the surface is to have in all.
-        let mut short = vec![None; table.len()];
+        let mut short = vec![None; self.count];
         for (s, &(sum, variance, points)) in power.iter().enumerate() {
             if !active[s] {
                 continue;
@@ -153,44 +219,40 @@ pub fn gather_surfaces(
                 .clamp(1.0, 4.0);
             short[s] = Some((channel, (points << doublings as u32).min(MAX_POINTS)));
         }
-        if !active.iter().any(|&a| a) {
-            break;
-        }
-        // The points each side of a surface short of the target is to have: by the summed
-        // spread of one point's estimate over its elements (each times its area), in the
-        // surface's channel furthest off (Neyman's allocation between the two sides: the
-        // dark inside of a box gets none); within a side by area, as in the first round.
-        // Spreads per element would save more, but an element whose first points happened to
-        // miss a rare bright one would then get few and keep its low mean: a bias.
-        let mut spread = vec![[0.0; 2]; table.len()];
+        short
+    }
+
+    /// Raises `wanted` so that each surface `short` of its target gets the points it is to
+    /// have: between its sides by the summed spread of one point's estimate over their
+    /// elements (each times its weight), in the surface's channel furthest off (Neyman's
+    /// allocation between the two sides: the dark inside of a box gets none); within a side
+    /// by area, as in the first round. Spreads per element would save more, but an element
+    /// whose first points happened to miss a rare bright one would then get few and keep
+    /// its low mean: a bias.
+    fn spread_points(
+        &self,
+        system: &RadiositySystem,
+        estimates: &[Estimate],
+        short: &[Option<(usize, u64)>],
+        wanted: &mut [u64],
+    ) {
+        let side = |k: usize| system.elements[k].side.index();
+        let mut spread = vec![[0.0; 2]; self.count];
         for (k, e) in estimates.iter().enumerate() {
-            if let Some((c, _)) = short[surface_of[k]] {
-                spread[surface_of[k]][k % 2] += weight[k] * e.moments.spread()[c];
+            if let Some((c, _)) = short[self.of[k]] {
+                spread[self.of[k]][side(k)] += self.weight[k] * e.moments.spread()[c];
             }
         }
-        for k in 0..system.len() {
-            let s = surface_of[k];
+        for (k, wanted) in wanted.iter_mut().enumerate() {
+            let s = self.of[k];
             let Some((_, points)) = short[s] else {
                 continue;
             };
-            let side_share = spread[s][k % 2] / (spread[s][0] + spread[s][1]);
-            let share = system.area[k] / side_area[s] * side_share;
-            wanted[k] = wanted[k].max((points as f64 * share).ceil() as u64);
+            let side_share = spread[s][side(k)] / (spread[s][0] + spread[s][1]);
+            let share = self.side_share(system, k) * side_share;
+            *wanted = (*wanted).max((points as f64 * share).ceil() as u64);
         }
     }
-    Some(GatheredIrradiance {
-        irradiance: estimates.iter().map(|e| e.moments.mean()).collect(),
-        direct: estimates
-            .iter()
-            .map(|e| e.direct / e.moments.n as f64)
-            .collect(),
-        variance: estimates
-            .iter()
-            .map(|e| e.moments.variance_of_mean())
-            .collect(),
-        points: estimates.iter().map(|e| e.moments.n).sum(),
-        seconds: start.elapsed().as_secs_f64(),
-    })
 }
 
 /// One element's samples: their moments and the sum of their direct part, W·m⁻².
