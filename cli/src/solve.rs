@@ -259,8 +259,8 @@ pub fn run(args: &SolveArgs) -> Result<()> {
 /// Prints one line per report entry, then one per sensor, to standard error.
 fn print_table(report: &Report) {
     eprintln!(
-        "{:24} {:>10} {:>12} {:>12} {:>12}",
-        "object", "area", "absorbed W", "E W/m²", "lux"
+        "{:24} {:>10} {:>12} {:>12} {:>12} {:>12}",
+        "object", "area", "absorbed W", "E W/m²", "lux", "±1σ lux"
     );
     for o in &report.objects {
         eprintln!("{}", table_row(o));
@@ -291,10 +291,11 @@ fn table_row(o: &ObjectReport) -> String {
     };
     let opt = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.4}"));
     format!(
-        "{name:24} {:>10} {:>12.5} {:>12} {:>12}",
+        "{name:24} {:>10} {:>12.5} {:>12} {:>12} {:>12}",
         opt(o.area),
         o.absorbed_power.luminance(),
         opt(o.irradiance.map(|e| e.luminance())),
-        opt(o.illuminance_lux)
+        opt(o.illuminance_lux),
+        opt(o.illuminance_standard_error_lux)
     )
 }
