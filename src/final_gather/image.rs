@@ -15,9 +15,9 @@ use crate::radiosity::solve::{RadiosityLookup, RadiositySystem, Shading, Solutio
 use crate::sampling::Sampler;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::trace::Integrator;
-use crate::trace::direct::{ShadowMode, seen_directly};
+use crate::trace::direct::{ShadowMode, seen_at, seen_directly};
 use crate::trace::shading::ShadingPoint;
-use crate::world::World;
+use crate::world::{SurfaceHit, World};
 use std::f32::consts::PI;
 
 /// The final-gather integrator over a solved radiosity system.
@@ -75,11 +75,32 @@ impl<'s> FinalGather<'s> {
     }
 }
 
-impl Integrator for FinalGather<'_> {
-    fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
-        match seen_directly(world, ray, self.light_samples, ShadowMode::On, sampler) {
+impl FinalGather<'_> {
+    /// Radiance toward the viewer from what the viewer sees directly (`seen`: its radiance
+    /// and shading point, as `trace::direct` finds them) plus its indirect light.
+    fn with_indirect(&self, seen: (Rgb, Option<ShadingPoint>), sampler: &mut Sampler) -> Rgb {
+        match seen {
             (direct, Some(sp)) => direct + self.indirect(&sp, sampler),
             (direct, None) => direct,
         }
+    }
+}
+
+impl Integrator for FinalGather<'_> {
+    fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb {
+        let seen = seen_directly(world, ray, self.light_samples, ShadowMode::On, sampler);
+        self.with_indirect(seen, sampler)
+    }
+
+    fn radiance_at(&self, world: &World, ray: &Ray, hit: SurfaceHit, sampler: &mut Sampler) -> Rgb {
+        let seen = seen_at(
+            world,
+            hit,
+            ray.dir,
+            self.light_samples,
+            ShadowMode::On,
+            sampler,
+        );
+        self.with_indirect(seen, sampler)
     }
 }

@@ -7,7 +7,8 @@ use crate::geometry::{Frame, Ray};
 use crate::sampling::Sampler;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::scene::Incidence;
-use crate::world::{World, emitted};
+use crate::world::{SurfaceHit, World, emitted};
+use glam::Vec3;
 use std::f32::consts::PI;
 
 /// How shadows are decided (seed 002 §4.4: `Shadows` and `NoShadows` processors).
@@ -46,8 +47,20 @@ pub fn seen_directly(
     let Some(hit) = world.intersect(ray) else {
         return (world.lights.sky.unwrap_or(Rgb::BLACK), None);
     };
+    seen_at(world, hit, ray.dir, light_samples, shadows, sampler)
+}
+
+/// [`seen_directly`] where the ray travelling along `dir` has met the surface at `hit`.
+pub fn seen_at(
+    world: &World,
+    hit: SurfaceHit,
+    dir: Vec3,
+    light_samples: u32,
+    shadows: ShadowMode,
+    sampler: &mut Sampler,
+) -> (Rgb, Option<ShadingPoint>) {
     let emitted = emitted(&world.scene, &hit);
-    let sp = ShadingPoint::new(world, hit, ray.dir);
+    let sp = ShadingPoint::new(world, hit, dir);
     if sp.material.is_black_from(hit.front_face) {
         return (emitted, None);
     }

@@ -31,11 +31,24 @@ pub use whitted::StandardRayTracer;
 use crate::color::Rgb;
 use crate::geometry::Ray;
 use crate::sampling::Sampler;
-use crate::world::World;
+use crate::world::{SurfaceHit, World};
+
 /// A ray processor (seed 002 §4.3, `RayProcessor`): the radiance arriving along a camera ray.
 pub trait Integrator: Sync {
     /// Radiance (W·sr⁻¹·m⁻²) arriving at the ray origin from direction `-ray.dir`.
     fn radiance(&self, world: &World, ray: &Ray, sampler: &mut Sampler) -> Rgb;
+
+    /// [`Self::radiance`] along `ray`, whose first hit `hit` the caller has found already.
+    /// Integrators that can start from it override this (the value is the same).
+    fn radiance_at(
+        &self,
+        world: &World,
+        ray: &Ray,
+        _hit: SurfaceHit,
+        sampler: &mut Sampler,
+    ) -> Rgb {
+        self.radiance(world, ray, sampler)
+    }
 
     /// [`Self::radiance`] along each of `rays`, ray `i` drawing from `samplers[i]`, into
     /// `out[i]` (the three slices are equally long). Integrators that trace several rays

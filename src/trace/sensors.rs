@@ -172,7 +172,7 @@ pub fn irradiance_sample(
                     direct += le.to_f64() * (PI * f64::from(weight));
                 }
             }
-            let reflected = integrator.radiance(world, &ray, sampler) - le;
+            let reflected = integrator.radiance_at(world, &ray, hit, sampler) - le;
             reflected.to_f64().map(|c| c.max(0.0)) * PI
         }
     };
@@ -202,7 +202,7 @@ fn indirect(
             m.add(Rgb64::BLACK);
             continue;
         };
-        let seen = integrator.radiance(world, &ray, &mut sampler);
+        let seen = integrator.radiance_at(world, &ray, hit, &mut sampler);
         let reflected: Rgb = seen - emitted(&world.scene, &hit);
         m.add(reflected.to_f64().map(|c| c.max(0.0)) * PI);
     }
