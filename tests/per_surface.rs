@@ -178,6 +178,34 @@ fn the_final_gather_at_the_surfaces_does_not_depend_on_the_thread_count() {
     assert_eq!(run(1), run(3));
 }
 
+#[test]
+fn a_final_gather_cancelled_leaves_the_solution_s_values_and_says_so() {
+    /// Asks to stop as soon as the gathering starts.
+    struct StopAtGathering<'c>(&'c Cancel);
+    impl strahl::progress::ProgressListener for StopAtGathering<'_> {
+        fn phase(&self, name: &str) {
+            if name == "gathering" {
+                self.0.request();
+            }
+        }
+        fn start(&self, _: u64) {}
+        fn advance(&self, _: u64) {}
+        fn finish(&self) {}
+    }
+    let world = cornell_per_face();
+    let mut settings = RadiositySettings::new(SolverKind::Hierarchical);
+    settings.surface_gather = 0.01;
+    let cancel = Cancel::new();
+    let method = Method::Radiosity(settings);
+    let outcome = run(&world, &method, &StopAtGathering(&cancel), &cancel).unwrap();
+    assert!(!outcome.complete);
+    let measurement = outcome.measurement.unwrap();
+    assert_eq!(measurement.stats.extra["surface_gather_interrupted"], true);
+    let solution = outcome.radiosity.unwrap().measurement();
+    let report = |m| Report::new("cornell", m).objects;
+    assert_eq!(report(&measurement), report(&solution));
+}
+
 /// The recording agrees with the light model as it is now: 4·10⁶ photons within four
 /// combined standard errors on every face.
 #[test]

@@ -88,8 +88,13 @@ fn radiosity(
             solved.solution.measurement_with(&solved.system, g)
         }
         None => {
-            complete &= s.surface_gather == 0.0;
-            solved.measurement()
+            let mut measurement = solved.measurement();
+            if s.surface_gather > 0.0 {
+                // Asked for but cancelled (or the solve was): the solution's own values.
+                complete = false;
+                measurement.stats.insert("surface_gather_interrupted", true);
+            }
+            measurement
         }
     };
     Ok(Outcome {
