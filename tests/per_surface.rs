@@ -15,7 +15,8 @@ use std::sync::Arc;
 use strahl::color::LUMINOUS_EFFICACY;
 use strahl::light_model::LightTraceSettings;
 use strahl::method::{
-    AccelKind, Cancel, Method, NoProgress, RadiositySettings, SolverKind, World, run,
+    AccelKind, Cancel, FinalGatherSettings, Method, NoProgress, RadiosityImageSettings,
+    RadiositySettings, SolverKind, World, run,
 };
 use strahl::report::Report;
 use strahl::scene::builtin;
@@ -204,6 +205,27 @@ fn a_final_gather_cancelled_leaves_the_solution_s_values_and_says_so() {
     let solution = outcome.radiosity.unwrap().measurement();
     let report = |m| Report::new("cornell", m).objects;
     assert_eq!(report(&measurement), report(&solution));
+}
+
+#[test]
+fn the_image_methods_refuse_a_final_gather_at_the_surfaces() {
+    // They make no report for it to measure: the setting would be ignored.
+    let mut radiosity = RadiositySettings::new(SolverKind::Hierarchical);
+    radiosity.surface_gather = 0.01;
+    for method in [
+        Method::RadiosityImage(RadiosityImageSettings {
+            radiosity,
+            ..RadiosityImageSettings::default()
+        }),
+        Method::FinalGather(FinalGatherSettings {
+            radiosity,
+            ..FinalGatherSettings::default()
+        }),
+    ] {
+        let err = method.check().unwrap_err().to_string();
+        assert!(err.contains("surface-gather"), "{err}");
+    }
+    assert!(Method::Radiosity(radiosity).check().is_ok());
 }
 
 /// The recording agrees with the light model as it is now: 4·10⁶ photons within four

@@ -157,6 +157,7 @@ impl Method {
             }
             Method::RadiosityImage(s) => {
                 s.radiosity.check()?;
+                no_surface_gather(&s.radiosity)?;
                 at_least_one("spp", s.samples_per_pixel)?;
                 if s.links != LinkSelection::None
                     && s.radiosity.solver != crate::radiosity::solve::SolverKind::Hierarchical
@@ -170,6 +171,7 @@ impl Method {
             }
             Method::FinalGather(s) => {
                 s.radiosity.check()?;
+                no_surface_gather(&s.radiosity)?;
                 at_least_one("gather-rays", s.gather_rays)?;
                 at_least_one("light-samples", s.light_samples)?;
                 check_antialias(&s.antialias)
@@ -182,6 +184,18 @@ impl Method {
             Method::Radiosity(s) => s.check(),
         }
     }
+}
+
+/// The final gather at the reported surfaces off: it measures a solve's report, and an
+/// image method makes none.
+fn no_surface_gather(radiosity: &RadiositySettings) -> Result<(), SettingError> {
+    if radiosity.surface_gather > 0.0 {
+        return Err(SettingError::new(
+            "surface-gather",
+            "measures the reported surfaces of a solve; an image reports none",
+        ));
+    }
+    Ok(())
 }
 
 /// Samples per pixel at least 1 and a finite threshold.

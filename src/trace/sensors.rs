@@ -22,7 +22,9 @@ use crate::sampling::mis::power_heuristic;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::sampling::{Moments, Sampler, SequenceKind};
 use crate::scene::Sensor;
-use crate::world::{World, emitted, non_surface_irradiance, point_irradiance, sees_point};
+use crate::world::{
+    SurfaceHit, World, emitted, non_surface_irradiance, point_irradiance, sees_point,
+};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -172,11 +174,23 @@ pub fn irradiance_sample(
                     direct += le.to_f64() * (PI * f64::from(weight));
                 }
             }
-            let reflected = integrator.radiance_at(world, &ray, hit, sampler) - le;
-            reflected.to_f64().map(|c| c.max(0.0)) * PI
+            reflected_irradiance(world, integrator, (&ray, hit, le), sampler)
         }
     };
     (direct, indirect)
+}
+
+/// `π·(L − Lₑ)` along a cosine-distributed `ray` that met `hit`, whose surface emits `le`
+/// toward it: what `integrator` returns, less the emission (counted as direct light), as
+/// one estimate of the indirect irradiance at the ray's origin, W·m⁻².
+fn reflected_irradiance(
+    world: &World,
+    integrator: &dyn Integrator,
+    (ray, hit, le): (&Ray, SurfaceHit, Rgb),
+    sampler: &mut Sampler,
+) -> Rgb64 {
+    let reflected = integrator.radiance_at(world, ray, hit, sampler) - le;
+    reflected.to_f64().map(|c| c.max(0.0)) * PI
 }
 
 /// Indirect irradiance at `sensor` (W·m⁻²) and the variance of its estimate.
@@ -202,9 +216,13 @@ fn indirect(
             m.add(Rgb64::BLACK);
             continue;
         };
-        let seen = integrator.radiance_at(world, &ray, hit, &mut sampler);
-        let reflected: Rgb = seen - emitted(&world.scene, &hit);
-        m.add(reflected.to_f64().map(|c| c.max(0.0)) * PI);
+        let le = emitted(&world.scene, &hit);
+        m.add(reflected_irradiance(
+            world,
+            integrator,
+            (&ray, hit, le),
+            &mut sampler,
+        ));
     }
     (m.mean(), m.variance_of_mean())
 }
