@@ -16,7 +16,7 @@ use strahl::color::LUMINOUS_EFFICACY;
 use strahl::light_model::LightTraceSettings;
 use strahl::method::{
     AccelKind, Cancel, FinalGatherSettings, Method, NoProgress, RadiosityImageSettings,
-    RadiositySettings, SolverKind, World, run,
+    RadiositySettings, SolverKind, SurfaceGather, World, run,
 };
 use strahl::report::Report;
 use strahl::scene::builtin;
@@ -109,11 +109,12 @@ fn surface_error_brings_every_face_of_the_cornell_box_to_the_light_model() {
     let hierarchical = |surface_error: f64| {
         let mut settings = RadiositySettings::new(SolverKind::Hierarchical);
         settings.hierarchical.surface_error = surface_error;
+        settings.surface_gather = SurfaceGather::OFF;
         Method::Radiosity(settings)
     };
-    // The defaults: whole objects within 1.3 % (tests/radiosity_vs_light_model.rs), single
-    // faces up to 4.8 % off (measured: short block face 3, red +4.8 %; RMS 1.62 %; before
-    // the final gather over the emitters' pieces +8.3 % and 2.66 %).
+    // The solution alone: whole objects within 1.3 % (tests/radiosity_vs_light_model.rs),
+    // single faces up to 4.8 % off (measured: short block face 3, red +4.8 %; RMS 1.62 %;
+    // before the final gather over the emitters' pieces +8.3 % and 2.66 %).
     let (worst, rms, name) = deviation(&faces(&world, &hierarchical(0.0)), &reference);
     assert!(worst < 0.05 && rms < 0.018, "{name}, RMS {rms}");
     assert!(
@@ -131,34 +132,75 @@ fn surface_error_brings_every_face_of_the_cornell_box_to_the_light_model() {
 }
 
 #[test]
-fn the_final_gather_at_the_surfaces_brings_every_face_of_the_cornell_box_to_the_light_model() {
-    // Each face measured anew to a standard error of 0.5 % of its light. Measured (seed 0):
-    // hierarchical worst +0.46 % (tall block face 3), RMS 0.25 %, 2.6·10⁶ points; over
-    // seeds 0–3 the worst face 0.44–0.89 %; hierarchical shooting worst +0.94 % (tall block
-    // face 1: its solution, +13 % there, still weighs two reflections away).
+fn every_face_of_the_cornell_box_at_the_defaults() {
+    // Both hierarchical solvers at their defaults: the faces with little light, most of it
+    // reflected to them, measured anew by the final gather at the surfaces to a standard error
+    // of 1 % of their light, the others the solution's. Measured (seed 0): hierarchical worst
+    // −0.76 % (ceiling face 2, blue), RMS 0.30 %, over seeds 0–3 the worst face 0.76–0.91 %.
+    // Hierarchical shooting is not there yet: worst +1.25 % (short block face 3), over seeds
+    // 0–3 0.93–1.49 % (tall block face 1, where its solution is +13 %, which still weighs two
+    // reflections away: +0.8 … +1.4 % at a standard error of 0.5 %), and the ceiling's
+    // largest face, left to its solution, −0.8 %.
     let world = cornell_per_face();
     let reference = reference();
-    for solver in [SolverKind::Hierarchical, SolverKind::HierarchicalShooting] {
-        let mut settings = RadiositySettings::new(solver);
-        settings.surface_gather = 0.005;
-        let computed = faces(&world, &Method::Radiosity(settings));
+    for (solver, limit) in [
+        (SolverKind::Hierarchical, 0.01),
+        (SolverKind::HierarchicalShooting, 0.015),
+    ] {
+        let computed = faces(&world, &Method::Radiosity(RadiositySettings::new(solver)));
         let (worst, rms, name) = deviation(&computed, &reference);
-        assert!(worst < 0.01 && rms < 0.004, "{solver:?}: {name}, RMS {rms}");
-        // The stated errors are those asked for, and they cover what is off: each face
-        // within three of them and three of the reference's.
+        assert!(
+            worst < limit && rms < 0.006,
+            "{solver:?}: {name}, RMS {rms}"
+        );
+        // The gathered faces state the error asked for, and it covers what is off: each
+        // within three of it and three of the reference's. The dim block faces are among them.
+        let mut gathered = Vec::new();
         for (face, (expected, reference_error)) in &reference {
             let (got, error) = computed[face];
+            if error == [0.0; 3] {
+                continue;
+            }
+            gathered.push(face.as_str());
             for c in 0..3 {
-                assert!(
-                    error[c] > 0.0 && error[c] <= 0.005 * got[c] * 1.0001,
-                    "{face} {c}"
-                );
+                assert!(error[c] <= 0.01 * got[c] * 1.0001, "{face} {c}");
                 let bound = 3.0 * (error[c] + reference_error[c]);
                 assert!(
                     (got[c] - expected[c]).abs() < bound,
                     "{solver:?} {face} {c}"
                 );
             }
+        }
+        for dim in ["short_block#2", "short_block#3", "tall_block#1"] {
+            assert!(gathered.contains(&dim), "{solver:?}: {dim} in {gathered:?}");
+        }
+    }
+}
+
+#[test]
+fn the_final_gather_at_every_surface_holds_each_to_its_stated_error() {
+    // Every face gathered (`below_share` 1) to 0.5 %. Measured (seed 0): worst +0.46 % (tall
+    // block face 3), RMS 0.25 %, 2.6·10⁶ points; over 8 seeds each face's spread 0.25–0.84
+    // of the stated error.
+    let world = cornell_per_face();
+    let reference = reference();
+    let mut settings = RadiositySettings::new(SolverKind::Hierarchical);
+    settings.surface_gather = SurfaceGather {
+        error: 0.005,
+        below_share: 1.0,
+    };
+    let computed = faces(&world, &Method::Radiosity(settings));
+    let (worst, rms, name) = deviation(&computed, &reference);
+    assert!(worst < 0.01 && rms < 0.004, "{name}, RMS {rms}");
+    for (face, (expected, reference_error)) in &reference {
+        let (got, error) = computed[face];
+        for c in 0..3 {
+            assert!(
+                error[c] > 0.0 && error[c] <= 0.005 * got[c] * 1.0001,
+                "{face} {c}"
+            );
+            let bound = 3.0 * (error[c] + reference_error[c]);
+            assert!((got[c] - expected[c]).abs() < bound, "{face} {c}");
         }
     }
 }
@@ -167,7 +209,7 @@ fn the_final_gather_at_the_surfaces_brings_every_face_of_the_cornell_box_to_the_
 fn the_final_gather_at_the_surfaces_does_not_depend_on_the_thread_count() {
     let world = cornell_per_face();
     let mut settings = RadiositySettings::new(SolverKind::Hierarchical);
-    settings.surface_gather = 0.02;
+    settings.surface_gather.error = 0.02;
     let method = Method::Radiosity(settings);
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -194,8 +236,7 @@ fn a_final_gather_cancelled_leaves_the_solution_s_values_and_says_so() {
         fn finish(&self) {}
     }
     let world = cornell_per_face();
-    let mut settings = RadiositySettings::new(SolverKind::Hierarchical);
-    settings.surface_gather = 0.01;
+    let settings = RadiositySettings::new(SolverKind::Hierarchical);
     let cancel = Cancel::new();
     let method = Method::Radiosity(settings);
     let outcome = run(&world, &method, &StopAtGathering(&cancel), &cancel).unwrap();
@@ -209,9 +250,20 @@ fn a_final_gather_cancelled_leaves_the_solution_s_values_and_says_so() {
 
 #[test]
 fn the_image_methods_refuse_a_final_gather_at_the_surfaces() {
-    // They make no report for it to measure: the setting would be ignored.
-    let mut radiosity = RadiositySettings::new(SolverKind::Hierarchical);
-    radiosity.surface_gather = 0.01;
+    // They make no report for it to measure: the setting would be ignored. Their defaults
+    // take it off.
+    assert!(
+        Method::RadiosityImage(RadiosityImageSettings::default())
+            .check()
+            .is_ok()
+    );
+    assert!(
+        Method::FinalGather(FinalGatherSettings::default())
+            .check()
+            .is_ok()
+    );
+    let radiosity = RadiositySettings::new(SolverKind::Hierarchical);
+    assert!(radiosity.surface_gather.is_on());
     for method in [
         Method::RadiosityImage(RadiosityImageSettings {
             radiosity,

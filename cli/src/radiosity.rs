@@ -11,8 +11,8 @@ use strahl::image::ToneMapping;
 use strahl::method::{
     FormFactorMethod, FormFactorOptions, HierarchicalSettings, Iteration, LinkSelection,
     MatrixSettings, MeshOptions, MeshSize, MethodError, MethodKind, Oracle, RadiositySettings,
-    RefinePass, Shading, ShootingSettings, Solution, SolvedRadiosity, SolverKind, SystemOptions,
-    VisRays, VisibilityOptions,
+    RefinePass, Shading, ShootingSettings, Solution, SolvedRadiosity, SolverKind, SurfaceGather,
+    SystemOptions, VisRays, VisibilityOptions,
 };
 use strahl::report::{ExportFormat, export_lit_mesh};
 use strahl::scene::Scene;
@@ -24,6 +24,42 @@ pub enum Linking {
     Normal,
     /// Faces that others stand on are split at the standing faces' planes first.
     Asymmetric,
+}
+
+/// The final gather at the reported surfaces (`strahl solve` and `strahl validate`).
+#[derive(Debug, Args)]
+pub struct SurfaceGatherArgs {
+    /// radiosity: once solved, measure the light of the reported surfaces that receive little
+    /// of it (see --gather-below) anew, until each one's standard error is at most this share
+    /// of it: direct light by shadow rays, indirect by gather rays that take the solution's
+    /// light two reflections away. The report then gives their standard errors. Dim surfaces
+    /// the solution gets a few per cent wrong come out right (0: off, the solution's own
+    /// values; 10⁻⁴ up to 1) [default: 0.005].
+    #[arg(long, value_parser = finite::<f64>)]
+    pub surface_gather: Option<f64>,
+    /// radiosity: the final gather measures the surfaces that receive less than this share of
+    /// the light all surfaces receive; the others, which the solution gets right within a
+    /// fraction of a per cent, keep its values (1: every surface; above 0, at most 1)
+    /// [default: 0.02].
+    #[arg(long, value_parser = finite::<f64>)]
+    pub gather_below: Option<f64>,
+}
+
+impl SurfaceGatherArgs {
+    /// Whether either option was given.
+    pub fn given(&self) -> bool {
+        self.surface_gather.is_some() || self.gather_below.is_some()
+    }
+
+    /// The gather these options ask for (the library's defaults where not given).
+    pub fn settings(&self) -> SurfaceGather {
+        SurfaceGather {
+            error: self.surface_gather.unwrap_or(SurfaceGather::DEFAULT.error),
+            below_share: self
+                .gather_below
+                .unwrap_or(SurfaceGather::DEFAULT.below_share),
+        }
+    }
 }
 
 /// Options of the radiosity solvers.
@@ -148,7 +184,11 @@ impl RadiosityDisplayArgs {
                 bail!("--method {method} needs --solver matrix, progressive or hierarchical")
             }
         };
-        self.solve.settings(solver, seed, limits)
+        // An image makes no report for the final gather at the surfaces to measure.
+        Ok(self
+            .solve
+            .settings(solver, seed, limits)?
+            .without_surface_gather())
     }
 
     /// The links `--links` asks to draw.

@@ -2,8 +2,8 @@
 //! (or per face) as JSON or CSV.
 
 use super::choice::{choice, choice_among};
-use super::limits::{LimitArgs, finite};
-use super::radiosity::{self, RadiosityArgs, method_error, print_convergence};
+use super::limits::LimitArgs;
+use super::radiosity::{self, RadiosityArgs, SurfaceGatherArgs, method_error, print_convergence};
 use super::tone::ToneArgs;
 use super::{progress, with_threads};
 use anyhow::{Context, Result, bail};
@@ -59,13 +59,12 @@ pub struct SolveArgs {
     /// Radiosity options.
     #[command(flatten)]
     pub radiosity: RadiosityArgs,
-    /// radiosity: once solved, measure the light of every reported surface anew until its
-    /// standard error is at most this share of it: direct light by shadow rays, indirect by
-    /// gather rays that take the solution's light two reflections away (0: off, the
-    /// solution's own values; 10⁻⁴ up to 1). The report then gives each surface's standard
-    /// error. Dim surfaces the solution gets a few per cent wrong come out right.
-    #[arg(long, default_value_t = 0.0, value_parser = finite::<f64>, help_heading = "Radiosity (--solver matrix|progressive|hierarchical|hierarchical-shooting)")]
-    pub surface_gather: f64,
+    /// The final gather at the reported surfaces.
+    #[command(flatten)]
+    #[command(
+        next_help_heading = "Radiosity (--solver matrix|progressive|hierarchical|hierarchical-shooting)"
+    )]
+    pub gather: SurfaceGatherArgs,
     /// Colours of the exported mesh (`--export`).
     #[command(flatten)]
     #[command(next_help_heading = "Export colours (--export)")]
@@ -105,14 +104,16 @@ impl SolveArgs {
         let method = match self.solver {
             MethodKind::Radiosity(solver) => {
                 let mut settings = self.radiosity.settings(solver, self.seed, &self.limits)?;
-                settings.surface_gather = self.surface_gather;
+                settings.surface_gather = self.gather.settings();
+                settings.check().map_err(|e| method_error(e.into()))?;
                 Method::Radiosity(settings)
             }
             _ => {
-                if self.surface_gather > 0.0 {
+                if self.gather.given() {
                     bail!(
-                        "--surface-gather measures a radiosity solution's surfaces anew: it needs \
-                         --solver matrix, progressive, hierarchical or hierarchical-shooting"
+                        "--surface-gather and --gather-below measure a radiosity solution's \
+                         surfaces anew: they need --solver matrix, progressive, hierarchical or \
+                         hierarchical-shooting"
                     );
                 }
                 if self.radiosity.export.is_some() {
@@ -185,7 +186,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
                     "final gather at the reported surfaces: {points} points, {:.2} s",
                     seconds.as_f64().unwrap_or(0.0)
                 ),
-                None if args.surface_gather > 0.0 && !outcome.complete && !args.quiet => {
+                None if args.gather.settings().is_on() && !outcome.complete && !args.quiet => {
                     eprintln!(
                         "final gather interrupted: the report holds the solution's own values"
                     )

@@ -33,11 +33,9 @@ pub struct ValidateArgs {
     /// power emitted in the scene (10⁻⁸ to 1).
     #[arg(long)]
     pub error: Option<f64>,
-    /// Radiosity solvers: measure every reported surface anew once solved, to this standard
-    /// error (a share of its light), as `strahl solve --surface-gather` does (0: off; 10⁻⁴
-    /// up to 1).
-    #[arg(long, default_value_t = 0.0, value_parser = super::limits::finite::<f64>)]
-    pub surface_gather: f64,
+    /// Radiosity solvers: the final gather at the reported surfaces, as in `strahl solve`.
+    #[command(flatten)]
+    pub gather: super::radiosity::SurfaceGatherArgs,
     /// Seed of all random numbers.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -65,7 +63,7 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
         photons: args.photons.unwrap_or(base.photons),
         samples: args.samples.unwrap_or(base.samples),
         error: args.error.unwrap_or(base.error),
-        surface_gather: args.surface_gather,
+        surface_gather: args.gather.settings(),
         ..base
     };
     if !(effort.error.is_finite() && effort.error > 0.0) {

@@ -234,7 +234,15 @@ const SOLVE: &[Case] = &[
     ),
     case(
         &["--surface-gather", "0.01"],
-        &["--surface-gather", "needs --solver matrix"],
+        &["--surface-gather", "need --solver matrix"],
+    ),
+    case(
+        &["--gather-below", "0.1"],
+        &["--gather-below", "need --solver matrix"],
+    ),
+    case(
+        &["--solver", "hierarchical", "--gather-below", "0"],
+        &["--gather-below", "above 0 and at most 1"],
     ),
     // Stopped before any bounce: the report held the direct light alone, marked complete.
     case(

@@ -134,11 +134,16 @@ fn the_final_gather_at_the_surfaces_reports_a_standard_error_per_surface() {
         "-q",
         "--surface-gather",
         "0.02",
+        "--gather-below",
+        "1",
         "--report",
         report.to_str().unwrap(),
     ]);
-    let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let read = || -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap()
+    };
+    let json = read();
+    assert_eq!(json["stats"]["surface_gather_surfaces"], 8);
     assert!(json["stats"]["surface_gather_points"].as_u64().unwrap() > 8 * 2 * 1024);
     for object in json["objects"].as_array().unwrap() {
         for c in 0..3 {
@@ -146,6 +151,23 @@ fn the_final_gather_at_the_surfaces_reports_a_standard_error_per_surface() {
             let error = object["incident_power_standard_error"][c].as_f64().unwrap();
             assert!(error > 0.0 && error <= 0.02 * incident * 1.0001, "{object}");
         }
+    }
+    // By default only the lamp, with little light and all of it reflected to it, is
+    // measured anew, to 1 %; the other objects keep the solution's values, without an error.
+    let solve = [
+        "solve",
+        "cornell",
+        "--solver",
+        "hierarchical",
+        "-q",
+        "--report",
+    ];
+    run(&[&solve[..], &[report.to_str().unwrap()]].concat());
+    let json = read();
+    assert_eq!(json["stats"]["surface_gather_surfaces"], 1);
+    for object in json["objects"].as_array().unwrap() {
+        let error = &object["incident_power_standard_error"];
+        assert_eq!(object["name"] == "light", !error.is_null(), "{object}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -13,4 +13,7 @@ mod image;
 mod surfaces;
 
 pub use image::FinalGather;
-pub use surfaces::{FIRST_POINTS, MAX_POINTS, MIN_POINTS_PER_SIDE, gather_surfaces};
+pub use surfaces::{
+    DEFAULT_BELOW_SHARE, DEFAULT_ERROR, FIRST_POINTS, MAX_POINTS, MIN_POINTS_PER_SIDE,
+    SurfaceGather, gather_surfaces,
+};

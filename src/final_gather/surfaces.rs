@@ -20,6 +20,14 @@
 //! two reflectances and averaged over many points. The rays are traced on the surfaces the
 //! patches lie on (curved shapes as their facets).
 //!
+//! Which surfaces: by default those that receive less than [`SurfaceGather::below_share`]
+//! (2 %) of the light all surfaces receive, and at least [`INDIRECT_SHARE`] of theirs
+//! indirectly. The solution holds every link to a share of the scene's power, so a surface
+//! with much of the light gets it right within a fraction of a per cent (the Cornell box face
+//! by face: every face above 1 % of the light within 0.43 %), while one with little light,
+//! most of it reflected to it, sums errors that can be several per cent of its own
+//! (docs/VALIDATION.md).
+//!
 //! Each element's estimate carries the variance of its mean (the Sobol strata treated as
 //! independent draws, which overstates it), so each surface's power has a standard error.
 //! Deterministic: element `k` draws from stream `k` of the seed, whatever the threads.
@@ -45,21 +53,75 @@ pub const FIRST_POINTS: u64 = 1024;
 /// surface that reaches it keeps the standard error it has.
 pub const MAX_POINTS: u64 = 1 << 23;
 
+/// What the final gather at the reported surfaces measures, and how well.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceGather {
+    /// The standard error each gathered surface's incident power is measured to, a share of
+    /// it (0: no gather, the solution's own values are reported).
+    pub error: f64,
+    /// Only the surfaces that receive less than this share of the light all surfaces receive
+    /// (luminance, by the solution) are gathered; the others keep the solution's values
+    /// (1: every surface).
+    pub below_share: f64,
+}
+
+impl SurfaceGather {
+    /// A standard error of [`DEFAULT_ERROR`] for the surfaces below [`DEFAULT_BELOW_SHARE`].
+    pub const DEFAULT: SurfaceGather = SurfaceGather {
+        error: DEFAULT_ERROR,
+        below_share: DEFAULT_BELOW_SHARE,
+    };
+
+    /// No gather: the solution's own values.
+    pub const OFF: SurfaceGather = SurfaceGather {
+        error: 0.0,
+        below_share: DEFAULT_BELOW_SHARE,
+    };
+
+    /// Whether any surface is gathered.
+    pub fn is_on(&self) -> bool {
+        self.error > 0.0
+    }
+}
+
+impl Default for SurfaceGather {
+    /// [`SurfaceGather::DEFAULT`].
+    fn default() -> Self {
+        SurfaceGather::DEFAULT
+    }
+}
+
+/// The default standard error of a gathered surface, a share of its incident power: three of
+/// them, 1.5 %, bound what is left, and the stated error overstates the real one (over 8
+/// seeds on the Cornell box face by face, the spread was 0.25–0.84 of it).
+pub const DEFAULT_ERROR: f64 = 0.01;
+
+/// The default share of all light below which a surface is gathered.
+pub const DEFAULT_BELOW_SHARE: f64 = 0.02;
+
+/// A surface below the share is gathered when at least this share of its light is indirect
+/// by the solution: its direct light comes over light links and emitters' links measured on
+/// grids of points, right to a fraction of a per cent even on small surfaces (the leaves of
+/// `canopy:300`, 1–16 % indirect, within 1.2 %), its indirect light over links judged by the
+/// scene-wide threshold (the Cornell box's dim block faces, 75–100 % indirect, up to 4.8 % off).
+pub const INDIRECT_SHARE: f64 = 0.25;
+
 /// Channels below this share of a surface's brightest channel do not hold its gather back.
 const DIM_CHANNEL: f64 = 0.01;
 
-/// Measures the irradiance of every element of `system` anew from `solution`, as the module
-/// describes, in rounds: [`FIRST_POINTS`] points per reported surface and side spread by
-/// area; then, for each surface whose incident power's standard error is still above
-/// `target` of it (in any channel but the very dim), as many more points as the error says
-/// it needs (2 to 16 times as many, up to [`MAX_POINTS`]), divided between its two sides by
-/// the spread of their points so far (the dark inside of a box gets none) and over each side
-/// by area. Element `k` draws the Sobol points of stream `k` of `seed` in order, so the
-/// result is the same whatever the threads. `None` when cancelled.
+/// Measures the irradiance of every element of the surfaces `gather` selects anew from
+/// `solution`, as the module describes, in rounds: [`FIRST_POINTS`] points per surface and
+/// side spread by area; then, for each surface whose incident power's standard error is
+/// still above `gather.error` of it (in any channel but the very dim), as many more points as
+/// the error says it needs (2 to 16 times as many, up to [`MAX_POINTS`]), divided between its
+/// two sides by the spread of their points so far (the dark inside of a box gets none) and
+/// over each side by area. The other surfaces' elements keep the solution's values. Element
+/// `k` draws the Sobol points of stream `k` of `seed` in order, so the result is the same
+/// whatever the threads. `None` when cancelled.
 pub fn gather_surfaces(
     system: &RadiositySystem,
     solution: &Solution,
-    target: f64,
+    gather: SurfaceGather,
     seed: u64,
     progress: &dyn ProgressListener,
     cancel: &Cancel,
@@ -67,6 +129,8 @@ pub fn gather_surfaces(
     let start = Instant::now();
     let integrator = FinalGather::over(system, solution, Shading::Flat, 1, 1);
     let surfaces = Surfaces::new(system);
+    let gathered = surfaces.selected(solution, gather.below_share);
+    let mut active = gathered.clone();
     let mut wanted: Vec<u64> = (0..system.len())
         .map(|k| {
             let share = surfaces.side_share(system, k);
@@ -74,8 +138,7 @@ pub fn gather_surfaces(
         })
         .collect();
     let mut estimates = vec![Estimate::default(); system.len()];
-    let mut active = vec![true; surfaces.count];
-    loop {
+    while active.iter().any(|&a| a) {
         let round: Vec<usize> = (0..system.len())
             .filter(|&k| active[surfaces.of[k]] && estimates[k].moments.n < wanted[k])
             .collect();
@@ -93,23 +156,29 @@ pub fn gather_surfaces(
         for (&k, estimate) in round.iter().zip(drawn) {
             estimates[k] = estimate?;
         }
-        let short = surfaces.short_of(&estimates, target, &mut active);
-        if !active.iter().any(|&a| a) {
-            break;
-        }
+        let short = surfaces.short_of(&estimates, gather.error, &mut active);
         surfaces.spread_points(system, &estimates, &short, &mut wanted);
     }
+    // The surfaces not gathered keep the solution's values.
+    let measured = |k: usize| gathered[surfaces.of[k]].then_some(&estimates[k]);
+    let elements = 0..system.len();
     Some(GatheredIrradiance {
-        irradiance: estimates.iter().map(|e| e.moments.mean()).collect(),
-        direct: estimates
-            .iter()
-            .map(|e| e.direct / e.moments.n as f64)
+        irradiance: elements
+            .clone()
+            .map(|k| measured(k).map_or(solution.irradiance[k], |e| e.moments.mean()))
             .collect(),
-        variance: estimates
-            .iter()
-            .map(|e| e.moments.variance_of_mean())
+        direct: elements
+            .clone()
+            .map(|k| match measured(k) {
+                Some(e) => Some(e.direct / e.moments.n as f64),
+                None => solution.direct_irradiance.as_ref().map(|d| d[k]),
+            })
+            .collect(),
+        variance: elements
+            .map(|k| measured(k).map(|e| e.moments.variance_of_mean()))
             .collect(),
         points: estimates.iter().map(|e| e.moments.n).sum(),
+        surfaces: gathered.iter().filter(|&&g| g).count(),
         seconds: start.elapsed().as_secs_f64(),
     })
 }
@@ -174,6 +243,32 @@ impl Surfaces {
             of,
             side_area,
         }
+    }
+
+    /// Per surface, whether the gather measures it: every one when `share` is 1 or more,
+    /// else those that receive less than `share` of the light all surfaces receive by
+    /// `solution` (luminance) and at least [`INDIRECT_SHARE`] of theirs indirectly (or by an
+    /// unknown part, where the solver kept no direct light).
+    fn selected(&self, solution: &Solution, share: f64) -> Vec<bool> {
+        if share >= 1.0 {
+            return vec![true; self.count];
+        }
+        let mut incident = vec![0.0; self.count];
+        let mut direct = vec![Some(0.0); self.count];
+        for (k, &s) in self.of.iter().enumerate() {
+            incident[s] += solution.irradiance[k].luminance() * self.weight[k];
+            let d = solution
+                .direct_irradiance
+                .as_ref()
+                .map(|d| d[k].luminance());
+            direct[s] = direct[s].zip(d).map(|(sum, d)| sum + d * self.weight[k]);
+        }
+        let total: f64 = incident.iter().sum();
+        incident
+            .iter()
+            .zip(direct)
+            .map(|(&p, d)| p < share * total && d.is_none_or(|d| p - d >= INDIRECT_SHARE * p))
+            .collect()
     }
 
     /// Element `k`'s share of its side of its surface, by area.

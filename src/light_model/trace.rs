@@ -533,7 +533,7 @@ pub fn trace_light(
             b.incident_squares
                 .map(|c| from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel),
         );
-        errors.push(standard_error(out.incident, squares, done));
+        errors.push(Some(standard_error(out.incident, squares, done)));
     }
     power.set_standard_errors(errors);
     let totals = sum.entries.iter().fold([[0i128; 3]; 2], |mut t, b| {

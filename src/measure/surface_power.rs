@@ -39,7 +39,7 @@ pub struct SurfacePower {
     table: SurfaceTable,
     balances: Vec<PowerBalance>,
     /// Per entry, the standard error of its incident power (Monte Carlo solvers only).
-    standard_errors: Option<Vec<Rgb64>>,
+    standard_errors: Option<Vec<Option<Rgb64>>>,
     /// The standard errors of the incident power of all entries together and of its indirect
     /// part (Monte Carlo solvers only).
     total_standard_errors: Option<[Rgb64; 2]>,
@@ -76,8 +76,8 @@ impl SurfacePower {
     }
 
     /// Sets the standard error of every entry's incident power, W per channel, in entry
-    /// order (for solvers that estimate by Monte Carlo).
-    pub fn set_standard_errors(&mut self, errors: Vec<Rgb64>) {
+    /// order (for solvers that estimate by Monte Carlo; `None` for an entry not estimated so).
+    pub fn set_standard_errors(&mut self, errors: Vec<Option<Rgb64>>) {
         debug_assert_eq!(errors.len(), self.balances.len());
         self.standard_errors = Some(errors);
     }
@@ -97,7 +97,7 @@ impl SurfacePower {
     /// The standard error of entry `entry`'s incident power, W per channel, when the solver
     /// gave one.
     pub fn standard_error(&self, entry: usize) -> Option<Rgb64> {
-        self.standard_errors.as_ref().map(|e| e[entry])
+        self.standard_errors.as_ref().and_then(|e| e[entry])
     }
 
     /// Adds power (W) emitted by lights that are not surfaces (point, spot, directional, sky).
@@ -120,7 +120,7 @@ impl SurfacePower {
             b.reflected *= factor;
         }
         if let Some(errors) = &mut self.standard_errors {
-            errors.iter_mut().for_each(|e| *e *= factor);
+            errors.iter_mut().flatten().for_each(|e| *e *= factor);
         }
         if let Some(errors) = &mut self.total_standard_errors {
             errors.iter_mut().for_each(|e| *e *= factor);

@@ -66,6 +66,7 @@ pub use crate::radiosity::{
 pub use crate::trace::{AntialiasMode, ShadowMode};
 pub use crate::world::{GeometryError, QueryTiming, RayBench, RaySet, World, bench_rays};
 
+pub use crate::final_gather::SurfaceGather;
 pub use crate::light_model::LightTraceSettings;
 use settings::{at_least_one, check_light_trace};
 
@@ -189,7 +190,7 @@ impl Method {
 /// The final gather at the reported surfaces off: it measures a solve's report, and an
 /// image method makes none.
 fn no_surface_gather(radiosity: &RadiositySettings) -> Result<(), SettingError> {
-    if radiosity.surface_gather > 0.0 {
+    if radiosity.surface_gather.is_on() {
         return Err(SettingError::new(
             "surface-gather",
             "measures the reported surfaces of a solve; an image reports none",

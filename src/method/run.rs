@@ -74,7 +74,7 @@ fn radiosity(
     let solved = solve_radiosity(world, s, progress, cancel)?;
     let mut complete = !solved.solution.interrupted;
     let mut summary = solved.summary();
-    let gathered = if s.surface_gather > 0.0 && complete {
+    let gathered = if s.surface_gather.is_on() && complete {
         progress.phase("gathering");
         let (system, solution) = (&solved.system, &solved.solution);
         let seed = s.system.visibility.seed;
@@ -84,12 +84,15 @@ fn radiosity(
     };
     let measurement = match &gathered {
         Some(g) => {
-            summary += &format!("; final gather at {} points, {:.2} s", g.points, g.seconds);
+            summary += &format!(
+                "; final gather at {} surfaces, {} points, {:.2} s",
+                g.surfaces, g.points, g.seconds
+            );
             solved.solution.measurement_with(&solved.system, g)
         }
         None => {
             let mut measurement = solved.measurement();
-            if s.surface_gather > 0.0 {
+            if s.surface_gather.is_on() {
                 // Asked for but cancelled (or the solve was): the solution's own values.
                 complete = false;
                 measurement.stats.insert("surface_gather_interrupted", true);

@@ -2,6 +2,7 @@
 //! and their one check ([`super::Method::check`]).
 
 use super::SettingError;
+use crate::final_gather::SurfaceGather;
 use crate::light_model::LightTraceSettings;
 use crate::radiosity::solve::hierarchical::HierarchicalSettings;
 use crate::radiosity::solve::{
@@ -151,10 +152,11 @@ pub struct RadiositySettings {
     pub shooting: ShootingSettings,
     /// The hierarchical solvers' oracle, error, minimum area and rounds.
     pub hierarchical: HierarchicalSettings,
-    /// Once the solve is done, the final gather measures the light of every reported surface
-    /// anew until its standard error is at most this share of it
-    /// (`final_gather::gather_surfaces`); 0: off, the solution's own values are reported.
-    pub surface_gather: f64,
+    /// Once the solve is done, the final gather measures the light of the reported surfaces
+    /// that receive little of it anew, to a standard error (`final_gather::gather_surfaces`;
+    /// on by default, [`SurfaceGather::OFF`]: the solution's own values). The image methods
+    /// make no report and take it off.
+    pub surface_gather: SurfaceGather,
 }
 
 impl RadiositySettings {
@@ -173,7 +175,16 @@ impl RadiositySettings {
             matrix: MatrixSettings::default(),
             shooting: ShootingSettings::default(),
             hierarchical: HierarchicalSettings::default(),
-            surface_gather: 0.0,
+            surface_gather: SurfaceGather::default(),
+        }
+    }
+
+    /// These settings without the final gather at the reported surfaces (for the image
+    /// methods, which make no report).
+    pub fn without_surface_gather(self) -> Self {
+        RadiositySettings {
+            surface_gather: SurfaceGather::OFF,
+            ..self
         }
     }
 
@@ -219,13 +230,20 @@ impl RadiositySettings {
                 ),
             ));
         }
-        let gather = self.surface_gather;
+        let gather = self.surface_gather.error;
         if !(gather.is_finite() && (gather == 0.0 || (MIN_SURFACE_GATHER..1.0).contains(&gather))) {
             return Err(SettingError::new(
                 "surface-gather",
                 format!(
                     "must be 0 (off) or lie between {MIN_SURFACE_GATHER:e} and 1 (got {gather})"
                 ),
+            ));
+        }
+        let share = self.surface_gather.below_share;
+        if !(share.is_finite() && share > 0.0 && share <= 1.0) {
+            return Err(SettingError::new(
+                "gather-below",
+                format!("must lie above 0 and at most 1 (got {share})"),
             ));
         }
         if !(h.min_area.is_finite() && (MIN_AREA..1.0).contains(&h.min_area)) {
@@ -308,7 +326,7 @@ impl Default for RadiosityImageSettings {
     fn default() -> Self {
         RadiosityImageSettings {
             size: ImageSize::default(),
-            radiosity: RadiositySettings::default(),
+            radiosity: RadiositySettings::default().without_surface_gather(),
             shading: Shading::Smooth,
             wireframe: false,
             links: LinkSelection::None,
@@ -343,7 +361,7 @@ impl Default for FinalGatherSettings {
         FinalGatherSettings {
             size: ImageSize::default(),
             seed: 0,
-            radiosity: RadiositySettings::default(),
+            radiosity: RadiositySettings::default().without_surface_gather(),
             shading: Shading::Smooth,
             light_samples: 16,
             gather_rays: 64,

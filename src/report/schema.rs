@@ -15,11 +15,11 @@
 //!   are metres (otherwise lm per squared scene unit).
 //! - `luminous_flux_lm` = 683 lm/W × luminance Y of `incident_power`, lumens.
 //! - `direct_power` (the light model, the matrix and progressive solvers, hierarchical
-//!   radiosity, and every radiosity solver with `--surface-gather`): the part of `incident_power` that came straight from a light or emitting
+//!   radiosity, and every radiosity solver for the surfaces its final gather measured): the part of `incident_power` that came straight from a light or emitting
 //!   surface, W; `direct_illuminance_lux` and `indirect_illuminance_lux`
 //!   split `illuminance_lux` the same way.
-//! - `incident_power_standard_error` (the light model, and the radiosity solvers with
-//!   `--surface-gather`, whose final gather measures each surface anew): the standard error of
+//! - `incident_power_standard_error` (the light model, and the radiosity solvers for the
+//!   surfaces their final gather measured anew, `--surface-gather`): the standard error of
 //!   `incident_power`, W; `illuminance_standard_error_lux` is 683 × the luminance of the
 //!   per-channel errors over the area (an upper bound of the error of the luminance).
 //!
@@ -163,7 +163,8 @@ pub struct ObjectReport {
     /// 683 × luminance of (`incident_power` − `direct_power`) / area, lux.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub indirect_illuminance_lux: Option<f64>,
-    /// Standard error of `incident_power` per channel (Monte Carlo solvers), W.
+    /// Standard error of `incident_power` per channel (Monte Carlo solvers, and the surfaces
+    /// a radiosity solver's final gather measured), W.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub incident_power_standard_error: Option<Rgb64>,
     /// 683 × luminance of `incident_power_standard_error` / area, lux.

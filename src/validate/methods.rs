@@ -2,7 +2,7 @@
 
 use crate::method::{
     self, LightTraceSettings, MeshSize, MethodKind, RadiositySettings, SensorTraceSettings,
-    SolverKind,
+    SolverKind, SurfaceGather,
 };
 
 /// The methods the suite checks, in the order it runs them: the direct light of the
@@ -31,9 +31,8 @@ pub struct Effort {
     pub error: f64,
     /// Whether the quick variants of the cases are run (leaving out the slowest).
     pub quick: bool,
-    /// The radiosity solvers' final gather at the reported surfaces (`--surface-gather`: the
-    /// standard error each surface is measured to, a share of its light; 0: off).
-    pub surface_gather: f64,
+    /// The radiosity solvers' final gather at the reported surfaces (`--surface-gather`).
+    pub surface_gather: SurfaceGather,
 }
 
 impl Effort {
@@ -43,7 +42,7 @@ impl Effort {
         samples: 1 << 18,
         error: 1e-4,
         quick: true,
-        surface_gather: 0.0,
+        surface_gather: SurfaceGather::DEFAULT,
     };
     /// The full run: 8·10⁶ photons, 2²⁰ samples, the default error.
     pub const FULL: Effort = Effort {
@@ -51,7 +50,7 @@ impl Effort {
         samples: 1 << 20,
         error: 1e-4,
         quick: false,
-        surface_gather: 0.0,
+        surface_gather: SurfaceGather::DEFAULT,
     };
 }
 

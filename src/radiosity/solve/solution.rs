@@ -27,17 +27,22 @@ use glam::DVec3;
 use glam::{Vec2, Vec3};
 
 /// The irradiance of every element measured anew after a solve (the final gather at the
-/// reported surfaces, `final_gather::gather_surfaces`), in element order.
+/// reported surfaces, `final_gather::gather_surfaces`), in element order; the elements of the
+/// surfaces not gathered keep the solution's values.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct GatheredIrradiance {
     /// Irradiance, W·m⁻².
     pub irradiance: Vec<Rgb64>,
-    /// The part of `irradiance` straight from the lights and emitting surfaces, W·m⁻².
-    pub direct: Vec<Rgb64>,
-    /// The variance of the estimate of `irradiance`, (W·m⁻²)².
-    pub variance: Vec<Rgb64>,
+    /// The part of `irradiance` straight from the lights and emitting surfaces, W·m⁻² (`None`
+    /// where the solution's value is kept and the solver did not compute it).
+    pub direct: Vec<Option<Rgb64>>,
+    /// The variance of the estimate of `irradiance`, (W·m⁻²)² (`None` where the solution's
+    /// value is kept).
+    pub variance: Vec<Option<Rgb64>>,
     /// Points measured (each with its shadow rays and one gather ray).
     pub points: u64,
+    /// Reported surfaces gathered.
+    pub surfaces: usize,
     /// Wall-clock seconds of the gather.
     pub seconds: f64,
 }
@@ -151,7 +156,9 @@ impl Solution {
     pub fn measurement(&self, system: &RadiositySystem) -> Measurement {
         Measurement {
             solver: self.solver_name,
-            power: self.surface_power(system, &self.irradiance, self.direct_irradiance.as_deref()),
+            power: self.surface_power(system, &self.irradiance, &|k| {
+                self.direct_irradiance.as_ref().map(|d| d[k])
+            }),
             sensors: self.sensor_readings(system),
             stats: self.stats(system),
         }
@@ -159,22 +166,31 @@ impl Solution {
 
     /// [`Self::measurement`] with the irradiance of every element measured anew after the
     /// solve (`gathered`): the power per reported surface from it, with the standard error of
-    /// each surface's incident power, and the gather's rays and time in the statistics.
+    /// each gathered surface's incident power, and the gather's surfaces, rays and time in
+    /// the statistics.
     pub fn measurement_with(
         &self,
         system: &RadiositySystem,
         gathered: &GatheredIrradiance,
     ) -> Measurement {
-        let mut power = self.surface_power(system, &gathered.irradiance, Some(&gathered.direct));
-        let mut variances = vec![Rgb64::BLACK; power.table().len()];
+        let mut power = self.surface_power(system, &gathered.irradiance, &|k| gathered.direct[k]);
+        let mut variances = vec![None; power.table().len()];
         for k in 0..system.len() {
             let patch = system.patch(k);
             let weight = system.coverage[k] * system.area[k];
-            variances[power.table().entry(patch.object, patch.face)] +=
-                gathered.variance[k] * (weight * weight);
+            let entry = &mut variances[power.table().entry(patch.object, patch.face)];
+            if let Some(variance) = gathered.variance[k] {
+                *entry = Some(entry.unwrap_or(Rgb64::BLACK) + variance * (weight * weight));
+            }
         }
-        power.set_standard_errors(variances.into_iter().map(|v| v.map(f64::sqrt)).collect());
+        power.set_standard_errors(
+            variances
+                .into_iter()
+                .map(|v| v.map(|v| v.map(f64::sqrt)))
+                .collect(),
+        );
         let mut stats = self.stats(system);
+        stats.insert("surface_gather_surfaces", gathered.surfaces);
         stats.insert("surface_gather_points", gathered.points);
         stats.insert("seconds_surface_gather", gathered.seconds);
         stats.seconds += gathered.seconds;
@@ -187,33 +203,41 @@ impl Solution {
     }
 
     /// The power per reported surface of `system`'s scene, W, as the module describes, from
-    /// the irradiance per element `irradiance` (and its direct part `direct`), W·m⁻².
+    /// the irradiance per element `irradiance` (and its direct part `direct(k)` where known),
+    /// W·m⁻²; a surface has a direct part when all its elements have one.
     fn surface_power(
         &self,
         system: &RadiositySystem,
         irradiance: &[Rgb64],
-        direct: Option<&[Rgb64]>,
+        direct: &dyn Fn(usize) -> Option<Rgb64>,
     ) -> SurfacePower {
         let world = system.world();
         let mut power = SurfacePower::new(SurfaceTable::new(&world.scene, &world.geometry));
-        for k in 0..system.len() {
+        let mut direct_unknown = vec![false; power.table().len()];
+        for (k, &h) in irradiance.iter().enumerate() {
             let patch = system.patch(k);
             let entry = power.table().entry(patch.object, patch.face);
+            direct_unknown[entry] |= direct(k).is_none();
             // What arrives on this side and is scattered back out of either side.
-            let (a, h, e, r, c) = (
+            let (a, e, r, c) = (
                 system.area[k],
-                irradiance[k],
                 system.emission[k],
                 system.albedo(k),
                 system.coverage[k],
             );
-            let direct = direct.map(|d| d[k] * (c * a));
             let balance = power.balance_mut(entry);
             balance.incident += h * (c * a);
-            balance.direct = direct.map(|d| balance.direct.unwrap_or(Rgb64::BLACK) + d);
+            if let Some(d) = direct(k) {
+                balance.direct = Some(balance.direct.unwrap_or(Rgb64::BLACK) + d * (c * a));
+            }
             balance.absorbed += (Rgb64::splat(c) - r) * a * h;
             balance.emitted += e * a;
             balance.reflected += r * a * h;
+        }
+        for (entry, &unknown) in direct_unknown.iter().enumerate() {
+            if unknown {
+                power.balance_mut(entry).direct = None;
+            }
         }
         let light_power = world
             .scene
