@@ -20,9 +20,10 @@
 //! parallel, all its corners lie on one side at most 5 % of its longest edge away,
 //! and its outline overlaps the face.
 
+use super::box_tree::{BoxTree, meet};
 use super::clip::{Plane, SideCounts, split};
 use glam::{DVec2, DVec3};
-use std::collections::HashMap;
+use rayon::prelude::*;
 
 /// Relative rounding of scene geometry: coordinates are single precision (6·10⁻⁸ per
 /// coordinate, compounded by transforms and tessellation), so corners that should share a
@@ -96,44 +97,75 @@ const HOVER_GAP: f64 = 0.05;
 /// cuts (about 8°).
 const HOVER_ANGLE_COS: f64 = 0.99;
 
-/// Faces a bounding-box grid cell may hold before the grid gives up on finer cells.
-const MAX_CELLS_PER_FACE: i64 = 4096;
-
 /// `faces` with every face that another one touches (as the module describes) split at the
 /// toucher's plane; the pieces keep object, face and material, with interpolated texture
 /// coordinates. Faces nothing touches come back unchanged, in their order.
 pub fn split_at_contacts(faces: Vec<Face>) -> Vec<Face> {
     let planes: Vec<Option<Plane>> = faces.iter().map(Face::plane).collect();
-    let grid = BoundsGrid::new(&faces);
-    let mut out = Vec::with_capacity(faces.len());
-    for (index, face) in faces.iter().enumerate() {
-        let mut pieces = vec![face.clone()];
-        let (lo, hi) = face.bounds();
-        let reach = DVec3::splat(HOVER_GAP * (hi - lo).max_element());
-        for other in grid.near(&(lo - reach, hi + reach)) {
-            if other == index {
+    let tree = BoxTree::new(&faces.iter().map(Face::bounds).collect::<Vec<_>>());
+    let split: Vec<Vec<Face>> = faces
+        .par_iter()
+        .enumerate()
+        .map(|(index, face)| split_face(index, face, &faces, &planes, &tree))
+        .collect();
+    split.into_iter().flatten().collect()
+}
+
+/// Face `index` of `faces` split at the faces near it that touch it or hover over it. Each
+/// of those is tested only against the pieces so far whose bounds come within its reach (a
+/// floor under a room's furniture is cut into thousands of pieces).
+fn split_face(
+    index: usize,
+    face: &Face,
+    faces: &[Face],
+    planes: &[Option<Plane>],
+    tree: &BoxTree,
+) -> Vec<Face> {
+    let reach = |f: &Face| {
+        let (lo, hi) = f.bounds();
+        // The gap a hovering face may leave, and the rounding of the corners.
+        let pad = ROUNDING_EPSILON * lo.abs().max(hi.abs()).max_element() + f64::MIN_POSITIVE;
+        let r = DVec3::splat(HOVER_GAP * (hi - lo).max_element() + 2.0 * pad);
+        (lo - r, hi + r)
+    };
+    let mut pieces = vec![(face.clone(), face.bounds())];
+    for other in tree.meeting(&reach(face)) {
+        if other == index {
+            continue;
+        }
+        let Some(plane) = planes[other] else {
+            continue;
+        };
+        let toucher = &faces[other];
+        let near = reach(toucher);
+        // Cut in place, keeping the pieces' order: most pieces are out of reach.
+        let mut i = 0;
+        while i < pieces.len() {
+            let (piece, bounds) = &pieces[i];
+            if !meet(bounds, &near) {
+                i += 1;
                 continue;
             }
-            let Some(plane) = planes[other] else {
+            let cut_pieces = if touches(toucher, piece, &plane) {
+                cut(piece.clone(), &[plane])
+            } else if let Some(outline) = hovers(toucher, piece) {
+                cut(piece.clone(), &outline)
+            } else {
+                i += 1;
                 continue;
             };
-            let toucher = &faces[other];
-            pieces = pieces
-                .into_iter()
-                .flat_map(|piece| {
-                    if touches(toucher, &piece, &plane) {
-                        cut(piece, &[plane])
-                    } else if let Some(outline) = hovers(toucher, &piece) {
-                        cut(piece, &outline)
-                    } else {
-                        vec![piece]
-                    }
-                })
-                .collect();
+            let count = cut_pieces.len();
+            pieces.splice(
+                i..=i,
+                cut_pieces.into_iter().map(|p| {
+                    let b = p.bounds();
+                    (p, b)
+                }),
+            );
+            i += count;
         }
-        out.extend(pieces);
     }
-    out
+    pieces.into_iter().map(|(piece, _)| piece).collect()
 }
 
 /// `piece` cut at each of `planes` in turn (pieces a plane does not cross beyond the
@@ -310,77 +342,6 @@ fn farthest_pair(points: &[DVec3]) -> (DVec3, DVec3) {
         }
     }
     (best.0, best.1)
-}
-
-/// A uniform grid over face bounds, to find the faces near a box without testing all pairs.
-struct BoundsGrid {
-    cell: f64,
-    cells: HashMap<[i64; 3], Vec<usize>>,
-    /// Faces too large for the grid, tested against everything.
-    large: Vec<usize>,
-}
-
-impl BoundsGrid {
-    fn new(faces: &[Face]) -> Self {
-        let mut sizes: Vec<f64> = faces
-            .iter()
-            .map(|f| {
-                let (lo, hi) = f.bounds();
-                (hi - lo).max_element()
-            })
-            .filter(|s| s.is_finite() && *s > 0.0)
-            .collect();
-        sizes.sort_by(f64::total_cmp);
-        let cell = sizes.get(sizes.len() / 2).copied().unwrap_or(1.0);
-        let mut grid = BoundsGrid {
-            cell,
-            cells: HashMap::new(),
-            large: Vec::new(),
-        };
-        for (index, face) in faces.iter().enumerate() {
-            let keys: Option<Vec<[i64; 3]>> = grid.cells_of(&face.bounds()).map(Iterator::collect);
-            match keys {
-                Some(keys) => {
-                    for k in keys {
-                        grid.cells.entry(k).or_default().push(index);
-                    }
-                }
-                None => grid.large.push(index),
-            }
-        }
-        grid
-    }
-
-    /// The cells a box covers (slightly enlarged), `None` when they are too many.
-    fn cells_of(&self, &(lo, hi): &(DVec3, DVec3)) -> Option<impl Iterator<Item = [i64; 3]>> {
-        let pad = ROUNDING_EPSILON * lo.abs().max(hi.abs()).max_element() + f64::MIN_POSITIVE;
-        let to_cell = |v: f64| (v / self.cell).floor() as i64;
-        let a = [lo.x - pad, lo.y - pad, lo.z - pad].map(to_cell);
-        let b = [hi.x + pad, hi.y + pad, hi.z + pad].map(to_cell);
-        let count = (0..3).map(|k| b[k] - a[k] + 1).product::<i64>();
-        if !(1..=MAX_CELLS_PER_FACE).contains(&count) {
-            return None;
-        }
-        Some((a[0]..=b[0]).flat_map(move |x| {
-            (a[1]..=b[1]).flat_map(move |y| (a[2]..=b[2]).map(move |z| [x, y, z]))
-        }))
-    }
-
-    /// Indices of the faces whose cells meet the box, each once, ascending.
-    fn near(&self, bounds: &(DVec3, DVec3)) -> Vec<usize> {
-        let mut found: Vec<usize> = match self.cells_of(bounds) {
-            Some(keys) => keys
-                .filter_map(|k| self.cells.get(&k))
-                .flatten()
-                .copied()
-                .collect(),
-            None => self.cells.values().flatten().copied().collect(),
-        };
-        found.extend(&self.large);
-        found.sort_unstable();
-        found.dedup();
-        found
-    }
 }
 
 #[cfg(test)]

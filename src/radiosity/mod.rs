@@ -5,6 +5,7 @@
 //!
 //! All radiosity geometry is `f64` (`glam::DVec3`) in world space and scene units.
 
+mod box_tree;
 mod clip;
 mod contact;
 mod element;
