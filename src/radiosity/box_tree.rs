@@ -1,5 +1,6 @@
 //! A tree over axis-aligned boxes for "which boxes meet this one" — the faces near a face in
-//! the contact splits (`contact.rs`). Built by median splits of the boxes' centres along the
+//! the contact splits (`contact.rs`) — or "which boxes may a shaft cross" — the clusters of
+//! primitives that may block the rays between two patches (`visibility.rs`). Built by median splits of the boxes' centres along the
 //! longest axis of their bounds, [`LEAF_SIZE`] boxes at most per leaf; a query visits the
 //! nodes whose bounds meet the query box. Building takes `O(n log n)`, a query `O(log n + k)`
 //! for `k` boxes found, whatever the sizes of the boxes (a grid of one cell size, which this
@@ -100,6 +101,14 @@ impl BoxTree {
 
     /// Indices of the boxes that meet `query` (touching counts), each once, ascending.
     pub fn meeting(&self, query: &Bounds) -> Vec<usize> {
+        self.find(|b| meet(b, query))
+    }
+
+    /// Indices of the boxes that `keep` accepts, each once, ascending, for a `keep` that
+    /// accepts every box inside a box it accepts (a box meets a query, a shaft may cross a
+    /// box): whole subtrees whose bounds it refuses are skipped. Boxes with a non-finite
+    /// coordinate are always found.
+    pub fn find(&self, keep: impl Fn(&Bounds) -> bool) -> Vec<usize> {
         let mut found: Vec<usize> = self.unbounded.iter().map(|&i| i as usize).collect();
         let mut stack = Vec::new();
         if !self.nodes.is_empty() {
@@ -107,7 +116,7 @@ impl BoxTree {
         }
         while let Some(n) = stack.pop() {
             let node = self.nodes[n];
-            if !meet(&node.bounds, query) {
+            if !keep(&node.bounds) {
                 continue;
             }
             if node.count == 0 {
@@ -118,7 +127,7 @@ impl BoxTree {
                     self.order[range]
                         .iter()
                         .map(|&i| i as usize)
-                        .filter(|&i| meet(&self.boxes[i], query)),
+                        .filter(|&i| keep(&self.boxes[i])),
                 );
             }
         }

@@ -23,6 +23,7 @@
 //! ray leaving a facet does not hit the true sphere it lies inside, and the inside of a
 //! sphere sees only the inside.
 
+use super::box_tree::BoxTree;
 use super::clip::{Plane, SideCounts, clip_to_front};
 use super::mesh::{Patch, PatchId, PatchMesh};
 use super::shaft::{Bounds, Shaft};
@@ -261,6 +262,8 @@ pub struct Visibility {
     /// `world` with its curved shapes as polygon meshes, when it has any.
     faceted: Option<World>,
     clusters: Vec<Cluster>,
+    /// A tree over the clusters' bounds, to find those a shaft may cross.
+    cluster_tree: BoxTree,
     /// Bounding box of every primitive of the world rays are traced in.
     bounds: Vec<Bounds>,
     options: VisibilityOptions,
@@ -325,9 +328,14 @@ impl Visibility {
                 }),
             }
         }
+        let cluster_bounds: Vec<_> = clusters
+            .iter()
+            .map(|c| (c.bounds.min, c.bounds.max))
+            .collect();
         Ok(Visibility {
             world: Arc::clone(world),
             faceted,
+            cluster_tree: BoxTree::new(&cluster_bounds),
             clusters,
             bounds: bounds_of,
             options,
@@ -677,10 +685,10 @@ impl Visibility {
 
     /// The primitives that may cross `shaft`, less those lying in one of `planes`.
     fn survivors(&self, shaft: &Shaft, planes: &[Plane]) -> Vec<u32> {
-        self.clusters
-            .iter()
-            .filter(|c| shaft.may_intersect(&c.bounds))
-            .flat_map(|c| c.first..c.end)
+        self.cluster_tree
+            .find(|&(min, max)| shaft.may_intersect(&Bounds { min, max }))
+            .into_iter()
+            .flat_map(|c| self.clusters[c].first..self.clusters[c].end)
             .filter(|&prim| self.may_cross(shaft, planes, prim))
             .collect()
     }
