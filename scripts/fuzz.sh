@@ -2,6 +2,7 @@
 # Fuzzes strahl's readers of untrusted input with libFuzzer (cargo-fuzz, nightly Rust):
 #   scene_toml  the TOML scene loader and the world built from it
 #   obj_mtl     the OBJ importer with its MTL library
+#   mgf         the MGF reader with an included file
 #   gltf        the glTF importer (JSON and binary)
 #   texture     the PPM/PGM/PNG/JPEG texture reader
 #   cli_args    the command line's arguments-to-options step
@@ -23,13 +24,13 @@ seconds=$1
 shift
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
-    targets=(scene_toml obj_mtl gltf texture cli_args)
+    targets=(scene_toml obj_mtl mgf gltf texture cli_args)
 fi
 
 cd "$(dirname "$0")/../fuzz"
 failed=0
 for target in "${targets[@]}"; do
-    mkdir -p "work/$target"
+    mkdir -p "work/$target" "corpus/$target"
     echo "== $target: $seconds s"
     if ! cargo +nightly fuzz run "$target" "work/$target" "corpus/$target" -- \
         -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \

@@ -1,7 +1,8 @@
 //! From what a user names to a scene, in one call: a built-in scene (`cornell`,
-//! `spheres:200`, …), a scene file (`.toml`) or a bare mesh file (`.obj`, `.gltf`, `.glb`).
+//! `spheres:200`, …), a scene file (`.toml`), an MGF file (`.mgf`) or a bare mesh file
+//! (`.obj`, `.gltf`, `.glb`).
 
-use super::file::{LoadOptions, SceneError, load_mesh_file, load_with};
+use super::file::{LoadOptions, SceneError, load_mesh_file, load_mgf_file, load_with};
 use super::{Scene, builtin};
 use std::path::Path;
 
@@ -38,8 +39,16 @@ pub fn is_mesh_file(path: &Path) -> bool {
     matches!(ext.as_deref(), Some("obj" | "gltf" | "glb"))
 }
 
-/// The scene named by `spec`: a built-in scene when one has that name, else the scene file
-/// or bare mesh file at that path (see [`load_mesh_file`]), read with `options`.
+/// True for paths that name an MGF file (`.mgf`, any case).
+fn is_mgf_file(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("mgf"))
+}
+
+/// The scene named by `spec`: a built-in scene when one has that name, else the scene file,
+/// MGF file (`docs/scene-format.md`, "MGF files") or bare mesh file (see
+/// [`load_mesh_file`]) at that path, read with `options`.
 pub fn open(spec: &str, options: &LoadOptions) -> Result<Scene, OpenError> {
     if let Some(built) = builtin::load(spec) {
         return built.map_err(|message| OpenError::Builtin {
@@ -54,7 +63,9 @@ pub fn open(spec: &str, options: &LoadOptions) -> Result<Scene, OpenError> {
             builtins: builtin::names().iter().map(|(n, _)| *n).collect(),
         });
     }
-    Ok(if is_mesh_file(path) {
+    Ok(if is_mgf_file(path) {
+        load_mgf_file(path)?
+    } else if is_mesh_file(path) {
         load_mesh_file(path, options)?
     } else {
         load_with(path, options)?
@@ -72,6 +83,9 @@ mod tests {
         let mesh = open("tests/data/tiny.gltf", &options).unwrap();
         assert_eq!(mesh.objects.len(), 1);
         assert_eq!(mesh.camera.fov_degrees, 90.0);
+        let mgf = open("tests/data/cornell.mgf", &options).unwrap();
+        assert_eq!((mgf.name.as_str(), mgf.objects.len()), ("cornell", 8));
+        assert_eq!(mgf.camera.fov_degrees, 90.0);
         let e = open("nowhere-at-all", &options).unwrap_err().to_string();
         assert!(e.contains("neither a file nor a built-in scene") && e.contains("cornell"));
         let e = open("spheres:x", &options).unwrap_err().to_string();

@@ -11,6 +11,7 @@ mod lights;
 mod locate;
 mod materials;
 mod meshes;
+mod mgf_scene;
 mod photometry;
 mod sensors;
 mod shapes;
@@ -20,6 +21,7 @@ mod value;
 
 pub use bare_mesh::load_mesh_file;
 pub use error::SceneError;
+pub use mgf_scene::load_mgf_file;
 
 use super::Scene;
 use error::Source;

@@ -1,11 +1,18 @@
-//! Mesh importers: Wavefront OBJ with its MTL materials ([`obj`]) and glTF 2.0 ([`gltf`]).
+//! Mesh importers: Wavefront OBJ with its MTL materials ([`obj`]) and glTF 2.0 ([`gltf`]);
+//! and the MGF scene reader ([`mgf`]).
 //!
-//! Each importer turns a whole file into one [`PolygonMesh`] (in the file's own coordinates
-//! and units) plus the materials its faces use. Materials and textures are not yet part of a
-//! scene: the scene loader decides which of them to keep and assigns their ids.
+//! Each mesh importer turns a whole file into one [`PolygonMesh`] (in the file's own
+//! coordinates and units) plus the materials its faces use; the MGF reader gives one mesh per
+//! MGF object. Materials and textures are not yet part of a scene: the scene loader decides
+//! which of them to keep and assigns their ids.
 
 mod faces;
 pub mod gltf;
+pub mod mgf;
+mod mgf_color;
+mod mgf_context;
+mod mgf_shapes;
+mod mgf_syntax;
 pub mod obj;
 mod obj_syntax;
 
