@@ -127,10 +127,54 @@ pub fn gather_surfaces(
     cancel: &Cancel,
 ) -> Option<GatheredIrradiance> {
     let start = Instant::now();
-    let integrator = FinalGather::over(system, solution, Shading::Flat, 1, 1);
     let surfaces = Surfaces::new(system);
     let gathered = surfaces.selected(solution, gather.below_share);
-    let mut active = gathered.clone();
+    let estimates = if gathered.contains(&true) {
+        let target = (gather.error, seed);
+        measure(
+            system, solution, &surfaces, &gathered, target, progress, cancel,
+        )?
+    } else {
+        vec![Estimate::default(); system.len()]
+    };
+    // The surfaces not gathered keep the solution's values.
+    let measured = |k: usize| gathered[surfaces.of[k]].then_some(&estimates[k]);
+    let elements = 0..system.len();
+    Some(GatheredIrradiance {
+        irradiance: elements
+            .clone()
+            .map(|k| measured(k).map_or(solution.irradiance[k], |e| e.moments.mean()))
+            .collect(),
+        direct: elements
+            .clone()
+            .map(|k| match measured(k) {
+                Some(e) => Some(e.direct / e.moments.n as f64),
+                None => solution.direct_irradiance.as_ref().map(|d| d[k]),
+            })
+            .collect(),
+        variance: elements
+            .map(|k| measured(k).map(|e| e.moments.variance_of_mean()))
+            .collect(),
+        points: estimates.iter().map(|e| e.moments.n).sum(),
+        surfaces: gathered.iter().filter(|&&g| g).count(),
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The estimates of the elements of the surfaces `gathered` selects, in rounds until each
+/// surface's standard error is at most `target` of its light (see [`gather_surfaces`]);
+/// the other elements' estimates stay empty. `None` when cancelled.
+fn measure(
+    system: &RadiositySystem,
+    solution: &Solution,
+    surfaces: &Surfaces,
+    gathered: &[bool],
+    (target, seed): (f64, u64),
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Option<Vec<Estimate>> {
+    let integrator = FinalGather::over(system, solution, Shading::Flat, 1, 1);
+    let mut active = gathered.to_vec();
     let mut wanted: Vec<u64> = (0..system.len())
         .map(|k| {
             let share = surfaces.side_share(system, k);
@@ -156,31 +200,10 @@ pub fn gather_surfaces(
         for (&k, estimate) in round.iter().zip(drawn) {
             estimates[k] = estimate?;
         }
-        let short = surfaces.short_of(&estimates, gather.error, &mut active);
+        let short = surfaces.short_of(&estimates, target, &mut active);
         surfaces.spread_points(system, &estimates, &short, &mut wanted);
     }
-    // The surfaces not gathered keep the solution's values.
-    let measured = |k: usize| gathered[surfaces.of[k]].then_some(&estimates[k]);
-    let elements = 0..system.len();
-    Some(GatheredIrradiance {
-        irradiance: elements
-            .clone()
-            .map(|k| measured(k).map_or(solution.irradiance[k], |e| e.moments.mean()))
-            .collect(),
-        direct: elements
-            .clone()
-            .map(|k| match measured(k) {
-                Some(e) => Some(e.direct / e.moments.n as f64),
-                None => solution.direct_irradiance.as_ref().map(|d| d[k]),
-            })
-            .collect(),
-        variance: elements
-            .map(|k| measured(k).map(|e| e.moments.variance_of_mean()))
-            .collect(),
-        points: estimates.iter().map(|e| e.moments.n).sum(),
-        surfaces: gathered.iter().filter(|&&g| g).count(),
-        seconds: start.elapsed().as_secs_f64(),
-    })
+    Some(estimates)
 }
 
 /// `estimate` of element `k` with its points up to `wanted`, drawn from stream `k` of `seed`
