@@ -63,7 +63,8 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         *lights.entry(k).or_default() += 1;
     }
     let mut light_list: Vec<String> = lights.iter().map(|(k, n)| format!("{n} {k}")).collect();
-    let area: f32 = world.lights.area.iter().map(|l| l.area).sum();
+    // A fold from +0 (an empty float sum is −0, printed "-0.000000").
+    let area = world.lights.area.iter().fold(0.0f32, |a, l| a + l.area);
     light_list.push(format!(
         "{} area (emissive objects, {} triangles, {area:.6} units²)",
         world.lights.area.len(),
