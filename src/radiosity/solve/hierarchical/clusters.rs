@@ -207,17 +207,12 @@ impl ClusterTree {
         }
     }
 
-    /// The link from `emitter` to `receiver`: centres, distance and, for ends far enough
-    /// apart, the visibility of the emitter from each member of the receiver (`rays` counts
-    /// the rays cast).
-    pub fn link(
-        &self,
-        mesh: &PatchMesh,
-        visibility: &Visibility,
-        receiver: End,
-        emitter: End,
-        rays: &mut u64,
-    ) -> ClusterLink {
+    /// The link from `emitter` to `receiver`: centres and distance; the visibility of the
+    /// emitter from each member of the receiver is left to [`ClusterTree::see`], for the
+    /// links that are kept (judging a link needs none, and the links near the top of the tree,
+    /// split at once, would each cast a ray per member of a receiver that holds most of the
+    /// scene).
+    pub fn link(&self, mesh: &PatchMesh, receiver: End, emitter: End) -> ClusterLink {
         let (rc, rr) = self.ball(mesh, receiver);
         let (ec, er) = self.ball(mesh, emitter);
         let d = rc - ec;
@@ -227,7 +222,7 @@ impl ClusterTree {
         } else {
             DVec3::Y
         };
-        let mut link = ClusterLink {
+        ClusterLink {
             receiver,
             emitter,
             receiver_centre: rc,
@@ -237,11 +232,23 @@ impl ClusterTree {
             direction,
             distance,
             visible: Box::default(),
-        };
-        if link.separated() {
-            link.visible = self.member_visibility(mesh, visibility, &link, rays);
+            seen: false,
         }
-        link
+    }
+
+    /// Fills in `link`'s member visibility if it is not yet known (for ends far enough
+    /// apart; `rays` counts the rays cast).
+    pub fn see(
+        &self,
+        mesh: &PatchMesh,
+        visibility: &Visibility,
+        link: &mut ClusterLink,
+        rays: &mut u64,
+    ) {
+        if !link.seen && link.separated() {
+            link.visible = self.member_visibility(mesh, visibility, link, rays);
+        }
+        link.seen = true;
     }
 
     /// Per member of `link`'s receiver, the share of rays from its centroid to points of the
@@ -523,8 +530,11 @@ pub struct ClusterLink {
     /// Distance between the centres, scene units.
     pub distance: f64,
     /// Per member of the receiver (in the tree's order), the share of its rays to the
-    /// emitter that arrive, in 255ths (empty while the ends are not separated).
+    /// emitter that arrive, in 255ths (empty while the ends are not separated, or until
+    /// [`ClusterTree::see`] has looked).
     pub visible: Box<[u8]>,
+    /// Whether [`ClusterTree::see`] has looked.
+    pub seen: bool,
 }
 
 impl ClusterLink {

@@ -231,10 +231,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         }
         if let Some(tree) = &self.clusters {
             let root = tree.root();
-            let mut rays = 0;
-            self.cluster_links =
-                vec![tree.link(&self.mesh, self.linker.visibility, root, root, &mut rays)];
-            self.linker.rays.fetch_add(rays, Ordering::Relaxed);
+            self.cluster_links = vec![tree.link(&self.mesh, root, root)];
             self.refine_clusters(cancel);
             return;
         }
@@ -280,7 +277,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 .collect();
             let count = splits.iter().filter(|s| s.is_some()).count() as u64;
             if count == 0 {
-                return (created, refined);
+                break;
             }
             let mut ends: Vec<(End, End)> = Vec::new();
             let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
@@ -298,22 +295,32 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 index <= judged || splits[index - 1 - judged].is_none()
             });
             refined += count;
-            let visibility = self.linker.visibility;
-            let new: Vec<(ClusterLink, u64)> = ends
+            let new: Vec<ClusterLink> = ends
                 .par_iter()
-                .map(|&(r, e)| {
-                    let mut rays = 0;
-                    (tree.link(mesh, visibility, r, e, &mut rays), rays)
-                })
+                .map(|&(r, e)| tree.link(mesh, r, e))
                 .collect();
             judged = self.cluster_links.len();
-            let rays: u64 = new.iter().map(|n| n.1).sum();
-            self.linker.rays.fetch_add(rays, Ordering::Relaxed);
             let patch_links = self.create_links(&pairs);
             created += (new.len() + patch_links.len()) as u64;
-            self.cluster_links.extend(new.into_iter().map(|n| n.0));
+            self.cluster_links.extend(new);
             self.links.extend(patch_links);
         }
+        // The links kept look at what lies between their ends (those split at once never
+        // needed to); stopped, the links not looked at bring nothing.
+        if cancel.is_requested() {
+            return (created, refined);
+        }
+        let (mesh, visibility) = (&self.mesh, self.linker.visibility);
+        let rays: u64 = self
+            .cluster_links
+            .par_iter_mut()
+            .map(|link| {
+                let mut rays = 0;
+                tree.see(mesh, visibility, link, &mut rays);
+                rays
+            })
+            .sum();
+        self.linker.rays.fetch_add(rays, Ordering::Relaxed);
         (created, refined)
     }
 
