@@ -629,11 +629,9 @@ mod tests {
     fn a_link_within_a_cluster_splits_into_every_ordered_pair_of_its_children() {
         let scene = grids(1, 0.1, 1.0);
         let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
-        let world = Arc::new(World::new(scene.clone(), AccelKind::Bvh).unwrap());
-        let visibility = Visibility::new(&world, VisibilityOptions::default(), 16).unwrap();
         let tree = ClusterTree::new(&scene, &mesh).unwrap();
         let root = tree.root();
-        let link = tree.link(&mesh, &visibility, root, root, &mut 0);
+        let link = tree.link(&mesh, root, root);
         assert!(!link.separated());
         let Split::Links(pairs) = tree.split(&mesh, &link) else {
             panic!("a cluster splits into links");
@@ -646,7 +644,7 @@ mod tests {
                 (End::Patch(1), End::Patch(0))
             ]
         );
-        let link = tree.link(&mesh, &visibility, End::Patch(0), End::Patch(1), &mut 0);
+        let link = tree.link(&mesh, End::Patch(0), End::Patch(1));
         assert!(matches!(tree.split(&mesh, &link), Split::Patches(0, 1)));
     }
 
@@ -662,10 +660,8 @@ mod tests {
         let low: Vec<PatchId> = (0..mesh.roots.len() as PatchId).step_by(2).collect();
         let high: Vec<PatchId> = (1..mesh.roots.len() as PatchId).step_by(2).collect();
         // The tree splits the grids apart first (they are farther apart than wide).
-        let Split::Links(pairs) = tree.split(
-            &mesh,
-            &tree.link(&mesh, &visibility, tree.root(), tree.root(), &mut 0),
-        ) else {
+        let Split::Links(pairs) = tree.split(&mesh, &tree.link(&mesh, tree.root(), tree.root()))
+        else {
             panic!("the root splits into links");
         };
         let (receiver, emitter) = pairs
@@ -674,7 +670,8 @@ mod tests {
             .unwrap();
         assert_eq!(tree.members(&receiver).len(), low.len());
         let mut rays = 0;
-        let link = tree.link(&mesh, &visibility, receiver, emitter, &mut rays);
+        let mut link = tree.link(&mesh, receiver, emitter);
+        tree.see(&mesh, &visibility, &mut link, &mut rays);
         assert!(link.separated() && rays > 0);
         let mut radiosity = vec![Rgb64::BLACK; 2 * mesh.len()];
         for &p in &high {
