@@ -7,7 +7,6 @@ use super::error::SceneError;
 use crate::geometry::Aabb;
 use crate::scene::import::mgf;
 use crate::scene::{Object, Scene, Shape};
-use glam::Vec3;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -49,12 +48,6 @@ pub fn load_mgf_file(path: &Path) -> Result<Scene, SceneError> {
             path.display()
         )));
     }
-    let centre = bounds.center();
-    scene.camera.position = centre;
-    scene.camera.look_at = centre + Vec3::X;
-    scene.camera.up = Vec3::Y;
-    scene.camera.fov_degrees = 90.0;
-    scene.camera.width = 1024;
-    scene.camera.height = 1024;
+    super::bare_mesh::view_from_centre(&mut scene, &bounds);
     Ok(scene)
 }

@@ -123,6 +123,13 @@ pub(super) fn cone(p1: DVec3, r1: f64, p2: DVec3, r2: f64) -> Result<Vec<Polygon
     Ok(oriented(polygons, r1 < 0.0 || r2 < 0.0))
 }
 
+/// The unit normal a `ring` or `torus` (`shape`) is oriented by, from its centre vertex's.
+fn centre_normal(normal: DVec3, shape: &str) -> Result<DVec3, String> {
+    normal
+        .try_normalize()
+        .ok_or_else(|| format!("the centre vertex has no normal (n) to orient the {shape}"))
+}
+
 /// `ring`: the flat ring (a disc when `rmin` is 0) around `centre`, facing along `normal`.
 pub(super) fn ring(
     centre: DVec3,
@@ -130,9 +137,7 @@ pub(super) fn ring(
     rmin: f64,
     rmax: f64,
 ) -> Result<Vec<Polygon>, String> {
-    let w = normal
-        .try_normalize()
-        .ok_or("the centre vertex has no normal (n) to orient the ring")?;
+    let w = centre_normal(normal, "ring")?;
     if rmin < 0.0 || rmax <= rmin {
         return Err(format!("radii {rmin} and {rmax}: 0 ≤ rmin < rmax expected"));
     }
@@ -159,9 +164,7 @@ pub(super) fn torus(
     rmin: f64,
     rmax: f64,
 ) -> Result<Vec<Polygon>, String> {
-    let w = normal
-        .try_normalize()
-        .ok_or("the centre vertex has no normal (n) to orient the torus")?;
+    let w = centre_normal(normal, "torus")?;
     let inward = rmin < 0.0 || (rmin == 0.0 && rmax < 0.0);
     if rmin * rmax < 0.0 || rmax.abs() <= rmin.abs() {
         return Err(format!(
