@@ -1,18 +1,15 @@
 //! A tree over axis-aligned boxes for "which boxes meet this one" — the faces near a face in
 //! the contact splits (`contact.rs`) — or "which boxes may a shaft cross" — the clusters of
-//! primitives that may block the rays between two patches (`visibility.rs`). Built by median splits of the boxes' centres along the
-//! longest axis of their bounds, [`LEAF_SIZE`] boxes at most per leaf; a query visits the
+//! primitives that may block the rays between two patches (`visibility.rs`). Built by median
+//! splits of the boxes' centres along the longest axis of their bounds, [`LEAF_SIZE`] boxes at most per leaf; a query visits the
 //! nodes whose bounds meet the query box. Building takes `O(n log n)`, a query `O(log n + k)`
 //! for `k` boxes found, whatever the sizes of the boxes (a grid of one cell size, which this
 //! replaced, made every query of a face much larger than the cells visit all faces).
 
-use glam::DVec3;
+use super::shaft::Bounds;
 
 /// Boxes per leaf at most.
 const LEAF_SIZE: usize = 8;
-
-/// An axis-aligned box, its lowest and highest corner (scene units).
-pub type Bounds = (DVec3, DVec3);
 
 /// One node: its bounds and either two children or a range of `order`.
 #[derive(Clone, Copy, Debug)]
@@ -49,7 +46,7 @@ impl BoxTree {
         };
         if !order.is_empty() {
             tree.nodes.push(Node {
-                bounds: (DVec3::ZERO, DVec3::ZERO),
+                bounds: Bounds::from_points([]),
                 first: 0,
                 count: 0,
             });
@@ -63,10 +60,7 @@ impl BoxTree {
     fn build(&mut self, node: usize, boxes: &[Bounds], items: &mut [u32], offset: usize) {
         let bounds = items
             .iter()
-            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &i| {
-                let (a, b) = boxes[i as usize];
-                (lo.min(a), hi.max(b))
-            });
+            .fold(Bounds::from_points([]), |b, &i| b.union(boxes[i as usize]));
         if items.len() <= LEAF_SIZE {
             self.nodes[node] = Node {
                 bounds,
@@ -75,10 +69,10 @@ impl BoxTree {
             };
             return;
         }
-        let axis = (bounds.1 - bounds.0).max_position();
+        let axis = (bounds.max - bounds.min).max_position();
         let centre = |i: &u32| {
-            let (a, b) = boxes[*i as usize];
-            a[axis] + b[axis]
+            let b = boxes[*i as usize];
+            b.min[axis] + b.max[axis]
         };
         let half = items.len() / 2;
         items.select_nth_unstable_by(half, |a, b| centre(a).total_cmp(&centre(b)));
@@ -101,11 +95,11 @@ impl BoxTree {
 
     /// Indices of the boxes that meet `query` (touching counts), each once, ascending.
     pub fn meeting(&self, query: &Bounds) -> Vec<usize> {
-        self.find(|b| meet(b, query))
+        self.find(|b| b.overlaps(query))
     }
 
     /// Indices of the boxes that `keep` accepts, each once, ascending, for a `keep` that
-    /// accepts every box inside a box it accepts (a box meets a query, a shaft may cross a
+    /// refuses every box inside a box it refuses (a box meets a query, a shaft may cross a
     /// box): whole subtrees whose bounds it refuses are skipped. Boxes with a non-finite
     /// coordinate are always found.
     pub fn find(&self, keep: impl Fn(&Bounds) -> bool) -> Vec<usize> {
@@ -138,17 +132,13 @@ impl BoxTree {
 
 /// Whether every coordinate of `b` is finite.
 fn finite(b: &Bounds) -> bool {
-    b.0.is_finite() && b.1.is_finite()
-}
-
-/// Whether two boxes meet (touching counts).
-pub fn meet(a: &Bounds, b: &Bounds) -> bool {
-    a.0.cmple(b.1).all() && b.0.cmple(a.1).all()
+    b.min.is_finite() && b.max.is_finite()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     #[test]
     fn finds_exactly_the_boxes_a_query_meets() {
@@ -169,21 +159,33 @@ mod tests {
             };
             let lo = DVec3::new(next(), next(), next()) * 10.0;
             let extent = DVec3::new(next(), next(), next()) * size;
-            boxes.push((lo, lo + extent));
+            boxes.push(Bounds {
+                min: lo,
+                max: lo + extent,
+            });
         }
-        boxes.push((DVec3::splat(f64::NEG_INFINITY), DVec3::splat(f64::INFINITY)));
+        boxes.push(Bounds {
+            min: DVec3::NEG_INFINITY,
+            max: DVec3::INFINITY,
+        });
         let tree = BoxTree::new(&boxes);
         for q in 0..200 {
             let lo = DVec3::new(next(), next(), next()) * 10.0;
-            let query = (lo, lo + DVec3::splat(if q % 10 == 0 { 4.0 } else { 0.3 }));
+            let query = Bounds {
+                min: lo,
+                max: lo + DVec3::splat(if q % 10 == 0 { 4.0 } else { 0.3 }),
+            };
             let expected: Vec<usize> = (0..boxes.len())
-                .filter(|&i| !finite(&boxes[i]) || meet(&boxes[i], &query))
+                .filter(|&i| !finite(&boxes[i]) || boxes[i].overlaps(&query))
                 .collect();
             assert_eq!(tree.meeting(&query), expected);
         }
         assert!(
             BoxTree::new(&[])
-                .meeting(&(DVec3::ZERO, DVec3::ONE))
+                .meeting(&Bounds {
+                    min: DVec3::ZERO,
+                    max: DVec3::ONE
+                })
                 .is_empty()
         );
     }

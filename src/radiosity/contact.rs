@@ -20,8 +20,9 @@
 //! parallel, all its corners lie on one side at most 5 % of its longest edge away,
 //! and its outline overlaps the face.
 
-use super::box_tree::{BoxTree, meet};
+use super::box_tree::BoxTree;
 use super::clip::{Plane, SideCounts, split};
+use super::shaft::Bounds;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -74,18 +75,20 @@ impl Face {
         Some(Plane::new(centroid, normal))
     }
 
-    fn bounds(&self) -> (DVec3, DVec3) {
-        let lo = self
-            .corners
-            .iter()
-            .copied()
-            .fold(DVec3::INFINITY, DVec3::min);
-        let hi = self
-            .corners
-            .iter()
-            .copied()
-            .fold(DVec3::NEG_INFINITY, DVec3::max);
-        (lo, hi)
+    fn bounds(&self) -> Bounds {
+        Bounds::from_points(self.corners.iter().copied())
+    }
+
+    /// The face's bounds grown by the gap a face hovering over it may leave (a share of its
+    /// size) and the rounding of the corners: what a face must meet to touch or hover.
+    fn reach(&self) -> Bounds {
+        let Bounds { min, max } = self.bounds();
+        let pad = ROUNDING_EPSILON * min.abs().max(max.abs()).max_element() + f64::MIN_POSITIVE;
+        let r = DVec3::splat(HOVER_GAP * (max - min).max_element() + 2.0 * pad);
+        Bounds {
+            min: min - r,
+            max: max + r,
+        }
     }
 }
 
@@ -102,11 +105,12 @@ const HOVER_ANGLE_COS: f64 = 0.99;
 /// coordinates. Faces nothing touches come back unchanged, in their order.
 pub fn split_at_contacts(faces: Vec<Face>) -> Vec<Face> {
     let planes: Vec<Option<Plane>> = faces.iter().map(Face::plane).collect();
+    let reaches: Vec<Bounds> = faces.iter().map(Face::reach).collect();
     let tree = BoxTree::new(&faces.iter().map(Face::bounds).collect::<Vec<_>>());
     let split: Vec<Vec<Face>> = faces
         .par_iter()
         .enumerate()
-        .map(|(index, face)| split_face(index, face, &faces, &planes, &tree))
+        .map(|(index, face)| split_face(index, face, &faces, (&planes, &reaches), &tree))
         .collect();
     split.into_iter().flatten().collect()
 }
@@ -118,18 +122,11 @@ fn split_face(
     index: usize,
     face: &Face,
     faces: &[Face],
-    planes: &[Option<Plane>],
+    (planes, reaches): (&[Option<Plane>], &[Bounds]),
     tree: &BoxTree,
 ) -> Vec<Face> {
-    let reach = |f: &Face| {
-        let (lo, hi) = f.bounds();
-        // The gap a hovering face may leave, and the rounding of the corners.
-        let pad = ROUNDING_EPSILON * lo.abs().max(hi.abs()).max_element() + f64::MIN_POSITIVE;
-        let r = DVec3::splat(HOVER_GAP * (hi - lo).max_element() + 2.0 * pad);
-        (lo - r, hi + r)
-    };
     let mut pieces = vec![(face.clone(), face.bounds())];
-    for other in tree.meeting(&reach(face)) {
+    for other in tree.meeting(&reaches[index]) {
         if other == index {
             continue;
         }
@@ -137,12 +134,12 @@ fn split_face(
             continue;
         };
         let toucher = &faces[other];
-        let near = reach(toucher);
+        let near = &reaches[other];
         // Cut in place, keeping the pieces' order: most pieces are out of reach.
         let mut i = 0;
         while i < pieces.len() {
             let (piece, bounds) = &pieces[i];
-            if !meet(bounds, &near) {
+            if !bounds.overlaps(near) {
                 i += 1;
                 continue;
             }

@@ -328,10 +328,7 @@ impl Visibility {
                 }),
             }
         }
-        let cluster_bounds: Vec<_> = clusters
-            .iter()
-            .map(|c| (c.bounds.min, c.bounds.max))
-            .collect();
+        let cluster_bounds: Vec<Bounds> = clusters.iter().map(|c| c.bounds).collect();
         Ok(Visibility {
             world: Arc::clone(world),
             faceted,
@@ -686,7 +683,7 @@ impl Visibility {
     /// The primitives that may cross `shaft`, less those lying in one of `planes`.
     fn survivors(&self, shaft: &Shaft, planes: &[Plane]) -> Vec<u32> {
         self.cluster_tree
-            .find(|&(min, max)| shaft.may_intersect(&Bounds { min, max }))
+            .find(|b| shaft.may_intersect(b))
             .into_iter()
             .flat_map(|c| self.clusters[c].first..self.clusters[c].end)
             .filter(|&prim| self.may_cross(shaft, planes, prim))
