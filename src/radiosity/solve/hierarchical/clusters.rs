@@ -15,7 +15,7 @@
 //! order in the ends' sizes (measured: +1.8 % at the closest separation the oracle allows,
 //! falling with the distance squared). `V` is the member's own: the share of its rays to
 //! points spread over the emitting end that nothing blocks, shadows within the ends
-//! included. The inner sides of closed shapes (spheres, boxes, capped cylinders, cones and
+//! included, cast only once the link is kept ([`ClusterTree::see`]). The inner sides of closed shapes (spheres, boxes, capped cylinders, cones and
 //! frustums) exchange light only with ends inside them, their outer sides only with ends
 //! outside.
 //!
