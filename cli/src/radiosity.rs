@@ -34,13 +34,13 @@ pub struct SurfaceGatherArgs {
     /// of it: direct light by shadow rays, indirect by gather rays that take the solution's
     /// light two reflections away. The report then gives their standard errors. Dim surfaces
     /// the solution gets a few per cent wrong come out right (0: off, the solution's own
-    /// values; 10⁻⁴ up to 1) [default: 0.005].
+    /// values; 10⁻⁴ up to 1) [default: 0.01].
     #[arg(long, value_parser = finite::<f64>)]
     pub surface_gather: Option<f64>,
     /// radiosity: the final gather measures the surfaces that receive less than this share of
-    /// the light all surfaces receive; the others, which the solution gets right within a
-    /// fraction of a per cent, keep its values (1: every surface; above 0, at most 1)
-    /// [default: 0.02].
+    /// the light all surfaces receive and a quarter or more of theirs by reflection (by the
+    /// solution); the others, which the solution gets right within a fraction of a per cent,
+    /// keep its values (1: every surface; above 0, at most 1) [default: 0.02].
     #[arg(long, value_parser = finite::<f64>)]
     pub gather_below: Option<f64>,
 }

@@ -171,3 +171,25 @@ fn the_final_gather_at_the_surfaces_reports_a_standard_error_per_surface() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn the_help_states_the_final_gather_s_defaults() {
+    // Written by hand in the help text: held to the library's values here.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args(["solve", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8_lossy(&out.stdout).replace('\n', " ");
+    let default = strahl::method::SurfaceGather::DEFAULT;
+    for (flag, value) in [
+        ("--surface-gather", default.error),
+        ("--gather-below", default.below_share),
+    ] {
+        let text = &help[help.find(&format!("{flag} <")).unwrap()..];
+        let text = &text[..text.find("[default:").unwrap() + 30];
+        assert!(
+            text.contains(&format!("[default: {value}]")),
+            "{flag}: {text}"
+        );
+    }
+}
