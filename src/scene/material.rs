@@ -7,6 +7,12 @@ use crate::color::Rgb;
 /// decimals) before it is refused for creating light.
 pub const ENERGY_TOLERANCE: f32 = 1e-6;
 
+/// Largest colour channel a scene may give (emission, light colours), from a scene file or an
+/// imported one: far beyond any physical radiance in any units, and far enough below
+/// `f32::MAX` that sums of many samples stay finite (`emission = 1e38` rendered infinite
+/// pixels).
+pub const MAX_COLOUR: f32 = 1e18;
+
 /// Index of a material in [`super::Scene::materials`].
 pub type MaterialId = u32;
 

@@ -19,7 +19,7 @@ mod texture;
 pub use camera::{Camera, CameraRays};
 pub use file::{LoadOptions, SceneError, load, load_mesh_file, load_str, load_str_with, load_with};
 pub use light::{Incidence, Light, LightKind};
-pub use material::{ENERGY_TOLERANCE, Lobe, Material, MaterialId};
+pub use material::{ENERGY_TOLERANCE, Lobe, MAX_COLOUR, Material, MaterialId};
 pub use mesh::PolygonMesh;
 pub use object::{AnalyticKind, Object, Shape};
 pub use open::{OpenError, is_mesh_file, open};

@@ -8,10 +8,7 @@ use glam::Vec3;
 use std::ops::Range;
 use toml::Spanned;
 
-/// Largest colour channel a scene file may give (emission, light colours): far beyond any
-/// physical radiance in any units, and far enough below `f32::MAX` that sums of many samples
-/// stay finite (`emission = 1e38` rendered infinite pixels).
-pub(super) const MAX_COLOUR: f32 = 1e18;
+pub(super) use crate::scene::MAX_COLOUR;
 
 /// One table of the scene file: its path (`objects[2]`) and span.
 #[derive(Clone, Debug)]

@@ -1022,6 +1022,10 @@ mod tests {
                 "line 2: rd: rho_d: 1.2 is outside [0, 1]",
             ),
             ("f a b c\n", "line 1: f: vertex \"a\" is not defined"),
+            (
+                "m l =\n ed 1e30\nv a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 0 1 0\nf a b c\n",
+                "line 9: f: material \"l\": ed 1e30 lm/m² is a radiance of",
+            ),
             ("v a =\n p 1 x 3\n", "line 2: p: p y: \"x\" is not a number"),
             ("xf -q 1\n", "line 1: xf: unknown transform argument \"-q\""),
             ("xf\n", "line 1: xf: no transform to end"),

@@ -23,7 +23,7 @@
 use super::mgf_syntax::number;
 use crate::color::{LUMINOUS_EFFICACY, Rgb};
 use crate::scene::builtin::spectrum::spectrum_to_xyz;
-use crate::scene::{ENERGY_TOLERANCE, Material};
+use crate::scene::{ENERGY_TOLERANCE, MAX_COLOUR, Material};
 use glam::{DMat3, DVec3};
 
 /// The visible range MGF spectra are taken over, nanometres.
@@ -272,6 +272,14 @@ pub(super) fn to_strahl(
     let specular = rgb(&m.rs.0, 1.0);
     let transmission = rgb(&m.ts.0, 1.0);
     let emission = rgb(&m.ed, 1.0 / (LUMINOUS_EFFICACY * std::f64::consts::PI));
+    if emission.max_element() > f64::from(MAX_COLOUR) {
+        return Err(format!(
+            "material \"{name}\": ed {:e} lm/m² is a radiance of {:e} W·sr⁻¹·m⁻², beyond \
+             {MAX_COLOUR:e}, where the renderers' 32-bit sums overflow",
+            m.ed.amount,
+            emission.max_element()
+        ));
+    }
     if clipped {
         warn(format!(
             "material \"{name}\": a colour outside the RGB gamut was clipped to it"
