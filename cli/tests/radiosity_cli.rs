@@ -165,6 +165,8 @@ fn the_final_gather_at_the_surfaces_reports_a_standard_error_per_surface() {
     run(&[&solve[..], &[report.to_str().unwrap()]].concat());
     let json = read();
     assert_eq!(json["stats"]["surface_gather_surfaces"], 1);
+    // The solution has the lamp right: the first pass goes on, no second.
+    assert_eq!(json["stats"]["surface_gather_corrected"], false);
     for object in json["objects"].as_array().unwrap() {
         let error = &object["incident_power_standard_error"];
         assert_eq!(object["name"] == "light", !error.is_null(), "{object}");

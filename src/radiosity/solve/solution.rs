@@ -39,10 +39,13 @@ pub struct GatheredIrradiance {
     /// The variance of the estimate of `irradiance`, (W·m⁻²)² (`None` where the solution's
     /// value is kept).
     pub variance: Vec<Option<Rgb64>>,
-    /// Points measured (each with its shadow rays and one gather ray).
+    /// Points measured (each with its shadow rays and one gather ray), both passes.
     pub points: u64,
     /// Reported surfaces gathered.
     pub surfaces: usize,
+    /// Whether the gather measured a second time over the solution corrected by its first
+    /// pass (some surface's solution value was off by more than the gather's error).
+    pub corrected: bool,
     /// Wall-clock seconds of the gather.
     pub seconds: f64,
 }
@@ -151,6 +154,25 @@ impl Solution {
             .collect()
     }
 
+    /// The solution with the display irradiance ([`Self::display_irradiance`]) of the
+    /// elements `measured` gives replaced by it (W·m⁻²) and their radiosity following it
+    /// (`E + ρ·H + τ·H` of the leaf's other side): what a final gather reads once some
+    /// surfaces have been measured anew.
+    pub fn with_irradiance(&self, system: &RadiositySystem, measured: &[Option<Rgb64>]) -> Self {
+        let ambient = self.ambient;
+        let display = |k: usize| measured[k].unwrap_or(self.irradiance[k] + ambient);
+        let mut corrected = self.clone();
+        for (k, m) in measured.iter().enumerate() {
+            let Some(h) = *m else { continue };
+            // The display adds the ambient term to both: take it off here.
+            corrected.irradiance[k] = h - ambient;
+            let other = display(RadiositySystem::other_side(k));
+            corrected.radiosity[k] =
+                system.emission[k] + system.scattered(k, h, other) - system.albedo(k) * ambient;
+        }
+        corrected
+    }
+
     /// What the solution measured on `system`'s scene: its power per reported surface and
     /// its statistics, under the solver's name.
     pub fn measurement(&self, system: &RadiositySystem) -> Measurement {
@@ -192,6 +214,7 @@ impl Solution {
         let mut stats = self.stats(system);
         stats.insert("surface_gather_surfaces", gathered.surfaces);
         stats.insert("surface_gather_points", gathered.points);
+        stats.insert("surface_gather_corrected", gathered.corrected);
         stats.insert("seconds_surface_gather", gathered.seconds);
         stats.seconds += gathered.seconds;
         Measurement {
