@@ -81,8 +81,9 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
     })??;
     let failed = rows.iter().filter(|r| !r.pass).count();
     println!(
-        "{} checks, {} passed, {failed} failed (tolerance {:.0} %, and within {STANDARD_ERRORS} \
-         standard errors for Monte Carlo methods)",
+        "{} checks, {} passed, {failed} failed (tolerance {:.0} %, plus {STANDARD_ERRORS} \
+         standard errors of a recorded reference; and within {STANDARD_ERRORS} standard errors \
+         for Monte Carlo methods)",
         rows.len(),
         rows.len() - failed,
         TOLERANCE * 100.0

@@ -1,12 +1,16 @@
 //! The cases of the suite: scenes with closed-form answers after CIE 171:2006's analytic
 //! test cases, built in photometric units (intensities in cd, luminances in cd/m², white
 //! light, so that every channel carries the same number and lux = 683 × W·m⁻²), each with the
-//! quantities to check and their expected values from [`super::closed_forms`].
+//! quantities to check and their expected values from [`super::closed_forms`]; and one
+//! without a closed form, the built-in Cornell box face by face against the light model's
+//! recording ([`super::recorded`]).
 
 use super::closed_forms::{
     enclosure_mean, isotropic_point, lambertian_point, parallel_rectangle, perpendicular_rectangle,
 };
+use super::recorded;
 use crate::color::{LUMINOUS_EFFICACY, Rgb};
+use crate::scene::builtin::cornell;
 use crate::scene::{Camera, Light, LightKind, Material, Scene, Sensor, Shape};
 use glam::Vec3;
 use std::f64::consts::PI;
@@ -26,6 +30,14 @@ pub enum Quantity {
     /// Illuminance on the reported surface `k` (lux): its incident power over its area, as a
     /// small measuring patch reads it.
     Surface(usize),
+    /// Luminous flux arriving on face `face` of object `object` (lm, both sides), the object
+    /// reported face by face.
+    FaceFlux {
+        /// Object index.
+        object: u32,
+        /// Face of the object.
+        face: u32,
+    },
 }
 
 /// One figure to check.
@@ -40,6 +52,9 @@ pub struct Check {
     /// Expected value of the light straight from the sources, when the check applies to
     /// methods that count no reflection.
     pub expected_direct: Option<f64>,
+    /// Standard error of `expected` where it is a recorded measurement, not a closed form
+    /// (same unit): three of them are added to the tolerance.
+    pub expected_error: Option<f64>,
 }
 
 /// A scene with its checks.
@@ -81,6 +96,7 @@ pub fn all(quick: bool) -> Vec<Case> {
     cases.extend(reflectances.iter().map(|&rho| interreflection_cube(rho)));
     cases.push(furnace_box());
     cases.push(furnace_sphere());
+    cases.push(cornell_faces());
     cases
 }
 
@@ -110,6 +126,7 @@ fn sensor_check(scene: &mut Scene, sensor: Sensor, expected: f64, direct: Option
         quantity: Quantity::Sensor(scene.sensors.len() - 1),
         expected,
         expected_direct: direct,
+        expected_error: None,
     }
 }
 
@@ -267,6 +284,7 @@ fn area_source_in_black_room() -> Case {
         quantity: Quantity::TotalFlux,
         expected: flux,
         expected_direct: None,
+        expected_error: None,
     });
     Case {
         name: "area-source".to_string(),
@@ -505,6 +523,7 @@ fn meters() -> Case {
                 quantity: Quantity::Surface(s.objects.len() - 1),
                 expected: PI * LUMINANCE_CD_M2 * f,
                 expected_direct: None,
+                expected_error: None,
             }
         })
         .collect();
@@ -547,12 +566,14 @@ fn interreflection_cube(rho: f64) -> Case {
                 quantity: Quantity::MeanIlluminance,
                 expected: total,
                 expected_direct: None,
+                expected_error: None,
             },
             Check {
                 label: "mean indirect E".to_string(),
                 quantity: Quantity::MeanIndirect,
                 expected: total - direct,
                 expected_direct: None,
+                expected_error: None,
             },
         ],
         flat_mesh_levels: 3,
@@ -606,6 +627,7 @@ fn furnace_box() -> Case {
         quantity: Quantity::MeanIlluminance,
         expected: b,
         expected_direct: None,
+        expected_error: None,
     });
     Case {
         name: "furnace-box".to_string(),
@@ -637,5 +659,44 @@ fn furnace_sphere() -> Case {
         scene: s,
         checks,
         flat_mesh_levels: 1,
+    }
+}
+
+/// The built-in Cornell box with every face of every object reported on its own (the five
+/// visible faces of each block, the ceiling's four pieces around the lamp), each face's
+/// luminous incident flux against the light model's recording at 2·10⁸ photons, to 1 % plus
+/// three of the recording's standard errors. Its coloured light is not white: the flux is
+/// 683 lm/W times the luminance of the three channels.
+fn cornell_faces() -> Case {
+    let mut scene = cornell::scene().expect("the built-in Cornell box builds");
+    for object in &mut scene.objects {
+        object.per_face = true;
+    }
+    let checks = recorded::cornell_faces()
+        .iter()
+        .filter_map(|f| {
+            let object = scene
+                .objects
+                .iter()
+                .position(|o| o.name.as_deref() == Some(f.object.as_str()))?;
+            Some(Check {
+                label: format!("Φ({}#{})", f.object, f.face),
+                quantity: Quantity::FaceFlux {
+                    object: object as u32,
+                    face: f.face,
+                },
+                expected: LUMINOUS_EFFICACY * f.incident().luminance(),
+                expected_direct: None,
+                expected_error: Some(LUMINOUS_EFFICACY * f.incident_error().luminance()),
+            })
+        })
+        .collect();
+    Case {
+        name: "cornell-faces".to_string(),
+        description: "The Cornell box face by face: each face's incident flux against the \
+                      light model at 2e8 photons",
+        scene,
+        checks,
+        flat_mesh_levels: 3,
     }
 }
