@@ -380,10 +380,52 @@ fn display_renders_light_and_flat_and_smooth_have_equal_means() {
 }
 
 #[test]
+fn the_radiosity_image_keeps_link_segments_only_when_it_draws_them() {
+    use strahl::method::{
+        ImageSize, LinkSelection, Method, RadiosityImageSettings, RadiositySettings, SolverKind,
+        run,
+    };
+    let world = cornell();
+    let image = |links| {
+        let mut radiosity = RadiositySettings::new(SolverKind::Hierarchical);
+        radiosity.hierarchical.error = 1e-3;
+        let settings = RadiosityImageSettings {
+            size: ImageSize {
+                width: Some(24),
+                height: Some(24),
+            },
+            radiosity: radiosity.without_surface_gather(),
+            links,
+            ..RadiosityImageSettings::default()
+        };
+        let outcome = run(
+            &world,
+            &Method::RadiosityImage(settings),
+            &NoProgress,
+            &Cancel::new(),
+        )
+        .unwrap();
+        let segments = outcome.radiosity.unwrap().solution.link_segments.len();
+        (outcome.image.unwrap(), segments)
+    };
+    let (plain, none) = image(LinkSelection::None);
+    let (drawn, all) = image(LinkSelection::All);
+    // Without links shown the solve keeps none (56 bytes a link); shown, they are drawn.
+    assert_eq!(none, 0);
+    assert!(all > 1000, "{all}");
+    let differ = (0..24)
+        .flat_map(|y| (0..24).map(move |x| (x, y)))
+        .filter(|&(x, y)| plain.get(x, y) != drawn.get(x, y))
+        .count();
+    assert!(differ > 24, "{differ} pixels differ");
+}
+
+#[test]
 fn display_draws_the_links_of_one_object() {
     let world = cornell();
     let settings = HierarchicalSettings {
         error: 1e-3,
+        link_segments: true,
         ..HierarchicalSettings::default()
     };
     let (system, solution) = hierarchical(&world, &settings);

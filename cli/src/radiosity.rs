@@ -250,6 +250,8 @@ impl RadiosityArgs {
             max_rounds: self.max_rounds,
             clustering: !self.no_clustering,
             fine_gather: !self.no_fine_gather,
+            // The method keeps them when the links are shown.
+            link_segments: false,
         };
         settings.check().map_err(|e| method_error(e.into()))?;
         Ok(settings)

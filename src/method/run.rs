@@ -266,7 +266,9 @@ fn radiosity_image(
             LinkDisplay::Object(index as u32)
         }
     };
-    let solved = solve_radiosity(world, &s.radiosity, progress, cancel)?;
+    let mut radiosity = s.radiosity;
+    radiosity.hierarchical.link_segments = links != LinkDisplay::None;
+    let solved = solve_radiosity(world, &radiosity, progress, cancel)?;
     let settings = DisplaySettings {
         links,
         width,

@@ -30,6 +30,13 @@ pub use solution::{
     source_power,
 };
 pub use solver_kind::SolverKind;
+
+/// At most this many items of uneven cost go to one task of a parallel loop (rayon's
+/// `with_max_len`). Rayon cuts a slice into a few long runs and cuts a run again only when
+/// another thread steals it; where the costly items bunch together (the sky's light links
+/// before the sun's), one thread finishes early and waits: `canopy:3000`'s light links ran
+/// 1.6 times as fast on two threads as on one, 1.99 times in runs of this many.
+pub const UNEVEN_RUN: usize = 16;
 pub use system::{Couplings, RadiositySystem, SystemOptions};
 
 use super::MeshError;

@@ -93,7 +93,8 @@ pub struct Solution {
     /// Hierarchical solvers: links at the end (0 for flat solvers).
     pub links: usize,
     /// Hierarchical radiosity: the patch links at the end, as segments between the centroids
-    /// of their receiver and emitter (empty for the other solvers).
+    /// of their receiver and emitter, when `HierarchicalSettings::link_segments` asked for
+    /// them (empty otherwise, and for the other solvers).
     pub link_segments: Vec<LinkSegment>,
 }
 

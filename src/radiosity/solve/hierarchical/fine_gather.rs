@@ -23,6 +23,7 @@ use crate::color::Rgb64;
 use crate::radiosity::element::Side;
 use crate::radiosity::form_factor::{point_to_point, points_to_side};
 use crate::radiosity::mesh::{Patch, PatchMesh};
+use crate::radiosity::solve::UNEVEN_RUN;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -61,8 +62,11 @@ impl FineGather {
         links: &[Link],
         form_factors: &AtomicU64,
     ) -> Self {
-        let per_link: Vec<(Vec<(u32, f32)>, u64)> =
-            links.par_iter().map(|l| pieces(mesh, nodes, l)).collect();
+        let per_link: Vec<(Vec<(u32, f32)>, u64)> = links
+            .par_iter()
+            .with_max_len(UNEVEN_RUN)
+            .map(|l| pieces(mesh, nodes, l))
+            .collect();
         let mut offsets = Vec::with_capacity(links.len() + 1);
         let mut all = Vec::new();
         let mut evaluated = 0;

@@ -31,6 +31,7 @@ use crate::radiosity::facing::{Facing, facing};
 use crate::radiosity::form_factor::{FactorList, points_to_side};
 use crate::radiosity::light_links::{SKY_DIRECTIONS_PER_AXIS, light_arrival, shadow_at_edges};
 use crate::radiosity::mesh::{Patch, PatchMesh};
+use crate::radiosity::solve::UNEVEN_RUN;
 use crate::radiosity::visibility::{Blockers, Visibility};
 use crate::scene::LightKind;
 use crate::world::World;
@@ -426,6 +427,7 @@ impl Linker<'_> {
         self.complete_shares(mesh, links);
         let rays: u64 = links
             .par_iter_mut()
+            .with_max_len(UNEVEN_RUN)
             .filter(|l| {
                 l.receiver_shadow_pending
                     && mesh
@@ -466,6 +468,7 @@ impl Linker<'_> {
     fn complete_shares(&self, mesh: &PatchMesh, links: &mut [Link]) {
         let evaluated: u64 = links
             .par_iter_mut()
+            .with_max_len(UNEVEN_RUN)
             .filter(|l| {
                 l.shares.is_none()
                     && mesh

@@ -93,12 +93,16 @@ pub struct HierarchicalSettings {
     /// Once refinement is done, links whose emitter has been split gather from its pieces,
     /// each weighed by its form factor from the receiver (`fine_gather.rs`).
     pub fine_gather: bool,
+    /// Keep every link at the end as a segment between its ends' centres
+    /// (`Solution::link_segments`, for the display of links): 56 bytes a link, off unless
+    /// links are shown.
+    pub link_segments: bool,
 }
 
 impl Default for HierarchicalSettings {
     /// Lischinski's oracle at an error of 10⁻⁴ of the emitted power, minimum area 2·10⁻⁵
     /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds, clustering and the
-    /// final gather over the emitters' pieces on.
+    /// final gather over the emitters' pieces on, no link segments kept.
     fn default() -> Self {
         HierarchicalSettings {
             oracle: Oracle::Lischinski,
@@ -110,6 +114,7 @@ impl Default for HierarchicalSettings {
             max_rounds: 100,
             clustering: true,
             fine_gather: true,
+            link_segments: false,
         }
     }
 }

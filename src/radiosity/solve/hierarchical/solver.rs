@@ -14,6 +14,7 @@ use crate::measure::peak_resident_bytes;
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
+use crate::radiosity::solve::UNEVEN_RUN;
 use crate::radiosity::solve::steady_state::{Bounce, BounceWatch};
 use crate::radiosity::solve::{
     LinkSegment, PhaseTimes, RadiositySystem, RoundStats, Solution, SolveError, SolverKind,
@@ -268,6 +269,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             // Judged and split in parallel: what replaces each link refined, in link order.
             let splits: Vec<Option<Split>> = self.cluster_links[judged..]
                 .par_iter()
+                .with_max_len(UNEVEN_RUN)
                 .map(|l| {
                     let members = tree.members(&l.receiver);
                     let refine = tree.power_bound(mesh, l, b)
@@ -297,6 +299,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             refined += count;
             let new: Vec<ClusterLink> = ends
                 .par_iter()
+                .with_max_len(UNEVEN_RUN)
                 .map(|&(r, e)| tree.link(mesh, r, e))
                 .collect();
             judged = self.cluster_links.len();
@@ -314,6 +317,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let rays: u64 = self
             .cluster_links
             .par_iter_mut()
+            .with_max_len(UNEVEN_RUN)
             .map(|link| {
                 let mut rays = 0;
                 tree.see(mesh, visibility, link, &mut rays);
@@ -341,6 +345,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let (mesh, linker) = (&self.mesh, &self.linker);
         pairs
             .par_iter()
+            .with_max_len(UNEVEN_RUN)
             .filter_map(|&(r, e, prior)| linker.link(mesh, r, e, prior))
             .collect()
     }
@@ -350,6 +355,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let (mesh, linker) = (&self.mesh, &self.linker);
         pairs
             .par_iter()
+            .with_max_len(UNEVEN_RUN)
             .filter_map(|&(r, l)| linker.light_link(mesh, r, l))
             .collect()
     }
@@ -649,32 +655,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         applied
     }
 
-    /// The system on the final leaves (with `visibility`, the estimator the solver used)
-    /// and the solution on it, by solver `kind`.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn into_solution(
-        self,
-        visibility: Arc<Visibility>,
-        kind: SolverKind,
-        options: SystemOptions,
-        seconds: PhaseTimes,
-        convergence: Vec<f64>,
-        converged: bool,
-        interrupted: bool,
-        rounds: Vec<RoundStats>,
-    ) -> Result<(RadiositySystem, Solution), SolveError> {
-        let leaves = self.mesh.leaves();
-        let per_element = |values: &Vec<Rgb64>| -> Vec<Rgb64> {
-            leaves
-                .iter()
-                .flat_map(|&l| Side::BOTH.map(|s| values[node(l, s)]))
-                .collect()
-        };
-        let radiosity = per_element(&self.nodes.radiosity);
-        let irradiance = per_element(&self.nodes.irradiance);
-        let direct_irradiance = per_element(&self.direct_irradiance());
-        let lit = per_element(&self.nodes.lit_total);
-        let links = self.link_count();
+    /// Every link not blocked as a segment between the centres of its ends (for the display
+    /// of links).
+    fn link_segments(&self) -> Vec<LinkSegment> {
         let mut link_segments: Vec<LinkSegment> = self
             .links
             .par_iter()
@@ -706,6 +689,40 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 }
             }));
         }
+        link_segments
+    }
+
+    /// The system on the final leaves (with `visibility`, the estimator the solver used)
+    /// and the solution on it, by solver `kind`.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn into_solution(
+        self,
+        visibility: Arc<Visibility>,
+        kind: SolverKind,
+        options: SystemOptions,
+        seconds: PhaseTimes,
+        convergence: Vec<f64>,
+        converged: bool,
+        interrupted: bool,
+        rounds: Vec<RoundStats>,
+    ) -> Result<(RadiositySystem, Solution), SolveError> {
+        let leaves = self.mesh.leaves();
+        let per_element = |values: &Vec<Rgb64>| -> Vec<Rgb64> {
+            leaves
+                .iter()
+                .flat_map(|&l| Side::BOTH.map(|s| values[node(l, s)]))
+                .collect()
+        };
+        let radiosity = per_element(&self.nodes.radiosity);
+        let irradiance = per_element(&self.nodes.irradiance);
+        let direct_irradiance = per_element(&self.direct_irradiance());
+        let lit = per_element(&self.nodes.lit_total);
+        let links = self.link_count();
+        let link_segments = if self.settings.link_segments {
+            self.link_segments()
+        } else {
+            Vec::new()
+        };
         let form_factors = self.linker.form_factors.load(Ordering::Relaxed);
         let rays = self.linker.rays.load(Ordering::Relaxed);
         let system = RadiositySystem::from_mesh(
