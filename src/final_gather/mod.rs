@@ -14,6 +14,6 @@ mod surfaces;
 
 pub use image::FinalGather;
 pub use surfaces::{
-    DEFAULT_BELOW_SHARE, DEFAULT_ERROR, FIRST_POINTS, MAX_POINTS, MIN_POINTS_PER_SIDE,
-    SurfaceGather, gather_surfaces,
+    DEFAULT_BELOW_SHARE, DEFAULT_ERROR, FIRST_PASS_ERROR, FIRST_POINTS, MAX_POINTS,
+    MIN_POINTS_PER_SIDE, SurfaceGather, gather_surfaces,
 };

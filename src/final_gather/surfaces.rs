@@ -125,7 +125,7 @@ const DIM_CHANNEL: f64 = 0.01;
 /// still above its target share of it (in any channel but the very dim), as many more points
 /// as the error says it needs (2 to 16 times as many, up to [`MAX_POINTS`]), divided between
 /// its two sides by the spread of their points so far (the dark inside of a box gets none)
-/// and over each side by area. In two passes ([`two_passes`]): the first to
+/// and over each side by area. In two passes (see the module): the first to
 /// [`FIRST_PASS_ERROR`] times `gather.error`; when it finds a surface's solution value off,
 /// the second measures anew over the solution corrected by it, else the first goes on to
 /// `gather.error`. The other surfaces' elements keep the solution's values. Element `k`
@@ -185,7 +185,7 @@ pub fn gather_surfaces(
 /// which then weigh two reflections away; and, when none is off, the start of the
 /// measurement that goes on. At twice the error it found more, with no face of the Cornell
 /// box nearer its reference, and cost `blocks:1000`'s gather 24 % more points.
-const FIRST_PASS_ERROR: f64 = 3.0;
+pub const FIRST_PASS_ERROR: f64 = 3.0;
 
 /// A surface's solution value counts as off when the first pass differs from it by more
 /// than this many of its standard errors (and by more than the error asked for).
