@@ -114,8 +114,11 @@ pub fn solve_hierarchical(
     };
     progress.start(u64::from(settings.max_rounds));
     let t = Instant::now();
-    solver.link_root_pairs(cancel);
+    // The lights first: the cluster links are judged by the radiosity the direct light
+    // gives, not by the emission alone (zero on every surface a point light or the sky lights).
     solver.link_root_lights();
+    solver.nodes.push_pull(&solver.mesh);
+    solver.link_root_pairs(cancel);
     let mut round = RoundStats {
         seconds_linking: t.elapsed().as_secs_f64(),
         ..RoundStats::default()
