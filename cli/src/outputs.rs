@@ -1,12 +1,39 @@
 //! The files a run writes, checked before any work: no two outputs of one run name the same
-//! file, and none names the scene being read.
+//! file, none names the scene being read, and each can be written where it is named.
 
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use std::path::{Path, PathBuf};
+use strahl::atomic_file::AtomicFile;
 
 /// Refuses outputs (each with the flag that names it; `None` where not asked for) of which
-/// two name one file, or one names the file `scene` (a scene path or a built-in name).
-pub fn check_distinct(scene: &str, outputs: &[(&str, Option<&Path>)]) -> Result<()> {
+/// two name one file, or one names the file `scene` (a scene path or a built-in name), or one
+/// cannot be written where it is named ([`check_writable`]).
+pub fn check(scene: &str, outputs: &[(&str, Option<&Path>)]) -> Result<()> {
+    check_distinct(scene, outputs)?;
+    for &(flag, path) in outputs {
+        if let Some(path) = path {
+            check_writable(flag, path)?;
+        }
+    }
+    Ok(())
+}
+
+/// Refuses an output that cannot be written where it is named (a missing or read-only
+/// folder, no permission, a folder in its place) by starting and abandoning the writing of
+/// it — the temporary file beside it that `AtomicFile` begins with, removed at once — so that
+/// the run fails before its work, not after. A device or other file that is not a regular
+/// file (`/dev/full`, a pipe) is left to the writing itself: opening it may wait or succeed.
+fn check_writable(flag: &str, path: &Path) -> Result<()> {
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+        return Ok(());
+    }
+    AtomicFile::create(path)
+        .map(drop)
+        .with_context(|| format!("{flag} {}: cannot write there", path.display()))
+}
+
+/// Refuses outputs of which two name one file, or one names the file `scene`.
+fn check_distinct(scene: &str, outputs: &[(&str, Option<&Path>)]) -> Result<()> {
     let input = Path::new(scene);
     let input = input.is_file().then(|| identity(input));
     let named: Vec<(&str, &Path, PathBuf)> = outputs

@@ -96,7 +96,7 @@ impl RenderArgs {
     /// sample counts, an explicit image size and the radiosity options against their limits.
     pub fn check(&self) -> Result<()> {
         image::FileFormat::from_path(&self.output).context("-o")?;
-        super::outputs::check_distinct(
+        super::outputs::check(
             &self.scene,
             &[
                 ("-o", Some(&self.output)),

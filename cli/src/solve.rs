@@ -84,7 +84,7 @@ impl SolveArgs {
         {
             sensors = Some(strahl::report::sensors_csv_path(path));
         }
-        super::outputs::check_distinct(
+        super::outputs::check(
             &self.scene,
             &[
                 ("--report", self.report.as_deref()),

@@ -69,6 +69,7 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
     if !(effort.error.is_finite() && effort.error > 0.0) {
         bail!("--error must be a positive number (got {})", effort.error);
     }
+    super::outputs::check("", &[("--report", args.report.as_deref())])?;
     println!(
         "{:16} {:18} {:21} {:>12} {:>12} {:>9} {:>9} {:>5} {:>7}",
         "case", "quantity", "method", "expected", "computed", "error", "±3σ", "pass", "time"

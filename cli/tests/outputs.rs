@@ -92,3 +92,50 @@ fn one_file_named_by_two_outputs_is_refused_before_any_work() {
     assert_eq!(std::fs::read(&image).unwrap(), b"the last run's");
     std::fs::remove_dir_all(image.parent().unwrap()).unwrap();
 }
+
+#[cfg(target_os = "linux")]
+#[test]
+fn an_output_that_cannot_be_written_is_refused_before_any_work() {
+    use std::os::unix::fs::PermissionsExt;
+    // A folder that does not exist, and a read-only one holding the last run's output; the
+    // superuser writes into a read-only folder all the same, so there a folder of sysfs,
+    // which takes no new file from anyone, stands in for it.
+    let report = common::temp("outputs-read-only", "report.json");
+    let folder = report.parent().unwrap().to_path_buf();
+    std::fs::write(&report, "the last run's").unwrap();
+    std::fs::set_permissions(&folder, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let probe = folder.join("probe");
+    let read_only = if std::fs::write(&probe, "").is_ok() {
+        std::fs::remove_file(&probe).unwrap();
+        std::path::PathBuf::from("/sys/strahl-read-only-test.json")
+    } else {
+        report.clone()
+    };
+    let missing = folder.join("no such folder").join("image.png");
+    let runs = [
+        (
+            "--report",
+            read_only.clone(),
+            strahl(&[
+                "solve",
+                "blocks:1000",
+                "--solver",
+                "hierarchical",
+                "--report",
+                read_only.to_str().unwrap(),
+            ]),
+        ),
+        ("-o", missing.clone(), small_render(&missing, &["-q"])),
+    ];
+    for (flag, path, out) in runs {
+        let message = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{message}");
+        // The check's own words: the run stopped before its work (a solve of blocks:1000
+        // would take a minute), naming the flag and the file.
+        let expected = format!("{flag} {}: cannot write there", path.display());
+        assert!(message.contains(&expected), "{message}");
+    }
+    assert_eq!(std::fs::read(&report).unwrap(), b"the last run's");
+    std::fs::set_permissions(&folder, std::fs::Permissions::from_mode(0o755)).unwrap();
+    std::fs::remove_dir_all(folder).unwrap();
+}
