@@ -137,18 +137,19 @@ pub fn run_suite(
 /// Whether `check` applies to `method`: sensors to every method (the direct-light ray
 /// tracer only where the case gives the direct light), surface totals to the methods that
 /// report surfaces, the indirect mean to the light model (the one that tells it apart), a
-/// measuring patch to the radiosity solvers (the flat ones hold each surface to its own
-/// error; both hierarchical ones hold every measuring patch to 1 % of its own light,
-/// `importance.rs`, `shooting.rs`). The light model reads a point through a sensor: a
-/// 2 × 2 cm patch catches a few of millions of photons.
+/// measuring patch and a face held to the light model's recording to the radiosity solvers
+/// (the flat ones hold each surface to its own error; both hierarchical ones hold every
+/// measuring patch to 1 % of its own light, `importance.rs`, `shooting.rs`). The light model
+/// reads a point through a sensor: a 2 × 2 cm patch catches a few of millions of photons;
+/// and the recording is its own.
 fn applies(check: &Check, method: MethodKind) -> bool {
     match check.quantity {
         Quantity::Sensor(_) => method.counts_reflections() || check.expected_direct.is_some(),
         Quantity::TotalFlux | Quantity::MeanIlluminance => method.reports_surfaces(),
         Quantity::MeanIndirect => method == MethodKind::LightTrace,
-        Quantity::Surface(_) => method.reports_surfaces() && !method.is_monte_carlo(),
-        // The reference is the light model's: the solvers that report surfaces are held to it.
-        Quantity::FaceFlux { .. } => method.reports_surfaces() && !method.is_monte_carlo(),
+        Quantity::Surface(_) | Quantity::FaceFlux { .. } => {
+            method.reports_surfaces() && !method.is_monte_carlo()
+        }
     }
 }
 

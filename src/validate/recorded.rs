@@ -1,6 +1,6 @@
 //! The one reference of the suite that is not a closed form: the built-in Cornell box with
 //! every face of every object reported on its own, measured by the light model at 2·10⁸
-//! photons (each face's standard error 0.02–0.2 % of its light), recorded in
+//! photons (each face's standard error 0.01–0.2 % of its light), recorded in
 //! `cornell_per_face_light_model.json` beside this file with the commit that made it and how
 //! to make it again. No formula gives the light on a block face in the box's shadow; an
 //! independent method at many times the work does, and `tests/per_surface.rs` checks that
