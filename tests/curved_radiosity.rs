@@ -239,7 +239,7 @@ fn check_solution(world: &Arc<World>, solver: SolverKind, coarse: Coarse, label:
         "{label}: exported vertex colour outside the leaves' range"
     );
     for extension in ["glb", "ply"] {
-        let path = std::env::temp_dir().join(format!(
+        let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
             "strahl-curved-{}-{}.{extension}",
             std::process::id(),
             label.replace([' ', ',', ':'], "-")

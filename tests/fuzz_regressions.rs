@@ -8,7 +8,8 @@ use strahl::scene::{ColorSpace, MAX_TEXELS, Texture, import, load_str};
 
 /// This test's scratch folder.
 fn scratch() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("strahl-fuzz-regressions-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-fuzz-regressions-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }

@@ -475,7 +475,8 @@ fn exports_parse_as_gltf_and_ply() {
     let world = furnace();
     let system = RadiositySystem::new(&world, options(1)).unwrap();
     let solution = matrix(&system, Iteration::GaussSeidel, 1e-6);
-    let dir = std::env::temp_dir().join(format!("strahl-radiosity-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-radiosity-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let tone = ToneMapping {
         operator: ToneMap::Auto,

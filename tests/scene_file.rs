@@ -538,7 +538,8 @@ fn broken_gltf(name: &str, edit: impl FnOnce(&mut serde_json::Value)) -> String 
     let text = std::fs::read_to_string(data_dir().join("tiny.gltf")).unwrap();
     let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
     edit(&mut json);
-    let dir = std::env::temp_dir().join(format!("strahl-gltf-{}-{name}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-gltf-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("broken.gltf"), json.to_string()).unwrap();
     let scene = "[[objects]]\ntype = \"mesh\"\nfile = \"broken.gltf\"\n";

@@ -247,7 +247,8 @@ fn textured_surfaces_export_their_texture_and_a_lightmap_that_shows_the_solution
     let settings = HierarchicalSettings::default();
     let (system, solution) =
         solve_hierarchical(&world, SystemOptions::default(), &settings, &none, &cancel).unwrap();
-    let dir = std::env::temp_dir().join(format!("strahl-lightmap-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-lightmap-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("cornell-textured.glb");
     // Linear tone mapping at exposure 0: the lightmap holds the radiance itself (sRGB-coded).

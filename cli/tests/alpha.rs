@@ -100,7 +100,8 @@ fn scene_text(plate: Plate, view: View) -> String {
 /// A folder holding both scenes for `view` and the mask: an 8 × 8 grey image, black (cut
 /// away) in its middle 4 × 4.
 fn scenes(view: View, tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("strahl-alpha-{}-{tag}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-alpha-{}-{tag}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut mask = String::from("P2\n8 8\n255\n");
     for y in 0..8 {

@@ -62,7 +62,7 @@ fn comparable_bytes(path: &Path) -> Vec<u8> {
 }
 
 fn folder(case: &str) -> PathBuf {
-    let dir = std::env::temp_dir()
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("strahl-fingerprints-{}", std::process::id()))
         .join(case);
     std::fs::create_dir_all(&dir).unwrap();

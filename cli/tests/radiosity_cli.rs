@@ -15,7 +15,8 @@ fn run(args: &[&str]) {
 
 #[test]
 fn command_line_solves_reports_exports_and_renders() {
-    let dir = std::env::temp_dir().join(format!("strahl-radiosity-cli-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-radiosity-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let report = dir.join("cornell.json");
     let export = dir.join("cornell.glb");
@@ -123,7 +124,8 @@ fn command_line_solves_reports_exports_and_renders() {
 
 #[test]
 fn the_final_gather_at_the_surfaces_reports_a_standard_error_per_surface() {
-    let dir = std::env::temp_dir().join(format!("strahl-surface-gather-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-surface-gather-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let report = dir.join("cornell.json");
     run(&[

@@ -34,10 +34,12 @@ pub fn small_render(image: &Path, extra: &[&str]) -> Output {
     strahl(&args)
 }
 
-/// A path named `name` in this test process's scratch folder `strahl-{suite}-{pid}` under the
-/// system's temporary folder (created if missing).
+/// A path named `name` in this test process's scratch folder `strahl-{suite}-{pid}` under
+/// cargo's folder for test data (`target/tmp`, gone with `cargo clean`; created if missing),
+/// so that test runs leave nothing in the system's temporary folder.
 pub fn temp(suite: &str, name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("strahl-{suite}-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-{suite}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name)
 }
