@@ -111,10 +111,12 @@ fn surface_error_brings_every_face_of_the_cornell_box_to_the_light_model() {
         Method::Radiosity(settings)
     };
     // The solution alone: whole objects within 1.3 % (tests/radiosity_vs_light_model.rs),
-    // single faces up to 4.8 % off (measured: short block face 3, red +4.8 %; RMS 1.62 %;
-    // before the final gather over the emitters' pieces +8.3 % and 2.66 %).
+    // single faces up to 5.5 % off (measured: short block face 3, red +5.5 %; RMS 1.59 %;
+    // +4.8 % and 1.62 % while partial visibility was judged by the measuring rays, which
+    // refined more links near the blocks; before the final gather over the emitters' pieces
+    // +8.3 % and 2.66 %).
     let (worst, rms, name) = deviation(&faces(&world, &hierarchical(0.0)), &reference);
-    assert!(worst < 0.05 && rms < 0.018, "{name}, RMS {rms}");
+    assert!(worst < 0.06 && rms < 0.018, "{name}, RMS {rms}");
     assert!(
         worst > 0.03,
         "the defaults are better than recorded: {name}"

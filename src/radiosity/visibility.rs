@@ -48,6 +48,13 @@ const ADAPTIVE_MIN_PER_AXIS: u32 = 4;
 const ADAPTIVE_MAX_PER_AXIS: u32 = 8;
 /// Mixed into a pair's generator seed with the grid size of a [`Visibility::look`].
 const LOOK_KEY: u64 = 0xD6E8_FEB8_6659_FD93;
+/// Mixed into a pair's generator seed for the judging rays of [`Visibility::from_points`].
+const JUDGE_KEY: u64 = 0x5A17_3C4E_91B2_D06F;
+/// Judging rays per point of [`Visibility::from_points`]. Measured on the Cornell box
+/// (hierarchical radiosity, one thread): 1 ray 7 % more rays in all and 9 % fewer links than
+/// judging by the measuring rays, 2 rays 11 % more and 8 % fewer, 4 rays 27 % more and 7 %
+/// fewer; the faces' errors the same within their spread over seeds.
+const JUDGE_RAYS: u32 = 2;
 /// Where the squared distances from a point to a patch's corners differ by more than this
 /// factor, [`Visibility::from_points`] spreads its rays by solid angle rather than by area.
 const SKEW: f64 = 4.0;
@@ -112,6 +119,9 @@ pub struct PointShares {
     pub rays: u64,
     /// Whether any ray arrived unblocked.
     pub any_unblocked: bool,
+    /// Whether any of the judging rays (asked for by `judge`: `JUDGE_RAYS` more per point,
+    /// from a stream of their own) was blocked; false when none was asked for.
+    pub judged_blocked: bool,
     /// What may block the rays of the pairs of the patches' children.
     pub blockers: Blockers,
 }
@@ -509,13 +519,17 @@ impl Visibility {
     /// nothing can block the pair (every share is 1). The occluders are searched for among
     /// `inherited` when known (those of a pair of the patches' ancestors), else in the whole
     /// scene; what was found comes back for the pairs of the patches' children.
+    /// With `judge`, a few more rays from every point, from a stream of their own, say whether
+    /// the pair is partly hidden ([`PointShares::judged_blocked`]): a decision taken on the
+    /// rays that measure the shares would keep the pairs whose rays happened to miss an
+    /// occluder and refine the others, and shadows would come out too small.
     /// Deterministic for a fixed seed.
     pub fn from_points(
         &self,
         mesh: &PatchMesh,
         (a, points, normal): (PatchId, &[DVec3], DVec3),
         b: PatchId,
-        per_point: u32,
+        (per_point, judge): (u32, bool),
         inherited: Blockers,
     ) -> Option<PointShares> {
         let (p, q) = (mesh.patch(a), mesh.patch(b));
@@ -560,7 +574,20 @@ impl Visibility {
         if cast(PROBE_PER_AXIS, &mut sums) && per_point > probe {
             cast((per_point as f64).sqrt().ceil() as u32, &mut sums);
         }
-        let rays = sums.iter().map(|s| u64::from(s.rays)).sum();
+        let mut rays = sums.iter().map(|s| u64::from(s.rays)).sum();
+        let judged_blocked = judge && {
+            let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, a, b) ^ JUDGE_KEY);
+            (0..JUDGE_RAYS).any(|_| {
+                points.iter().any(|&x| {
+                    self.targets(q, x, normal, 1, &mut rng)
+                        .into_iter()
+                        .any(|(y, _)| {
+                            rays += 1;
+                            self.blocked(x, p.normal, y, q.normal, &occluders)
+                        })
+                })
+            })
+        };
         let shares = sums
             .iter()
             .map(|sum| {
@@ -578,6 +605,7 @@ impl Visibility {
             shares,
             rays,
             any_unblocked,
+            judged_blocked,
             blockers,
         })
     }
@@ -972,7 +1000,7 @@ mod tests {
             };
             let vis = Visibility::new(&world, options, 16).unwrap();
             let found = vis
-                .from_points(&mesh, (0, &[x], DVec3::Z), 1, 4, Blockers::UNKNOWN)
+                .from_points(&mesh, (0, &[x], DVec3::Z), 1, (4, false), Blockers::UNKNOWN)
                 .unwrap();
             sum += found.shares[0];
         }
@@ -998,7 +1026,7 @@ mod tests {
                 &mesh,
                 (0, &points_of(&mesh, 0), DVec3::Z),
                 1,
-                16,
+                (16, false),
                 Blockers::UNKNOWN,
             )
             .unwrap();
@@ -1010,9 +1038,20 @@ mod tests {
         let mut unoccluded = 0;
         for child in mesh.subdivide(0) {
             let points = points_of(&mesh, child);
-            let alone =
-                vis.from_points(&mesh, (child, &points, DVec3::Z), 1, 16, Blockers::UNKNOWN);
-            let handed = vis.from_points(&mesh, (child, &points, DVec3::Z), 1, 16, parent.blockers);
+            let alone = vis.from_points(
+                &mesh,
+                (child, &points, DVec3::Z),
+                1,
+                (16, false),
+                Blockers::UNKNOWN,
+            );
+            let handed = vis.from_points(
+                &mesh,
+                (child, &points, DVec3::Z),
+                1,
+                (16, false),
+                parent.blockers,
+            );
             assert_eq!(
                 alone.as_ref().map(|a| &a.shares),
                 handed.as_ref().map(|h| &h.shares)

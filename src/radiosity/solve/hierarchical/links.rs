@@ -328,11 +328,16 @@ impl Linker<'_> {
                 mesh,
                 (from_patch, points, from_normal),
                 to_patch,
-                RAYS_PER_POINT,
+                (RAYS_PER_POINT, true),
                 inherited,
             )
         };
         let blockers = seen.as_ref().map_or(Blockers::UNKNOWN, |s| s.blockers);
+        // Partly hidden or not is judged by rays of their own, not by those that measure the
+        // visible share: judged by those, the pairs whose rays happened to miss an occluder
+        // would be kept whole and the others refined, and shadows would come out too small
+        // (docs/VALIDATION.md, *Per surface*).
+        let partial = seen.as_ref().is_some_and(|s| s.judged_blocked);
         self.form_factors.fetch_add(
             (range_points.len() + points.len()) as u64,
             Ordering::Relaxed,
@@ -392,7 +397,6 @@ impl Linker<'_> {
         };
         let receiver_visible = |i: usize| if scale == 1.0 { visible_at(i) } else { 1.0 };
         let receiver_weights = quarter_values(r, |i| factors[i] * receiver_visible(i));
-        let partial = visible < 1.0 || (0..points.len()).any(|i| visible_at(i) < 1.0);
         // Integrated over the emitter, a partly occluded pair says nothing of where on the
         // receiver the shadow falls; a penumbra on a coarse receiver would be spread evenly
         // over its children (measured: floor leaves beside the Cornell blocks 2–3× too
@@ -447,7 +451,7 @@ impl Linker<'_> {
                     mesh,
                     (rp, points, rs.normal(receiver)),
                     ep,
-                    RAYS_PER_POINT,
+                    (RAYS_PER_POINT, false),
                     l.blockers,
                 ) else {
                     return 0;
