@@ -700,6 +700,33 @@ fn hierarchical_closed_box_absorbs_what_it_emits() {
     }
 }
 
+#[test]
+fn a_closed_box_with_a_plate_in_it_absorbs_what_it_emits() {
+    // A 0.2 m plate at half height under the emitting ceiling, everything reflecting 0.95:
+    // light bounces twenty times on average, so a form-factor sum a few 10⁻⁴ off shows as
+    // per cent. Whether a link is partly hidden is judged by rays other than those that
+    // measure its visible share; judged by the same rays, every shadow came out too small
+    // (a link whose rays missed the plate was kept whole, one whose rays met it refined) and
+    // the box absorbed 0.90 % more than it emitted. Measured now: +0.07 %.
+    let mut scene = Scene::empty("plate box");
+    let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(0.95)));
+    let glow = scene.add_material(Material::emitter("glow", Rgb::splat(0.95), Rgb::splat(L)));
+    for (k, shape) in unit_cube_faces().into_iter().enumerate() {
+        scene.add_object(&format!("face{k}"), shape, if k == 1 { glow } else { grey });
+    }
+    let plate = Shape::Parallelogram {
+        origin: Vec3::new(0.4, 0.5, 0.4),
+        edge_u: Vec3::X * 0.2,
+        edge_v: Vec3::Z * 0.2,
+    };
+    scene.add_object("plate", plate, grey);
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let (system, solution) = hierarchical(&world, &HierarchicalSettings::default());
+    let t = Report::new("plate box", &solution.measurement(&system)).totals;
+    let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
+    assert!((a / e - 1.0).abs() < 0.003, "absorbed {a} of {e}");
+}
+
 /// A black unit floor under a black plate a centimetre above it that leaves only the strip
 /// `x > 0.9` open, lit by a large emitter overhead that ends at `x = 1`: every Gauss point
 /// of the floor is in shadow, its edge is not.

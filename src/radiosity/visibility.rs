@@ -520,7 +520,7 @@ impl Visibility {
     /// `inherited` when known (those of a pair of the patches' ancestors), else in the whole
     /// scene; what was found comes back for the pairs of the patches' children.
     /// With `judge`, a few more rays from every point, from a stream of their own, say whether
-    /// the pair is partly hidden ([`PointShares::judged_blocked`]): a decision taken on the
+    /// the pair is partly hidden (`judged_blocked`): a decision taken on the
     /// rays that measure the shares would keep the pairs whose rays happened to miss an
     /// occluder and refine the others, and shadows would come out too small.
     /// Deterministic for a fixed seed.
