@@ -655,25 +655,39 @@ fn hierarchical_results_do_not_depend_on_the_thread_count() {
     assert_eq!(run(1), run(3));
 }
 
-/// The unit cube with one emitting face (a small lamp in its middle when `lamp`), inwards.
-fn closed_box(lamp: bool) -> Arc<World> {
+/// What the closed box of [`closed_box`] holds.
+#[derive(Clone, Copy, PartialEq)]
+enum Inside {
+    /// Nothing: one of its faces emits.
+    Nothing,
+    /// A small lamp just under the ceiling, the only emitter.
+    Lamp,
+    /// A 0.2 m plate at half height under the emitting face.
+    Plate,
+}
+
+/// The unit cube, inwards, reflecting `rho`, with `inside` in it.
+fn closed_box(rho: f32, inside: Inside) -> Arc<World> {
     let mut scene = Scene::empty("box");
-    let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(RHO)));
-    let glow = scene.add_material(Material::emitter("glow", Rgb::splat(RHO), Rgb::splat(L)));
+    let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(rho)));
+    let glow = scene.add_material(Material::emitter("glow", Rgb::splat(rho), Rgb::splat(L)));
     for (k, shape) in unit_cube_faces().into_iter().enumerate() {
-        let m = if k == 1 && !lamp { glow } else { grey };
+        let m = if k == 1 && inside != Inside::Lamp {
+            glow
+        } else {
+            grey
+        };
         scene.add_object(&format!("face{k}"), shape, m);
     }
-    if lamp {
-        scene.add_object(
-            "lamp",
-            Shape::Parallelogram {
-                origin: Vec3::new(0.4, 0.999, 0.4),
-                edge_u: Vec3::X * 0.2,
-                edge_v: Vec3::Z * 0.2,
-            },
-            glow,
-        );
+    let square = |y: f32| Shape::Parallelogram {
+        origin: Vec3::new(0.4, y, 0.4),
+        edge_u: Vec3::X * 0.2,
+        edge_v: Vec3::Z * 0.2,
+    };
+    match inside {
+        Inside::Nothing => {}
+        Inside::Lamp => scene.add_object("lamp", square(0.999), glow),
+        Inside::Plate => scene.add_object("plate", square(0.5), grey),
     }
     Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
 }
@@ -684,7 +698,7 @@ fn hierarchical_closed_box_absorbs_what_it_emits() {
     // by one whole face or by a small lamp just under the ceiling (whose back sees the
     // ceiling at a millimetre: the case a form-factor-only error bound misses).
     for lamp in [false, true] {
-        let world = closed_box(lamp);
+        let world = closed_box(RHO, if lamp { Inside::Lamp } else { Inside::Nothing });
         let (system, solution) = hierarchical(&world, &HierarchicalSettings::default());
         let report = Report::new("box", &solution.measurement(&system));
         let t = &report.totals;
@@ -708,19 +722,7 @@ fn a_closed_box_with_a_plate_in_it_absorbs_what_it_emits() {
     // measure its visible share; judged by the same rays, every shadow came out too small
     // (a link whose rays missed the plate was kept whole, one whose rays met it refined) and
     // the box absorbed 0.90 % more than it emitted. Measured now: +0.07 %.
-    let mut scene = Scene::empty("plate box");
-    let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(0.95)));
-    let glow = scene.add_material(Material::emitter("glow", Rgb::splat(0.95), Rgb::splat(L)));
-    for (k, shape) in unit_cube_faces().into_iter().enumerate() {
-        scene.add_object(&format!("face{k}"), shape, if k == 1 { glow } else { grey });
-    }
-    let plate = Shape::Parallelogram {
-        origin: Vec3::new(0.4, 0.5, 0.4),
-        edge_u: Vec3::X * 0.2,
-        edge_v: Vec3::Z * 0.2,
-    };
-    scene.add_object("plate", plate, grey);
-    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let world = closed_box(0.95, Inside::Plate);
     let (system, solution) = hierarchical(&world, &HierarchicalSettings::default());
     let t = Report::new("plate box", &solution.measurement(&system)).totals;
     let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
