@@ -136,10 +136,10 @@ fn every_face_of_the_cornell_box_at_the_defaults() {
     // Both hierarchical solvers at their defaults: the faces with little light, most of it
     // reflected to them, measured anew by the final gather at the surfaces to a standard error
     // of 1 % of their light, the others the solution's. Measured over seeds 0–3 (worst face,
-    // RMS): hierarchical 0.54–0.89 %, 0.27–0.35 % (seed 0: tall block face 4, red, −0.65 %);
-    // hierarchical shooting
-    // 0.77–0.88 %, 0.32–0.49 % (its solution's tall block face 1 is +13 %, which the gather's
-    // second pass takes out; the ceiling's largest face, left to the solution, −0.5 … −0.9 %);
+    // RMS): hierarchical 0.51–0.97 %, 0.22–0.33 % (seed 0: ceiling face 0, blue, −0.51 %);
+    // hierarchical shooting 0.81–1.08 %, 0.31–0.40 % (seed 0: tall block face 1, green,
+    // −0.94 %; seed 3 over 1 %; its solution's tall block face 1 is far off, which the
+    // gather's second pass takes out);
     // progressive refinement on its default mesh worst 0.75 % (the matrix solver the same).
     let world = cornell_per_face();
     let reference = reference();
