@@ -30,13 +30,17 @@ fi
 cd "$(dirname "$0")/../fuzz"
 failed=0
 for target in "${targets[@]}"; do
-    mkdir -p "work/$target" "corpus/$target"
+    # The targets that read files write them to a scratch folder under the system's
+    # temporary folder: here that is fuzz/work/tmp-TARGET, removed when the target ends.
+    scratch="$PWD/work/tmp-$target"
+    mkdir -p "work/$target" "corpus/$target" "$scratch"
     echo "== $target: $seconds s"
-    if ! cargo +nightly fuzz run "$target" "work/$target" "corpus/$target" -- \
+    if ! TMPDIR="$scratch" cargo +nightly fuzz run "$target" "work/$target" "corpus/$target" -- \
         -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
         -print_final_stats=1; then
         echo "== $target: FAILED (input in fuzz/artifacts/$target)" >&2
         failed=1
     fi
+    rm -rf "$scratch"
 done
 exit $failed
