@@ -1008,6 +1008,34 @@ mod tests {
     }
 
     #[test]
+    fn the_judging_rays_come_apart_from_the_measuring_ones() {
+        // A blocker across the middle between the squares: the judging rays see it, and
+        // asking for them leaves the measuring rays, and so the shares, as they were.
+        let scene = pair_scene(Some((0.3, 0.7)), 1.0);
+        let mesh = PatchMesh::from_scene(&scene, &MeshOptions::default()).unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+        let vis = Visibility::new(&world, fixed(16, true), 16).unwrap();
+        let points = mesh.patch(0).gauss_points().to_vec();
+        let look = |judge: bool| {
+            vis.from_points(
+                &mesh,
+                (0, &points, DVec3::Z),
+                1,
+                (16, judge),
+                Blockers::UNKNOWN,
+            )
+            .unwrap()
+        };
+        let (judged, plain) = (look(true), look(false));
+        assert!(judged.judged_blocked);
+        assert!(!plain.judged_blocked);
+        assert_eq!(judged.shares, plain.shares);
+        assert!(plain.shares.iter().any(|&v| v < 1.0));
+        let judging = judged.rays - plain.rays;
+        assert!((1..=u64::from(JUDGE_RAYS) * points.len() as u64).contains(&judging));
+    }
+
+    #[test]
     fn children_looking_through_their_parents_blockers_see_what_they_would_see_alone() {
         // The blocker covers x ∈ [0.8, 1.2] half-way between the squares; the bottom
         // square's children look at the top one through the blockers the whole pair handed
