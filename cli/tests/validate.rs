@@ -79,10 +79,7 @@ fn unknown_methods_are_refused() {
 fn the_quick_suite_passes_with_the_final_gather_at_the_surfaces() {
     // Every radiosity solver's report measured anew at the reported surfaces: the furnaces,
     // the translucent sheet, the measuring patches and the rest within 1 %.
-    let report = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
-        "strahl-validate-gather-{}.json",
-        std::process::id()
-    ));
+    let report = temp("validate", "gather.json");
     let run = strahl(&[
         "validate",
         "--quick",

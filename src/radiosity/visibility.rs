@@ -576,17 +576,10 @@ impl Visibility {
         }
         let mut rays = sums.iter().map(|s| u64::from(s.rays)).sum();
         let judged_blocked = judge && {
-            let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, a, b) ^ JUDGE_KEY);
-            (0..JUDGE_RAYS).any(|_| {
-                points.iter().any(|&x| {
-                    self.targets(q, x, normal, 1, &mut rng)
-                        .into_iter()
-                        .any(|(y, _)| {
-                            rays += 1;
-                            self.blocked(x, p.normal, y, q.normal, &occluders)
-                        })
-                })
-            })
+            let rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, a, b) ^ JUDGE_KEY);
+            let (blocked, judging) = self.judge(p, q, (points, normal), &occluders, rng);
+            rays += judging;
+            blocked
         };
         let shares = sums
             .iter()
@@ -608,6 +601,31 @@ impl Visibility {
             judged_blocked,
             blockers,
         })
+    }
+
+    /// Whether any of [`JUDGE_RAYS`] rays from each of `points` (on `p`, receiving side
+    /// `normal`) to a jittered point of `q` drawn from `rng` is blocked, and the rays cast:
+    /// rounds of one ray per point, stopping at the first blocked.
+    fn judge(
+        &self,
+        p: &Patch,
+        q: &Patch,
+        (points, normal): (&[DVec3], DVec3),
+        occluders: &Occluders,
+        mut rng: Pcg64Mcg,
+    ) -> (bool, u64) {
+        let mut rays = 0;
+        for _ in 0..JUDGE_RAYS {
+            for &x in points {
+                for (y, _) in self.targets(q, x, normal, 1, &mut rng) {
+                    rays += 1;
+                    if self.blocked(x, p.normal, y, q.normal, occluders) {
+                        return (true, rays);
+                    }
+                }
+            }
+        }
+        (false, rays)
     }
 
     /// The visible share of patch `q` seen from the free point `x` (a sensor: unit normal
