@@ -8,7 +8,7 @@
 #   folder, then runs RenderPark and strahl alternately, RUNS times each (default 5), flipping
 #   the order on even runs, after one untimed run of each:
 #     RPK_BINARY cornell.mgf -radiance-method Galerkin -raytracing-method none
-#         -gr-link-error-threshold 1e-5 -iterations 20 -timings
+#         -gr-link-error-threshold RPK_ERROR -iterations 20 -timings   (RPK_ERROR: 1e-5)
 #     strahl solve cornell --solver hierarchical --threads 1 --report run.json -q
 #   RenderPark's Galerkin radiosity runs hierarchical, clustered, Jacobi iterations, one thread
 #   (it has no threads); -timings only makes it print its own time. Each whole process is
@@ -37,19 +37,30 @@
 #   (`strahl solve cornell --solver light-trace --photons PHOTONS`, all cores, run once
 #   unless REFERENCE names such a report), and both radiosity results' deviation from it.
 #
+#   Per face (with the per-object table): the same elements of RenderPark matched to each MGF
+#   face (the faces of an object in the order strahl numbers them, checked by their areas);
+#   strahl once more, untimed, with the same options and `--per-face` (every face reported on
+#   its own, its final gather then held to each face); the reference is the light model at
+#   2e8 photons recorded per face in src/validate/cornell_per_face_light_model.json (unless
+#   FACE_REFERENCE names another such file), with its standard error per face. The lamp's
+#   face is left out (see above). Printed: each face's Y of the reflected radiosity, both
+#   programs' deviations, and their worst and RMS deviation over the faces.
+#
 # How to run (from anywhere; needs a release build of strahl and a RenderPark build):
 #   cargo build --release
 #   scripts/compare-renderpark.sh /path/to/rpk [RUNS]
 #   RenderPark: the C++ rewrite github.com/OscarChavarro/rpkCpp (measured at 37e5ff4), built with
 #   cmake in Release (Debian: cmake build-essential freeglut3-dev libglu1-mesa-dev).
 #   Environment: STRAHL (default: target/release/strahl of this repository), OBJECTS=0 (skip the
-#   per-object table), REFERENCE (a light-trace JSON report of the `cornell` scene to use as the
-#   reference instead of computing one), PHOTONS (reference photons, default 20000000).
+#   per-object and per-face tables), RPK_ERROR (RenderPark's link error threshold, default
+#   1e-5, its own default), FACE_REFERENCE (see above), REFERENCE (a light-trace JSON
+#   report of the `cornell` scene to use as the per-object reference instead of computing one),
+#   PHOTONS (its photons, default 20000000).
 #   Needs bash, python3 (standard library only) and standard tools.
 set -euo pipefail
 
 usage() {
-    echo "usage: $0 RPK_BINARY [RUNS]   (env: STRAHL, OBJECTS=0, REFERENCE, PHOTONS)" >&2
+    echo "usage: $0 RPK_BINARY [RUNS]   (env: STRAHL, OBJECTS=0, RPK_ERROR, REFERENCE, FACE_REFERENCE, PHOTONS)" >&2
     exit 2
 }
 [ $# -ge 1 ] && [ $# -le 2 ] || usage
@@ -57,6 +68,7 @@ rpk=$1
 runs=${2:-5}
 objects=${OBJECTS:-1}
 photons=${PHOTONS:-20000000}
+rpk_error=${RPK_ERROR:-1e-5}
 case $runs in '' | *[!0-9]* | 0) usage ;; esac
 [ -x "$rpk" ] || { echo "$0: $rpk is not an executable" >&2; exit 1; }
 
@@ -81,7 +93,7 @@ rpk=$tmp/rpk
 mgf=$tmp/cornell.mgf
 python3 "$repo/scripts/cornell-mgf.py" "$mgf"
 
-rpk_args=(-radiance-method Galerkin -raytracing-method none -gr-link-error-threshold 1e-5
+rpk_args=(-radiance-method Galerkin -raytracing-method none -gr-link-error-threshold "$rpk_error"
     -iterations 20 -timings)
 strahl_args=(solve cornell --solver hierarchical --threads 1 -q)
 
@@ -205,6 +217,10 @@ cd "$tmp"
 lwa=$(sed -n 's/.*adaptationLuminance) *\.*: *\([-0-9.eE+]*\) cd.*/\1/p' export.out | tail -n 1)
 [ -n "$lwa" ] || { echo "$0: no adaptation luminance in RenderPark's output" >&2; exit 1; }
 
+echo "per-face run of strahl (untimed) ..." >&2
+"$strahl" "${strahl_args[@]}" --per-face --report "$tmp/faces.json"
+face_reference=${FACE_REFERENCE:-$repo/src/validate/cornell_per_face_light_model.json}
+
 reference=${REFERENCE:-}
 if [ -z "$reference" ]; then
     echo "reference: strahl light model, $photons photons, all cores ..." >&2
@@ -216,10 +232,10 @@ else
 fi
 
 python3 - "$repo/scripts/cornell-mgf.py" "$tmp/solution.wrl" "$lwa" "$tmp/hierarchical.json" \
-    "$reference" "$reference_what" "$tmp/export.out" <<'EOF'
+    "$reference" "$reference_what" "$tmp/export.out" "$tmp/faces.json" "$face_reference" <<'EOF'
 import importlib.util, json, math, re, sys
 
-mgf_script, wrl, lwa, hr_path, ref_path, ref_what, rpk_out = sys.argv[1:8]
+mgf_script, wrl, lwa, hr_path, ref_path, ref_what, rpk_out, faces_path, face_ref_path = sys.argv[1:10]
 spec = importlib.util.spec_from_file_location("cornell_mgf", mgf_script)
 cm = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(cm)
@@ -260,11 +276,13 @@ def luminance(rgb):
 
 
 # The MGF faces in metres, with their unit normals and areas.
-faces = []
+# The faces of each object come in the order strahl numbers them (`object#face`).
+faces, face_index = [], []
 for name, _, polys in cm.OBJECTS:
-    for poly in polys:
+    for k, poly in enumerate(polys):
         pm = [tuple(x / 1000 for x in v) for v in poly]
         faces.append((name, pm, unit(newell(pm)), norm(newell(pm))))
+        face_index.append(k)
 
 # What RenderPark read: its scene statistics against the values the MGF was made for (its
 # "gray" is Y in its own RGB space).
@@ -326,8 +344,9 @@ def inside(face, point):
                for i in range(len(poly)))
 
 
-# Per object: [area, area-weighted sum of the elements' mean radiance]
+# Per object and per face: [area, area-weighted sum of the elements' mean radiance]
 sums = {name: [0.0, [0.0, 0.0, 0.0]] for name, _, _ in cm.OBJECTS}
+face_sums = {(f[0], k): [0.0, [0.0, 0.0, 0.0]] for f, k in zip(faces, face_index)}
 unmatched = 0
 element, elements = [], 0
 for i in index:
@@ -340,13 +359,14 @@ for i in index:
     area, n = norm(area_vector), unit(area_vector)
     centre = tuple(sum(p[k] for p in poly) / len(poly) for k in range(3))
     mean = [sum(C[k][c] for k in element) / len(element) / scale for c in range(3)]
-    match = [f for f in faces if dot(f[2], n) > 0.99 and inside(f, centre)]
+    match = [i for i, f in enumerate(faces) if dot(f[2], n) > 0.99 and inside(f, centre)]
     if len(match) != 1:
         unmatched += 1
     else:
-        s = sums[match[0][0]]
-        s[0] += area
-        s[1] = [s[1][c] + area * mean[c] for c in range(3)]
+        name = faces[match[0]][0]
+        for s in (sums[name], face_sums[(name, face_index[match[0]])]):
+            s[0] += area
+            s[1] = [s[1][c] + area * mean[c] for c in range(3)]
     element = []
 
 
@@ -391,4 +411,49 @@ if check is not None:
     print(f"\nCheck of the export's scale: RenderPark's light, total radiosity / emitted radiosity "
           f"= {check:.4f} (expected 1 + reflected/emitted ≈ "
           f"{1 + luminance(ref['light'][1]) / luminance(emitted):.4f}, to about ±0.5 %)")
+
+# Per face: strahl's per-face run against the recorded per-face light model.
+per_face_run = json.load(open(faces_path))
+hr_faces = {(o["name"], o["face"]): o for o in per_face_run["objects"]}
+ref_faces = {(f["object"], f["face"]): f for f in json.load(open(face_ref_path))["faces"]}
+ref_source = json.load(open(face_ref_path)).get("photons", "?")
+for (name, k), face in zip(((f[0], k) for f, k in zip(faces, face_index)), faces):
+    got = hr_faces[(name, k)]["area"]
+    if abs(got / face[3] - 1) > 1e-3:
+        sys.exit(f"{name}#{k}: strahl's face has {got} m², the MGF's {face[3]}: "
+                 "the faces are not numbered alike")
+print()
+print(f"Per face (strahl `--per-face`, the same options, solver "
+      f"{per_face_run['stats']['seconds']:.3f} s; reference: the light model at "
+      f"{ref_source} photons, {face_ref_path.split('/')[-1]}, 1σ per face):")
+print()
+print("| face | area m² | RenderPark Galerkin | strahl hierarchical | reference ± 1σ "
+      "| RenderPark / ref − 1 | strahl HR / ref − 1 |")
+print("|---|---|---|---|---|---|---|")
+worst = {"RenderPark": [], "strahl": []}
+for face, k in zip(faces, face_index):
+    name, area = face[0], face[3]
+    if name == "light":
+        continue
+    r = ref_faces[(name, k)]
+    reflected_ref = [i - a for i, a in zip(r["incident_power"], r["absorbed_power"])]
+    rho = [(i - a) / i for i, a in zip(r["incident_power"], r["absorbed_power"])]
+    y_ref = luminance(reflected_ref) / area
+    sigma = luminance([p * e for p, e in zip(rho, r["incident_power_standard_error"])]) / area
+    y_hr = luminance(hr_faces[(name, k)]["reflected_power"]) / area
+    rpk_area, weighted = face_sums[(name, k)]
+    if rpk_area > 0:
+        y_rpk = luminance([w / rpk_area * math.pi for w in weighted])
+        rpk_cell, rpk_dev = f"{y_rpk:.4f}", f"{y_rpk / y_ref - 1:+.2%}"
+        worst["RenderPark"].append(y_rpk / y_ref - 1)
+    else:
+        rpk_cell, rpk_dev = "?", "?"
+    worst["strahl"].append(y_hr / y_ref - 1)
+    print(f"| {name}#{k} | {area:.5f} | {rpk_cell} | {y_hr:.4f} | {y_ref:.4f} ± {sigma / y_ref:.2%} "
+          f"| {rpk_dev} | {y_hr / y_ref - 1:+.2%} |")
+print()
+for prog, devs in worst.items():
+    if devs:
+        rms = math.sqrt(sum(d * d for d in devs) / len(devs))
+        print(f"{prog}: {len(devs)} faces, worst {max(devs, key=abs):+.2%}, RMS {rms:.2%}")
 EOF

@@ -53,6 +53,10 @@ pub struct SolveArgs {
     /// Also print a per-object table (area, absorbed power, irradiance, illuminance).
     #[arg(short, long)]
     pub verbose: bool,
+    /// Report every face of every object on its own (`object#face`), as `per_face = true` on
+    /// every object of a scene file does.
+    #[arg(long)]
+    pub per_face: bool,
     /// Light-trace options.
     #[command(flatten)]
     pub light_trace: LightTraceArgs,
@@ -137,7 +141,12 @@ impl SolveArgs {
 /// Runs `strahl solve`.
 pub fn run(args: &SolveArgs) -> Result<()> {
     args.check()?;
-    let scene = strahl::scene::open(&args.scene, &args.limits.load_options())?;
+    let mut scene = strahl::scene::open(&args.scene, &args.limits.load_options())?;
+    if args.per_face {
+        for object in &mut scene.objects {
+            object.per_face = true;
+        }
+    }
     if scene.objects.is_empty() {
         bail!(
             "'{}' has no objects: there is nothing to take light",

@@ -135,6 +135,51 @@ fn info_and_bench_report_statistics() {
 }
 
 #[test]
+fn per_face_reports_every_face_and_the_faces_add_up_to_their_object() {
+    // The same photons, told apart by face or not: the faces of each object add up to it.
+    let solve = |name: &str, extra: &[&str]| {
+        let report = temp(name);
+        let mut args = vec!["solve", "cornell", "--photons", "20000", "-q", "--report"];
+        args.push(report.to_str().unwrap());
+        args.extend_from_slice(extra);
+        let o = strahl(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        json["objects"].as_array().unwrap().clone()
+    };
+    let objects = solve("objects.json", &[]);
+    let faces = solve("faces.json", &["--per-face"]);
+    // The built-in box: the ceiling in four pieces around the lamp, the red wall in two, five
+    // faces per block, one for everything else.
+    assert_eq!((objects.len(), faces.len()), (8, 20));
+    for object in &objects {
+        let name = object["name"].as_str().unwrap();
+        assert!(object["face"].is_null(), "{object}");
+        let of_it: Vec<_> = faces.iter().filter(|f| f["name"] == name).collect();
+        assert!(of_it.iter().all(|f| f["face"].is_u64()), "{name}");
+        for key in ["area", "incident_power"] {
+            let whole = serde_json::to_string(&object[key]).unwrap();
+            let sum = |c: usize| -> f64 {
+                of_it
+                    .iter()
+                    .map(|f| f[key].get(c).unwrap_or(&f[key]).as_f64().unwrap())
+                    .sum()
+            };
+            let want =
+                |c: usize| -> f64 { object[key].get(c).unwrap_or(&object[key]).as_f64().unwrap() };
+            for c in 0..3 {
+                let (got, want) = (sum(c), want(c));
+                assert!(
+                    (got - want).abs() <= 1e-9 * want.abs(),
+                    "{name} {key}: faces {got}, object {whole}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn radiosity_warns_about_light_it_does_not_follow() {
     // Glass and mirrors: radiosity counts the light they reflect specularly or refract as
     // absorbed, and names them; translucent leaves it follows, and does not warn about.
