@@ -51,15 +51,23 @@ impl Chroma {
         y: 1.0 / 3.0,
     };
 
-    /// The chromaticity `(x, y)`: both above 0 with `x + y` below 1.
+    /// The chromaticity `(x, y)`: both at least 0 with `x + y` at most 1, as MGF's reference
+    /// parser takes them (RenderPark's `corridor.mgf` and `office2.mgf` have `cxy 0 …`, its
+    /// hospital `cxy 0.4 0`). Such colours lie outside every RGB gamut: `x = 0` is clipped to
+    /// the gamut, and `y = 0`, which has no luminance, is black (as RenderPark makes it).
     pub fn from_xy(x: f64, y: f64) -> Result<Chroma, String> {
-        if x > 0.0 && y > 0.0 && x + y < 1.0 {
+        if x >= 0.0 && y >= 0.0 && x + y <= 1.0 {
             Ok(Chroma { x, y })
         } else {
             Err(format!(
-                "({x}, {y}) is not a chromaticity: x and y must be > 0 with x + y < 1"
+                "({x}, {y}) is not a chromaticity: x ≥ 0 and y ≥ 0 with x + y ≤ 1 expected"
             ))
         }
+    }
+
+    /// Whether the colour has no luminance (`y = 0`): black whatever its amount.
+    fn is_black(self) -> bool {
+        self.y == 0.0
     }
 
     /// The chromaticity of CIE XYZ `xyz`.
@@ -71,14 +79,19 @@ impl Chroma {
         Chroma::from_xy(xyz.x / sum, xyz.y / sum)
     }
 
-    /// CIE XYZ of this chromaticity with luminance `y_luminance`.
+    /// CIE XYZ of this chromaticity with luminance `y_luminance` (zero for a black one).
     fn xyz(self, y_luminance: f64) -> DVec3 {
+        if self.is_black() {
+            return DVec3::ZERO;
+        }
         DVec3::new(self.x / self.y, 1.0, (1.0 - self.x - self.y) / self.y) * y_luminance
     }
 
     /// The `cspec l_min l_max v1 v2 …` spectrum: `values` evenly spaced from `l_min` to
-    /// `l_max` nm, linear in between, zero outside; taken over 380–780 nm.
-    pub fn from_spectrum(args: &[&str]) -> Result<Chroma, String> {
+    /// `l_max` nm, linear in between, zero outside; taken over 380–780 nm. Negative values
+    /// (the noise of a measured spectrum: RenderPark's `illums.mgf` has them) are taken as 0,
+    /// told to `warn`.
+    pub fn from_spectrum(args: &[&str], warn: &mut dyn FnMut(String)) -> Result<Chroma, String> {
         let [l_min, l_max, values @ ..] = args else {
             return Err("l_min and l_max expected".into());
         };
@@ -92,14 +105,22 @@ impl Chroma {
                 "l_min {l_min} and l_max {l_max}: 0 < l_min < l_max nm expected"
             ));
         }
-        let values = values
+        let mut values = values
             .iter()
             .enumerate()
-            .map(|(i, w)| match number(w, &format!("value {}", i + 1))? {
-                v if v < 0.0 => Err(format!("value {}: {v} is negative", i + 1)),
-                v => Ok(v),
-            })
+            .map(|(i, w)| number(w, &format!("value {}", i + 1)))
             .collect::<Result<Vec<f64>, String>>()?;
+        let negative: Vec<(usize, f64)> = (values.iter().enumerate())
+            .filter(|(_, v)| **v < 0.0)
+            .map(|(i, &v)| (i + 1, v))
+            .collect();
+        if let Some(&(first, v)) = negative.first() {
+            warn(format!(
+                "cspec: {} negative value(s) taken as 0 (the first: value {first}, {v})",
+                negative.len()
+            ));
+            values.iter_mut().for_each(|v| *v = v.max(0.0));
+        }
         let step = (l_max - l_min) / (values.len() - 1) as f64;
         let at = |lambda: f64| {
             if lambda < l_min || lambda > l_max {
@@ -248,29 +269,34 @@ impl MgfMaterial {
 /// does), `rs` → `mirror` when smooth, else `specular` with the Phong `shininess`
 /// (0.6/roughness)² the MGF notes give (at most 10⁶), `ts` → `transmission` with `ior` from
 /// `ir` (its real part; default 1), `sides 1` → `one_sided`. Problems that do not stop the
-/// import are passed to `warn`; an error when the amounts add up to more than 1.
+/// import are passed to `warn`: amounts that add up to more than 1 (RenderPark's `cube.mgf`
+/// has rd + rs = 1.1) are scaled down to 1, as RenderPark scales them.
 pub(super) fn to_strahl(
     name: &str,
     m: &MgfMaterial,
     warn: &mut dyn FnMut(String),
 ) -> Result<Material, String> {
     let total = m.rd.amount + m.td.amount + m.rs.0.amount + m.ts.0.amount;
-    if total > 1.0 + f64::from(ENERGY_TOLERANCE) {
-        return Err(format!(
+    let amount_scale = if total > 1.0 + f64::from(ENERGY_TOLERANCE) {
+        warn(format!(
             "material \"{name}\" reflects and transmits more than it receives: rd + td + rs + \
-             ts = {total} (must be ≤ 1)"
+             ts = {total}; each was scaled down by 1/{total}"
         ));
-    }
-    let mut clipped = false;
+        1.0 / total
+    } else {
+        1.0
+    };
+    let (mut clipped, mut blackened) = (false, false);
     let mut rgb = |c: &Component, scale: f64| {
         let (v, clip) = c.color.rgb(c.amount * scale);
         clipped |= clip && c.amount > 0.0;
+        blackened |= c.color.is_black() && c.amount > 0.0;
         v
     };
-    let diffuse = rgb(&m.rd, 1.0);
-    let translucency = rgb(&m.td, 1.0);
-    let specular = rgb(&m.rs.0, 1.0);
-    let transmission = rgb(&m.ts.0, 1.0);
+    let diffuse = rgb(&m.rd, amount_scale);
+    let translucency = rgb(&m.td, amount_scale);
+    let specular = rgb(&m.rs.0, amount_scale);
+    let transmission = rgb(&m.ts.0, amount_scale);
     let emission = rgb(&m.ed, 1.0 / (LUMINOUS_EFFICACY * std::f64::consts::PI));
     if emission.max_element() > f64::from(MAX_COLOUR) {
         return Err(format!(
@@ -283,6 +309,11 @@ pub(super) fn to_strahl(
     if clipped {
         warn(format!(
             "material \"{name}\": a colour outside the RGB gamut was clipped to it"
+        ));
+    }
+    if blackened {
+        warn(format!(
+            "material \"{name}\": a colour with y = 0 has no luminance: that part is black"
         ));
     }
     let sum = diffuse + translucency + specular + transmission;
@@ -361,12 +392,18 @@ mod tests {
         let (_, clipped) = Chroma::from_xy(0.07, 0.83).unwrap().rgb(1.0);
         assert!(clipped);
         assert!(Chroma::from_xy(0.7, 0.4).is_err());
+        assert!(Chroma::from_xy(-0.1, 0.4).is_err());
+        // What MGF's reference parser takes: x = 0 (clipped to the gamut) and y = 0 (black).
+        let (_, clipped) = Chroma::from_xy(0.0, 0.38).unwrap().rgb(0.5);
+        assert!(clipped);
+        let (black, _) = Chroma::from_xy(0.4, 0.0).unwrap().rgb(0.5);
+        assert_eq!(black, DVec3::ZERO);
     }
 
     #[test]
     fn spectra_black_bodies_and_mixes_give_their_chromaticity() {
         // A flat spectrum over the visible range is (nearly) the equal-energy white.
-        let flat = Chroma::from_spectrum(&words("380 780 1 1 1")).unwrap();
+        let flat = Chroma::from_spectrum(&words("380 780 1 1 1"), &mut |w| panic!("{w}")).unwrap();
         assert!(
             (flat.x - 1.0 / 3.0).abs() < 2e-3 && (flat.y - 1.0 / 3.0).abs() < 2e-3,
             "{flat:?}"
@@ -393,13 +430,24 @@ mod tests {
         assert!((white.x - 1.0 / 3.0).abs() < 5e-3 && (white.y - 1.0 / 3.0).abs() < 5e-3);
         for (args, says) in [
             ("700 400 1 1", "0 < l_min < l_max"),
-            ("400 700 1 -1", "value 2: -1 is negative"),
             ("400 700 0 0", "no visible light"),
+            ("400 700 -1 -2", "no visible light"),
             ("400 700 1 x", "value 2: \"x\" is not a number"),
         ] {
-            let e = Chroma::from_spectrum(&words(args)).unwrap_err();
+            let e = Chroma::from_spectrum(&words(args), &mut |_| ()).unwrap_err();
             assert!(e.contains(says), "{args}: {e}");
         }
+        // The noise of a measured spectrum: negative values are taken as 0, with a warning.
+        let mut warnings = Vec::new();
+        let noisy =
+            Chroma::from_spectrum(&words("380 780 1 1 -0.001 1 1"), &mut |w| warnings.push(w))
+                .unwrap();
+        let clean = Chroma::from_spectrum(&words("380 780 1 1 0 1 1"), &mut |w| panic!("{w}"));
+        assert_eq!(Ok(noisy), clean);
+        assert_eq!(
+            warnings,
+            ["cspec: 1 negative value(s) taken as 0 (the first: value 3, -0.001)"]
+        );
     }
 
     #[test]
@@ -437,8 +485,11 @@ mod tests {
             ts: (grey(0.4), 0.1),
             ..MgfMaterial::default()
         };
-        let e = to_strahl("x", &too_much, &mut warn).unwrap_err();
-        assert!(e.contains("rd + td + rs + ts = 1.1"), "{e}");
+        // More than 1 in all: every lobe scaled down by the sum, with a warning.
+        let s = to_strahl("x", &too_much, &mut warn).unwrap();
+        assert!(
+            (s.diffuse.g - 0.7 / 1.1).abs() < 1e-6 && (s.transmission.g - 0.4 / 1.1).abs() < 1e-6
+        );
         // A saturated red at Y = 0.9 needs more than 1 in red: scaled down, with a warning.
         let red = MgfMaterial {
             rd: Component {
@@ -449,9 +500,11 @@ mod tests {
         };
         let s = to_strahl("red", &red, &mut warn).unwrap();
         assert!(s.albedo_bound() <= 1.0 + ENERGY_TOLERANCE);
-        assert!(
-            warnings.iter().any(|w| w.contains("scaled down")),
-            "{warnings:?}"
-        );
+        for says in [
+            "\"x\" reflects and transmits more than it receives: rd + td + rs + ts = 1.1",
+            "\"red\": its colours give",
+        ] {
+            assert!(warnings.iter().any(|w| w.contains(says)), "{warnings:?}");
+        }
     }
 }

@@ -114,8 +114,14 @@ impl Named {
             .ok_or_else(|| format!("vertex \"{name}\" is not defined"))
     }
 
-    /// Interprets `keyword args` when it is a context entity (true), or leaves it (false).
-    pub fn entity(&mut self, keyword: &str, args: &[&str]) -> Result<bool, String> {
+    /// Interprets `keyword args` when it is a context entity (true), or leaves it (false);
+    /// problems that do not stop the import go to `warn`.
+    pub fn entity(
+        &mut self,
+        keyword: &str,
+        args: &[&str],
+        warn: &mut dyn FnMut(String),
+    ) -> Result<bool, String> {
         match keyword {
             "c" => self.colors.select(args, "colour")?,
             "cxy" => {
@@ -125,7 +131,7 @@ impl Named {
             }
             "cspec" => {
                 arity(args, 4, usize::MAX, "cspec l_min l_max v1 v2 …")?;
-                *self.colors.get_mut() = Chroma::from_spectrum(args)?;
+                *self.colors.get_mut() = Chroma::from_spectrum(args, warn)?;
             }
             "cct" => {
                 arity(args, 1, 1, "cct temperature")?;
@@ -240,7 +246,7 @@ mod tests {
 
     fn run(named: &mut Named, line: &str) -> Result<bool, String> {
         let words: Vec<&str> = line.split_whitespace().collect();
-        named.entity(words[0], &words[1..])
+        named.entity(words[0], &words[1..], &mut |w| panic!("{w}"))
     }
 
     #[test]
