@@ -56,11 +56,19 @@ impl Scene {
     /// True when something in the scene sends light: a point (isotropic or Lambertian), spot,
     /// directional or sky light, or an object whose material emits.
     pub fn has_light(&self) -> bool {
+        let emits = |m: MaterialId| {
+            self.materials
+                .get(m as usize)
+                .is_some_and(|m| !m.emission.is_black())
+        };
         !self.lights.is_empty()
-            || self.objects.iter().any(|o| {
-                self.materials
-                    .get(o.material as usize)
-                    .is_some_and(|m| !m.emission.is_black())
+            || self.objects.iter().any(|o| match &o.shape {
+                // A mesh's faces may have materials of their own (MGF, OBJ with MTL).
+                Shape::Mesh(mesh) => match &mesh.face_materials {
+                    Some(materials) => materials.iter().any(|&m| emits(m)),
+                    None => emits(o.material),
+                },
+                _ => emits(o.material),
             })
     }
 
@@ -121,5 +129,31 @@ impl Scene {
             .name
             .clone()
             .unwrap_or_else(|| format!("object-{index}"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use std::sync::Arc;
+
+    #[test]
+    fn a_mesh_face_with_an_emitting_material_of_its_own_is_a_light() {
+        let mut scene = Scene::empty("lamp");
+        let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
+        let lamp = scene.add_material(Material {
+            name: "lamp".into(),
+            emission: Rgb::splat(1.0),
+            ..Material::default()
+        });
+        let positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)];
+        let mut mesh = PolygonMesh::from_triangles(positions, &[[0, 1, 2], [1, 3, 2]]);
+        scene.add_object("room", Shape::Mesh(Arc::new(mesh.clone())), grey);
+        assert!(!scene.has_light());
+        // The second face emits; the object's own material does not.
+        mesh.face_materials = Some(vec![grey, lamp]);
+        scene.objects[0].shape = Shape::Mesh(Arc::new(mesh));
+        assert!(scene.has_light());
     }
 }
