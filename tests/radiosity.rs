@@ -519,6 +519,16 @@ fn exports_parse_as_gltf_and_ply() {
     let b: f64 = lines[0].split(' ').nth(9).unwrap().parse().unwrap();
     let expected = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
     assert!((b - expected).abs() / expected < 1e-4);
+    // Each face names the object it lies on: each of the box's faces holds 8 of them (2 × 2
+    // patches, both sides).
+    assert!(header.contains("property list uchar uint vertex_indices\nproperty uint object\n"));
+    let mut per_object = vec![0; world.scene.objects.len()];
+    for face in &lines[192..] {
+        let words: Vec<&str> = face.split(' ').collect();
+        assert_eq!(words.len(), 6, "{face}");
+        per_object[words[5].parse::<usize>().unwrap()] += 1;
+    }
+    assert_eq!(per_object, [8; 6]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -44,22 +44,31 @@ pub struct LitMesh {
     /// Per polygon: the lightmapped surface it belongs to (an index into `surfaces`), `None`
     /// for surfaces shown by their corners' radiosity.
     pub polygon_surface: Vec<Option<u32>>,
+    /// Per polygon: the index of the scene object it lies on.
+    pub polygon_object: Vec<u32>,
     /// The textured surfaces and their lightmaps.
     pub surfaces: Vec<LightmappedSurface>,
 }
 
 impl LitMesh {
-    /// Adds a polygon with its `corners`, unit `normal` and per-corner `radiosity`
-    /// (W·m⁻², one per corner).
-    pub fn push_polygon(&mut self, corners: &[Vec3], normal: Vec3, radiosity: &[Rgb64]) {
+    /// Adds a polygon of scene object `object` with its `corners`, unit `normal` and
+    /// per-corner `radiosity` (W·m⁻², one per corner).
+    pub fn push_polygon(
+        &mut self,
+        object: u32,
+        corners: &[Vec3],
+        normal: Vec3,
+        radiosity: &[Rgb64],
+    ) {
         let zero = vec![Vec2::ZERO; corners.len()];
-        self.push_mapped_polygon(corners, normal, radiosity, (&zero, &zero), None);
+        self.push_mapped_polygon(object, corners, normal, radiosity, (&zero, &zero), None);
     }
 
     /// [`Self::push_polygon`] with per-corner texture coordinates `(material, lightmap)` on
     /// lightmapped surface `surface` (an index into `surfaces`, `None` for none).
     pub fn push_mapped_polygon(
         &mut self,
+        object: u32,
         corners: &[Vec3],
         normal: Vec3,
         radiosity: &[Rgb64],
@@ -77,5 +86,6 @@ impl LitMesh {
         self.polygons
             .push((first..first + corners.len() as u32).collect());
         self.polygon_surface.push(surface);
+        self.polygon_object.push(object);
     }
 }

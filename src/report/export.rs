@@ -17,7 +17,9 @@
 //!   so that a viewer's own lights add nothing to the baked light. Raising that factor to 1
 //!   and removing the emission relights the surface in the viewer.
 //! - PLY: `x y z nx ny nz`, `red green blue` (tone-mapped, sRGB-encoded 8-bit) and
-//!   `radiosity_r radiosity_g radiosity_b` (linear, W·m⁻²).
+//!   `radiosity_r radiosity_g radiosity_b` (linear, W·m⁻²) per vertex; per face its vertices
+//!   and `object`, the index of the scene object it lies on (the report's order of objects
+//!   when every object has a name of its own).
 //!
 //! Tone mapping acts on the radiance `B/π` of the vertices as on an image's pixels.
 
@@ -113,6 +115,8 @@ struct ExportMesh {
     polygons: Vec<Vec<u32>>,
     /// Per polygon: its lightmapped surface, if any.
     polygon_surface: Vec<Option<u32>>,
+    /// Per polygon: the scene object it lies on (PLY's `object`).
+    polygon_object: Vec<u32>,
     /// The lightmapped surfaces.
     surfaces: Vec<ExportSurface>,
 }
@@ -185,6 +189,7 @@ fn build(lit: &LitMesh, textures: &[Texture], tone_mapping: &ToneMapping) -> Exp
         texcoords: [flip(&lit.texcoords), flip(&lit.lightmap_texcoords)],
         polygons: lit.polygons.clone(),
         polygon_surface: lit.polygon_surface.clone(),
+        polygon_object: lit.polygon_object.clone(),
         surfaces: Vec::new(),
     };
     // The vertices' radiance and every lightmap texel, tone-mapped as one image so that an
@@ -310,7 +315,7 @@ fn ply(mesh: &ExportMesh) -> String {
         out.push_str(&format!("property {p}\n"));
     }
     out.push_str(&format!("element face {}\n", mesh.polygons.len()));
-    out.push_str("property list uchar uint vertex_indices\nend_header\n");
+    out.push_str("property list uchar uint vertex_indices\nproperty uint object\nend_header\n");
     for v in 0..mesh.positions.len() {
         let (p, n, b) = (mesh.positions[v], mesh.normals[v], mesh.radiosity[v]);
         let c = mesh.colors[v].map(|x| (linear_to_srgb(x) * 255.0).round().clamp(0.0, 255.0) as u8);
@@ -319,12 +324,12 @@ fn ply(mesh: &ExportMesh) -> String {
             p[0], p[1], p[2], n[0], n[1], n[2], c[0], c[1], c[2], b[0], b[1], b[2]
         ));
     }
-    for poly in &mesh.polygons {
+    for (poly, object) in mesh.polygons.iter().zip(&mesh.polygon_object) {
         out.push_str(&poly.len().to_string());
         for i in poly {
             out.push_str(&format!(" {i}"));
         }
-        out.push('\n');
+        out.push_str(&format!(" {object}\n"));
     }
     out
 }

@@ -347,6 +347,7 @@ impl Solution {
                     lightmap_texcoords.reverse();
                 }
                 lit.push_mapped_polygon(
+                    patch.object,
                     &points,
                     side.normal(patch).as_vec3(),
                     &values,
