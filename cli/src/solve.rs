@@ -57,6 +57,10 @@ pub struct SolveArgs {
     /// every object of a scene file does.
     #[arg(long)]
     pub per_face: bool,
+    /// Drop every material's specular, mirror and refracting lobes (their light is absorbed):
+    /// the scene radiosity solves, for checking a radiosity solution against the light model.
+    #[arg(long)]
+    pub diffuse_only: bool,
     /// Light-trace options.
     #[command(flatten)]
     pub light_trace: LightTraceArgs,
@@ -146,6 +150,12 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         for object in &mut scene.objects {
             object.per_face = true;
         }
+    }
+    if args.diffuse_only {
+        scene
+            .materials
+            .iter_mut()
+            .for_each(|m| m.keep_diffuse_lobes());
     }
     if scene.objects.is_empty() {
         bail!(

@@ -196,6 +196,40 @@ fn radiosity_warns_about_light_it_does_not_follow() {
         err.contains("warning") && err.contains("glass") && err.contains("mirror"),
         "{err}"
     );
+    // With the lobes radiosity does not model dropped, there is nothing to warn about, and
+    // the light model solves that scene: the glass and the mirror absorb what they would
+    // have sent on, so the objects absorb more than in the scene as it is.
+    let o = strahl(&[
+        "solve",
+        "../tests/data/lobes.toml",
+        "--solver",
+        "hierarchical",
+        "--diffuse-only",
+        "--quiet",
+    ]);
+    assert!(
+        o.status.success() && !stderr(&o).contains("warning"),
+        "{}",
+        stderr(&o)
+    );
+    let absorbed = |extra: &[&str]| {
+        let report = temp(&format!("lobes{}.json", extra.len()));
+        let mut args = vec![
+            "solve",
+            "../tests/data/lobes.toml",
+            "--photons",
+            "20000",
+            "-q",
+        ];
+        args.extend_from_slice(&["--report", report.to_str().unwrap()]);
+        args.extend_from_slice(extra);
+        assert!(strahl(&args).status.success());
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+        json["totals"]["absorbed_power"][1].as_f64().unwrap()
+    };
+    let (as_it_is, diffuse_only) = (absorbed(&[]), absorbed(&["--diffuse-only"]));
+    assert!(diffuse_only > as_it_is, "{diffuse_only} vs {as_it_is}");
     let o = strahl(&["solve", "canopy:4", "--solver", "hierarchical", "--quiet"]);
     assert!(o.status.success());
     assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));

@@ -168,6 +168,15 @@ impl Material {
         })
     }
 
+    /// Drops the lobes radiosity does not model (Phong, mirror, refraction): the light they
+    /// would scatter is absorbed, as every radiosity solver counts it. The light model run on
+    /// a scene made so solves what radiosity solves, to check a radiosity solution by.
+    pub fn keep_diffuse_lobes(&mut self) {
+        self.specular = Rgb::BLACK;
+        self.mirror = Rgb::BLACK;
+        self.transmission = Rgb::BLACK;
+    }
+
     /// Largest per-channel sum of the reflected and transmitted fractions (must be ≤ 1, up
     /// to [`ENERGY_TOLERANCE`]).
     pub fn albedo_bound(&self) -> f32 {

@@ -61,15 +61,12 @@ impl Scene {
                 .get(m as usize)
                 .is_some_and(|m| !m.emission.is_black())
         };
+        // A mesh's faces may have materials of their own (MGF, OBJ with MTL).
         !self.lights.is_empty()
-            || self.objects.iter().any(|o| match &o.shape {
-                // A mesh's faces may have materials of their own (MGF, OBJ with MTL).
-                Shape::Mesh(mesh) => match &mesh.face_materials {
-                    Some(materials) => materials.iter().any(|&m| emits(m)),
-                    None => emits(o.material),
-                },
-                _ => emits(o.material),
-            })
+            || self
+                .objects
+                .iter()
+                .any(|o| o.materials().iter().any(|&m| emits(m)))
     }
 
     /// An empty scene with a default camera looking down −z from `(0, 0, 5)`.

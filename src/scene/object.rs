@@ -21,6 +21,18 @@ pub struct Object {
     pub per_face: bool,
 }
 
+impl Object {
+    /// The materials of its surface: a mesh's faces' own, or the object's.
+    pub fn materials(&self) -> std::borrow::Cow<'_, [MaterialId]> {
+        if let Shape::Mesh(mesh) = &self.shape
+            && let Some(materials) = &mesh.face_materials
+        {
+            return std::borrow::Cow::Borrowed(materials);
+        }
+        std::borrow::Cow::Owned(vec![self.material])
+    }
+}
+
 /// The geometric primitives. Planar ones (triangle, polygon, parallelogram, mesh) are traced
 /// as triangles; the others are intersected analytically in their object space.
 #[derive(Clone, Debug, PartialEq)]
