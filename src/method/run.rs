@@ -12,7 +12,8 @@ use crate::light_model::{LightTraceSettings, trace_light};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::hierarchical::{solve_hierarchical, solve_hierarchical_shooting};
 use crate::radiosity::solve::{
-    DisplaySettings, LinkDisplay, RadiositySystem, SolverKind, solve_matrix, solve_progressive,
+    DisplaySettings, LinkDisplay, RadiositySystem, SolveError, SolverKind, solve_matrix,
+    solve_progressive,
 };
 use crate::sampling::SequenceKind;
 use crate::trace::{
@@ -71,6 +72,11 @@ fn radiosity(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<Outcome, MethodError> {
+    // The solvers reflect diffusely only; the final gather traces rays and would otherwise
+    // add the specular lobes' light at its first hits (the corridor of RenderPark's corpus:
+    // +12 … +21 % on its gathered objects).
+    let diffuse = world.diffuse().map_err(SolveError::from)?.map(Arc::new);
+    let world = diffuse.as_ref().unwrap_or(world);
     let solved = solve_radiosity(world, s, progress, cancel)?;
     let mut complete = !solved.solution.interrupted;
     let mut summary = solved.summary();

@@ -157,6 +157,23 @@ impl World {
         World::new(scene, self.kind).map(Some)
     }
 
+    /// This world with the lobes radiosity does not model (Phong, mirror, refraction) dropped
+    /// from every material ([`crate::scene::Material::keep_diffuse_lobes`]), with the same
+    /// accelerator kind: what the radiosity methods solve, so that the rays they trace (the
+    /// final gather at the reported surfaces) count that light as absorbed, as their
+    /// solutions do. `None` when every material is diffuse, so this world serves as it is.
+    pub fn diffuse(&self) -> Result<Option<World>, GeometryError> {
+        if self.scene.materials.iter().all(|m| m.is_diffuse()) {
+            return Ok(None);
+        }
+        let mut scene = self.scene.clone();
+        scene
+            .materials
+            .iter_mut()
+            .for_each(|m| m.keep_diffuse_lobes());
+        World::new(scene, self.kind).map(Some)
+    }
+
     /// The closest surface hit along `ray` (unbounded), described.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
