@@ -484,3 +484,70 @@ fn the_gather_at_the_surfaces_counts_the_light_of_glossy_lobes_as_absorbed_as_th
     );
     assert_eq!(glossy, diffuse);
 }
+
+#[test]
+fn a_small_surface_lit_straight_by_an_emitting_surface_is_gathered() {
+    // Light from emitting surfaces comes over links held to the scene-wide threshold like
+    // reflected light (RenderPark's louvred luminaire: its vanes, lit straight by the tube
+    // lamps, −6.8 … +3.6 % in the solution), not over the light links of point lights and
+    // the sky, measured on grids of points. A 10 cm tile beside a 4 m² floor under a square
+    // lamp, all of the tile's light straight from the lamp, is measured anew and says how
+    // well; the floor, with most of the light, keeps the solution's value.
+    use strahl::color::Rgb;
+    use strahl::scene::{Material, Scene, Shape};
+    let mut scene = Scene::empty("tile");
+    let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
+    let lamp = scene.add_material(Material {
+        emission: Rgb::splat(1.0),
+        ..Material::diffuse("lamp", Rgb::BLACK)
+    });
+    let square = |origin: [f32; 3], side: f32, down: bool| {
+        let (u, v) = (glam::Vec3::X * side, glam::Vec3::Z * side);
+        let (edge_u, edge_v) = if down { (u, v) } else { (v, u) };
+        Shape::Parallelogram {
+            origin: origin.into(),
+            edge_u,
+            edge_v,
+        }
+    };
+    scene.add_object("floor", square([-2.0, 0.0, -1.0], 2.0, false), grey);
+    scene.add_object("tile", square([0.5, 0.0, 0.5], 0.1, false), grey);
+    scene.add_object("lamp", square([-0.5, 1.0, -0.5], 1.0, true), lamp);
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let method = Method::Radiosity(RadiositySettings::new(SolverKind::Hierarchical));
+    let outcome = run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+    let report = Report::new("tile", outcome.measurement.as_ref().unwrap());
+    let object = |name: &str| report.objects.iter().find(|o| o.name == name).unwrap();
+    let (tile, floor) = (object("tile"), object("floor"));
+    assert!(tile.incident_power.g < 0.02 * floor.incident_power.g);
+    assert!(tile.direct_power.unwrap().g > 0.99 * tile.incident_power.g);
+    assert!(floor.incident_power_standard_error.is_none());
+    // Against the closed form: the form factor from a point to a parallel rectangle 1 m
+    // above (by its corners, each term odd in both extents), irradiance π·L·F, averaged
+    // over the tile on a 40 × 40 grid.
+    let corner = |a: f64, b: f64| {
+        let (sa, sb) = ((1.0 + a * a).sqrt(), (1.0 + b * b).sqrt());
+        (a / sa * (b / sa).atan() + b / sb * (a / sb).atan()) / (2.0 * std::f64::consts::PI)
+    };
+    let n = 40;
+    let mut exact = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            let (x, z) = (
+                0.5 + 0.1 * (i as f64 + 0.5) / n as f64,
+                0.5 + 0.1 * (j as f64 + 0.5) / n as f64,
+            );
+            let f =
+                corner(0.5 - x, 0.5 - z) - corner(-0.5 - x, 0.5 - z) - corner(0.5 - x, -0.5 - z)
+                    + corner(-0.5 - x, -0.5 - z);
+            exact += std::f64::consts::PI * f * 0.01 / (n * n) as f64;
+        }
+    }
+    let error = tile.incident_power_standard_error.unwrap().g;
+    let off = tile.incident_power.g - exact;
+    assert!(
+        off.abs() < 3.0 * error && error < 0.01 * exact,
+        "{} ± {error} vs {exact}",
+        tile.incident_power.g
+    );
+}

@@ -30,7 +30,7 @@
 //!
 //! Which surfaces: by default those that receive less than [`SurfaceGather::below_share`]
 //! (2 %) of the light all surfaces receive, and at least [`INDIRECT_SHARE`] of theirs
-//! indirectly. The solution holds every link to a share of the scene's power, so a surface
+//! otherwise than over light links (indirectly, or from emitting surfaces). The solution holds every link to a share of the scene's power, so a surface
 //! with much of the light gets it right within a fraction of a per cent (the Cornell box face
 //! by face: every face above 1 % of the light within 0.43 %), while one with little light,
 //! most of it reflected to it, sums errors that can be several per cent of its own
@@ -109,11 +109,13 @@ pub const DEFAULT_ERROR: f64 = 0.01;
 /// The default share of all light below which a surface is gathered.
 pub const DEFAULT_BELOW_SHARE: f64 = 0.02;
 
-/// A surface below the share is gathered when at least this share of its light is indirect
-/// by the solution: its direct light comes over light links and emitters' links measured on
-/// grids of points, right to a fraction of a per cent even on small surfaces (the leaves of
-/// `canopy:300`, 1–16 % indirect, within 1.2 %), its indirect light over links judged by the
-/// scene-wide threshold (the Cornell box's dim block faces, 75–100 % indirect, up to 4.8 % off).
+/// A surface below the share is gathered when at least this share of its light comes
+/// otherwise than over light links, by the solution: light links are measured on grids of
+/// points, right to a fraction of a per cent even on small surfaces (the leaves of
+/// `canopy:300`, under sun and sky, within 1.2 %); reflected light and the light of emitting
+/// surfaces come over links judged by the scene-wide threshold (the Cornell box's dim block
+/// faces, 75–100 % indirect, up to 4.8 % off; RenderPark's louvred luminaire's vanes, lit
+/// straight by its tube lamps, up to 6.8 %).
 pub const INDIRECT_SHARE: f64 = 0.25;
 
 /// Channels below this share of a surface's brightest channel do not hold its gather back.
@@ -142,7 +144,7 @@ pub fn gather_surfaces(
 ) -> Option<GatheredIrradiance> {
     let start = Instant::now();
     let surfaces = Surfaces::new(system);
-    let gathered = surfaces.selected(solution, gather.below_share);
+    let gathered = surfaces.selected(system, solution, gather.below_share);
     let (estimates, points, corrected) = if gathered.contains(&true) {
         let pass = Pass {
             surfaces: &surfaces,
@@ -349,27 +351,28 @@ impl Surfaces {
 
     /// Per surface, whether the gather measures it: every one when `share` is 1 or more,
     /// else those that receive less than `share` of the light all surfaces receive by
-    /// `solution` (luminance) and at least [`INDIRECT_SHARE`] of theirs indirectly (or by an
-    /// unknown part, where the solver kept no direct light).
-    fn selected(&self, solution: &Solution, share: f64) -> Vec<bool> {
+    /// `solution` (luminance) and at least [`INDIRECT_SHARE`] of theirs otherwise than over
+    /// the light links of `system` (point, spot and directional lights and the sky, measured
+    /// on grids of points): reflected, or straight from emitting surfaces, whose links are
+    /// held to the scene-wide threshold like any other (RenderPark's louvred luminaire:
+    /// vanes lit straight by its tube lamps −6.8 … +3.6 % in the solution). Solvers that
+    /// keep no direct light apart have every surface below the share gathered.
+    fn selected(&self, system: &RadiositySystem, solution: &Solution, share: f64) -> Vec<bool> {
         if share >= 1.0 {
             return vec![true; self.count];
         }
         let mut incident = vec![0.0; self.count];
-        let mut direct = vec![Some(0.0); self.count];
+        let mut linked = vec![0.0; self.count];
         for (k, &s) in self.of.iter().enumerate() {
             incident[s] += solution.irradiance[k].luminance() * self.weight[k];
-            let d = solution
-                .direct_irradiance
-                .as_ref()
-                .map(|d| d[k].luminance());
-            direct[s] = direct[s].zip(d).map(|(sum, d)| sum + d * self.weight[k]);
+            linked[s] += system.light_irradiance[k].luminance() * self.weight[k];
         }
         let total: f64 = incident.iter().sum();
+        let apart = solution.direct_irradiance.is_some();
         incident
             .iter()
-            .zip(direct)
-            .map(|(&p, d)| p < share * total && d.is_none_or(|d| p - d >= INDIRECT_SHARE * p))
+            .zip(linked)
+            .map(|(&p, lit)| p < share * total && (!apart || p - lit >= INDIRECT_SHARE * p))
             .collect()
     }
 
