@@ -88,10 +88,14 @@ for scene in "${scenes[@]}"; do
         2> "$out/hr.err" || hr_status=$?
     "$strahl" solve "$etc/$scene" --solver light-trace --diffuse-only --photons "$photons" -q \
         --report "$out/lt.json" 2> /dev/null
-    python3 - "$out" "$scene" "$triangles" "$rpk_status" "$hr_status" <<'EOF'
+    python3 - "$out" "$scene" "$triangles" "$rpk_status" "$hr_status" "$repo/scripts" <<'EOF'
 import json, math, re, sys
 
-out, scene, triangles, rpk_status, hr_status = sys.argv[1:6]
+out, scene, triangles, rpk_status, hr_status, scripts = sys.argv[1:7]
+sys.path.insert(0, scripts)
+from renderpark_export import (adaptation_luminance, cross, display_scale, dot, elements,
+                               newell, read_export, sub)
+
 # Y of the MGF RGB space both programs read colours into (primaries of the MGF notes, white E;
 # the middle row of scripts/cornell-mgf.py's rgb_to_xyz_matrix).
 Y = (0.265105820, 0.670105820, 0.064788360)
@@ -155,37 +159,8 @@ if rpk_status == "0":
     k = re.findall(r"Nr\. interactions: (\d+)", text)
     rpk_counts = f"{m[-1] if m else '?'}, {k[-1] if k else '?'}"
 if rpk_status == "0" and hr_status == "0":
-    lwa = re.findall(r"adaptationLuminance\) *\.*: *([-0-9.eE+]+) cd", text)
-    ldmax, bright, efficacy = 100.0, -16.0, 183.07
-    comp = ((1.219 + (ldmax / 2) ** 0.4) / (1.219 + float(lwa[-1]) ** 0.4)) ** 2.5
-    scale = 2.0 ** bright * efficacy * comp / ldmax
-    wrl = open(f"{out}/solution.wrl").read()
-
-    def numbers(pattern):
-        found = re.search(pattern + r"\s*\[([^\]]*)\]", wrl)
-        return found.group(1).replace(",", " ").split() if found else []
-
-    pts = [float(t) for t in numbers(r"\bpoint")]
-    cols = [float(t) for t in numbers(r"color\s+Color\s*\{\s*color")]
-    index = [int(t) for t in numbers(r"coordIndex")]
-    P = [tuple(pts[i:i + 3]) for i in range(0, len(pts), 3)]
-    C = [tuple(cols[i:i + 3]) for i in range(0, len(cols), 3)]
-
-    def sub(a, b):
-        return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-    def cross(a, b):
-        return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-    def dot(a, b):
-        return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-    def newell(poly):
-        n = (0.0, 0.0, 0.0)
-        for i in range(len(poly)):
-            c = cross(poly[i], poly[(i + 1) % len(poly)])
-            n = (n[0] + c[0] / 2, n[1] + c[1] / 2, n[2] + c[2] / 2)
-        return n
+    scale = display_scale(adaptation_luminance(text))
+    P, C, index = read_export(f"{out}/solution.wrl")
 
     # strahl's polygons (both sides of every leaf) with their object, in a grid of cells.
     lines = open(f"{out}/hr.ply").read().split("end_header\n", 1)[1].splitlines()
@@ -224,16 +199,12 @@ if rpk_status == "0" and hr_status == "0":
                    for i in range(len(corners)))
 
     rpk_values = {}
-    unmatched = elements = 0
-    element = []
-    for i in index:
-        if i >= 0:
-            element.append(i)
-            continue
+    unmatched = read = 0
+    for element in elements(index):
         poly = [P[j] for j in element]
         a = newell(poly)
         area = math.sqrt(dot(a, a))
-        elements += 1
+        read += 1
         if area > 0:
             n = tuple(x / area for x in a)
             centre = tuple(sum(p[j] for p in poly) / len(poly) for j in range(3))
@@ -246,10 +217,9 @@ if rpk_status == "0" and hr_status == "0":
                 rpk_values[obj] = rpk_values.get(obj, 0.0) + area * math.pi * luminance(mean) * 183.07 / 683
             else:
                 unmatched += 1
-        element = []
     rpk_cell, _ = deviations(rpk_values)
     if unmatched:
-        rpk_cell += f" ({unmatched} of {elements} elements unmatched)"
+        rpk_cell += f" ({unmatched} of {read} elements unmatched)"
 print(f"| {scene} | {triangles} | {cell_time(timing(f'{out}/rpk.time'), rpk_status)} | {rpk_counts} "
       f"| {cell_time(timing(f'{out}/hr.time'), hr_status)} | {hr_counts} | {objects} | {rpk_cell} | {hr_cell} |")
 EOF

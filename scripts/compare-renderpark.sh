@@ -233,33 +233,15 @@ fi
 
 python3 - "$repo/scripts/cornell-mgf.py" "$tmp/solution.wrl" "$lwa" "$tmp/hierarchical.json" \
     "$reference" "$reference_what" "$tmp/export.out" "$tmp/faces.json" "$face_reference" <<'EOF'
-import importlib.util, json, math, re, sys
+import importlib.util, json, math, os, re, sys
 
 mgf_script, wrl, lwa, hr_path, ref_path, ref_what, rpk_out, faces_path, face_ref_path = sys.argv[1:10]
+sys.path.insert(0, os.path.dirname(mgf_script))
+from renderpark_export import cross, display_scale, dot, elements, newell, read_export, sub
+
 spec = importlib.util.spec_from_file_location("cornell_mgf", mgf_script)
 cm = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(cm)
-
-
-def sub(a, b):
-    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
-
-
-def cross(a, b):
-    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
-
-
-def dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def newell(poly):
-    """Area vector (normal x area) of a planar polygon."""
-    n = (0.0, 0.0, 0.0)
-    for i in range(len(poly)):
-        c = cross(poly[i], poly[(i + 1) % len(poly)])
-        n = (n[0] + c[0] / 2, n[1] + c[1] / 2, n[2] + c[2] / 2)
-    return n
 
 
 def norm(v):
@@ -312,27 +294,11 @@ for line in open(rpk_out, errors="replace"):
 print("RenderPark's scene statistics (its Y; in brackets: expected from strahl's colours):")
 print("  " + "; ".join(f"{k} {stats.get(k, float('nan')):.6g} ({v:.6g})" for k, v in expected.items()))
 
-# Display value = radiance x 2^b x efficacy x comp / ldmax (Ward's contrast-based scale factor,
-# comp from the display's adaptation luminance ldmax / 2 and the scene's, lwa).
-ldmax, bright, efficacy = 100.0, -16.0, 183.07
-comp = ((1.219 + (ldmax / 2) ** 0.4) / (1.219 + float(lwa) ** 0.4)) ** 2.5
-scale = 2.0 ** bright * efficacy * comp / ldmax
-
-text = open(wrl).read()
-
-
-def numbers(pattern):
-    m = re.search(pattern + r"\s*\[([^\]]*)\]", text)
-    if not m:
-        sys.exit(f"no {pattern} in the VRML export")
-    return m.group(1).replace(",", " ").split()
-
-
-points = [float(t) for t in numbers(r"\bpoint")]
-colors = [float(t) for t in numbers(r"color\s+Color\s*\{\s*color")]
-index = [int(t) for t in numbers(r"coordIndex")]
-P = [tuple(points[i:i + 3]) for i in range(0, len(points), 3)]
-C = [tuple(colors[i:i + 3]) for i in range(0, len(colors), 3)]
+scale = display_scale(float(lwa))
+try:
+    P, C, index = read_export(wrl)
+except ValueError as e:
+    sys.exit(str(e))
 clipped = sum(1 for c in C for v in c if v >= 0.999)
 
 
@@ -347,13 +313,9 @@ def inside(face, point):
 # Per object and per face: [area, area-weighted sum of the elements' mean radiance]
 sums = {name: [0.0, [0.0, 0.0, 0.0]] for name, _, _ in cm.OBJECTS}
 face_sums = {(f[0], k): [0.0, [0.0, 0.0, 0.0]] for f, k in zip(faces, face_index)}
-unmatched = 0
-element, elements = [], 0
-for i in index:
-    if i >= 0:
-        element.append(i)
-        continue
-    elements += 1
+unmatched = elements_read = 0
+for element in elements(index):
+    elements_read += 1
     poly = [P[k] for k in element]
     area_vector = newell(poly)
     area, n = norm(area_vector), unit(area_vector)
@@ -367,7 +329,6 @@ for i in index:
         for s in (sums[name], face_sums[(name, face_index[match[0]])]):
             s[0] += area
             s[1] = [s[1][c] + area * mean[c] for c in range(3)]
-    element = []
 
 
 def reflected(report):
@@ -378,7 +339,7 @@ def reflected(report):
 
 
 hr, ref = reflected(hr_path), reflected(ref_path)
-print(f"RenderPark's solution: {elements} leaf elements in its VRML export, {unmatched} not matched "
+print(f"RenderPark's solution: {elements_read} leaf elements in its VRML export, {unmatched} not matched "
       f"to a face, {clipped} clipped colour values; display scale {scale:.6g} "
       f"(adaptation luminance {lwa} cd/m^2)")
 print(f"reference: {ref_what}")
