@@ -1010,7 +1010,7 @@ mod tests {
             "line 10: material \"over\" reflects and transmits more than it receives: rd + \
              td + rs + ts = 1.2; each was scaled down by 1/1.2",
             "line 15: material \"cyan\": a colour outside the RGB gamut was clipped to it",
-            "line 20: material \"purple\": a colour with y = 0 has no luminance",
+            "line 20: material \"purple\": a colour with y = 0 (below 0.000001) has no luminance",
             "line 23: cspec: 1 negative value(s) taken as 0 (the first: value 3, -0.01)",
         ] {
             assert!(w.contains(says), "{says}\n{w}");

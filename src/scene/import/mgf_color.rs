@@ -29,6 +29,11 @@ use glam::{DMat3, DVec3};
 /// The visible range MGF spectra are taken over, nanometres.
 const VISIBLE_NM: (f64, f64) = (380.0, 780.0);
 
+/// Chromaticities with `y` below this are black, as RenderPark takes them (its `cy >
+/// EPSILON`): XYZ is luminance over `y`, which for `y` near 0 overflows to infinity and makes
+/// the RGB conversion non-finite.
+const MIN_Y: f64 = 1e-6;
+
 /// The largest Phong exponent a rough `rs` becomes (roughness below 0.0006).
 const MAX_SHININESS: f64 = 1e6;
 
@@ -54,7 +59,8 @@ impl Chroma {
     /// The chromaticity `(x, y)`: both at least 0 with `x + y` at most 1, as MGF's reference
     /// parser takes them (RenderPark's `corridor.mgf` and `office2.mgf` have `cxy 0 …`, its
     /// hospital `cxy 0.4 0`). Such colours lie outside every RGB gamut: `x = 0` is clipped to
-    /// the gamut, and `y = 0`, which has no luminance, is black (as RenderPark makes it).
+    /// the gamut, and `y = 0` (below [`MIN_Y`]), which has no luminance, is black (as
+    /// RenderPark makes it).
     pub fn from_xy(x: f64, y: f64) -> Result<Chroma, String> {
         if x >= 0.0 && y >= 0.0 && x + y <= 1.0 {
             Ok(Chroma { x, y })
@@ -65,9 +71,9 @@ impl Chroma {
         }
     }
 
-    /// Whether the colour has no luminance (`y = 0`): black whatever its amount.
+    /// Whether the colour has no luminance (`y` below [`MIN_Y`]): black whatever its amount.
     fn is_black(self) -> bool {
-        self.y == 0.0
+        self.y < MIN_Y
     }
 
     /// The chromaticity of CIE XYZ `xyz`.
@@ -313,7 +319,8 @@ pub(super) fn to_strahl(
     }
     if blackened {
         warn(format!(
-            "material \"{name}\": a colour with y = 0 has no luminance: that part is black"
+            "material \"{name}\": a colour with y = 0 (below {MIN_Y}) has no luminance: that part \
+             is black"
         ));
     }
     let sum = diffuse + translucency + specular + transmission;
@@ -397,6 +404,9 @@ mod tests {
         let (_, clipped) = Chroma::from_xy(0.0, 0.38).unwrap().rgb(0.5);
         assert!(clipped);
         let (black, _) = Chroma::from_xy(0.4, 0.0).unwrap().rgb(0.5);
+        assert_eq!(black, DVec3::ZERO);
+        // Nearly 0 too: luminance over y would overflow, and the colour come out non-finite.
+        let (black, _) = Chroma::from_xy(0.3, 1e-310).unwrap().rgb(0.5);
         assert_eq!(black, DVec3::ZERO);
     }
 
