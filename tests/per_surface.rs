@@ -473,9 +473,7 @@ fn the_gather_at_the_surfaces_counts_the_light_of_glossy_lobes_as_absorbed_as_th
         scene
     };
     let mut diffuse = glossy.clone();
-    for m in &mut diffuse.materials {
-        m.keep_diffuse_lobes();
-    }
+    diffuse.keep_diffuse_lobes();
     let world = |scene| Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
     let method = Method::Radiosity(RadiositySettings::new(SolverKind::Hierarchical));
     let (glossy, diffuse) = (

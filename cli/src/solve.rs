@@ -152,10 +152,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         }
     }
     if args.diffuse_only {
-        scene
-            .materials
-            .iter_mut()
-            .for_each(|m| m.keep_diffuse_lobes());
+        scene.keep_diffuse_lobes();
     }
     if scene.objects.is_empty() {
         bail!(

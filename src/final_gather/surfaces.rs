@@ -30,10 +30,11 @@
 //!
 //! Which surfaces: by default those that receive less than [`SurfaceGather::below_share`]
 //! (2 %) of the light all surfaces receive, and at least [`INDIRECT_SHARE`] of theirs
-//! otherwise than over light links (indirectly, or from emitting surfaces). The solution holds every link to a share of the scene's power, so a surface
-//! with much of the light gets it right within a fraction of a per cent (the Cornell box face
-//! by face: every face above 1 % of the light within 0.43 %), while one with little light,
-//! most of it reflected to it, sums errors that can be several per cent of its own
+//! otherwise than over light links (indirectly, or from emitting surfaces). The solution
+//! holds every link to a share of the scene's power, so a surface with much of the light gets
+//! it right within a fraction of a per cent (the Cornell box face by face: every face above
+//! 1 % of the light within 0.43 %), while one with little light, most of it reflected to it
+//! or sent by emitting surfaces, sums errors that can be several per cent of its own
 //! (docs/VALIDATION.md).
 //!
 //! Each element's estimate carries the variance of its mean (the Sobol strata treated as

@@ -151,7 +151,7 @@ pub fn is_textured(scene: &Scene, material: MaterialId) -> bool {
 pub fn non_diffuse_materials(scene: &Scene) -> Vec<&str> {
     let mut names: Vec<&str> = Vec::new();
     for object in &scene.objects {
-        for &id in object.materials().iter() {
+        for &id in object.materials() {
             let m = &scene.materials[id as usize];
             if !m.is_diffuse() && !names.contains(&m.name.as_str()) {
                 names.push(&m.name);

@@ -69,6 +69,14 @@ impl Scene {
                 .any(|o| o.materials().iter().any(|&m| emits(m)))
     }
 
+    /// Drops from every material the lobes radiosity does not model
+    /// ([`Material::keep_diffuse_lobes`]): the scene every radiosity solver solves.
+    pub fn keep_diffuse_lobes(&mut self) {
+        self.materials
+            .iter_mut()
+            .for_each(Material::keep_diffuse_lobes);
+    }
+
     /// An empty scene with a default camera looking down −z from `(0, 0, 5)`.
     pub fn empty(name: &str) -> Self {
         Scene {

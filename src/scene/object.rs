@@ -23,13 +23,12 @@ pub struct Object {
 
 impl Object {
     /// The materials of its surface: a mesh's faces' own, or the object's.
-    pub fn materials(&self) -> std::borrow::Cow<'_, [MaterialId]> {
-        if let Shape::Mesh(mesh) = &self.shape
-            && let Some(materials) = &mesh.face_materials
-        {
-            return std::borrow::Cow::Borrowed(materials);
+    pub fn materials(&self) -> &[MaterialId] {
+        match &self.shape {
+            Shape::Mesh(mesh) => mesh.face_materials.as_deref(),
+            _ => None,
         }
-        std::borrow::Cow::Owned(vec![self.material])
+        .unwrap_or(std::slice::from_ref(&self.material))
     }
 }
 

@@ -158,7 +158,7 @@ impl World {
     }
 
     /// This world with the lobes radiosity does not model (Phong, mirror, refraction) dropped
-    /// from every material ([`crate::scene::Material::keep_diffuse_lobes`]), with the same
+    /// from every material ([`Scene::keep_diffuse_lobes`]), with the same
     /// accelerator kind: what the radiosity methods solve, so that the rays they trace (the
     /// final gather at the reported surfaces) count that light as absorbed, as their
     /// solutions do. `None` when every material is diffuse, so this world serves as it is.
@@ -167,10 +167,7 @@ impl World {
             return Ok(None);
         }
         let mut scene = self.scene.clone();
-        scene
-            .materials
-            .iter_mut()
-            .for_each(|m| m.keep_diffuse_lobes());
+        scene.keep_diffuse_lobes();
         World::new(scene, self.kind).map(Some)
     }
 
