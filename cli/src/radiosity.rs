@@ -139,6 +139,9 @@ pub struct RadiosityArgs {
     /// hierarchical: link every pair of root patches instead of grouping them into clusters.
     #[arg(long)]
     pub no_clustering: bool,
+    /// hierarchical: scenes of at least this many root patches carry the light between clusters too close for the cluster transport by rays cast from every root patch, instead of by links split down to pairs of root patches (0: every scene).
+    #[arg(long, default_value_t = HierarchicalSettings::default().near_rays_from)]
+    pub near_rays_from: usize,
     /// hierarchical: leave out the final gather over the emitters' pieces (links whose emitter was split keep gathering its mean radiosity, or its quarters').
     #[arg(long)]
     pub no_fine_gather: bool,
@@ -250,6 +253,7 @@ impl RadiosityArgs {
             tolerance: self.tolerance,
             max_rounds: self.max_rounds,
             clustering: !self.no_clustering,
+            near_rays_from: self.near_rays_from,
             fine_gather: !self.no_fine_gather,
             // The method keeps them when the links are shown.
             link_segments: false,

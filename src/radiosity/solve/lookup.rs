@@ -3,10 +3,11 @@
 //! what camera rays meet; final gathering reads the light reflected where gather rays land.
 
 use super::interpolate::{CornerValues, vertex_radiosity};
+use super::patch_triangles::PatchTriangles;
 use super::system::RadiositySystem;
-use crate::accel::{AccelKind, Accelerator, PrimHit, PrimitiveSet};
+use crate::accel::{AccelKind, Accelerator};
 use crate::color::{Rgb, Rgb64};
-use crate::geometry::{Aabb, Ray, Triangle, spawn_ray};
+use crate::geometry::{Ray, spawn_ray};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::Patch;
 use crate::radiosity::surface::{
@@ -28,54 +29,6 @@ crate::choice::named_values!(Shading {
     Shading::Flat = "flat", "One colour per leaf patch";
     Shading::Smooth = "smooth", "Radiosity interpolated to the patch corners, smooth across the facets of curved shapes";
 });
-
-/// The leaf patches as triangles: quads as the two triangles (0,1,2) and (0,2,3).
-struct LeafTriangles {
-    triangles: Vec<Triangle>,
-    /// Per triangle: leaf index and the leaf's corner indices of its vertices.
-    owners: Vec<(u32, [u8; 3])>,
-}
-
-impl LeafTriangles {
-    fn new(system: &RadiositySystem) -> Self {
-        let mut triangles = Vec::new();
-        let mut owners = Vec::new();
-        for (k, &leaf) in system.leaves.iter().enumerate() {
-            let c = system.mesh.patch(leaf).corners();
-            let splits: &[[u8; 3]] = if c.len() == 3 {
-                &[[0, 1, 2]]
-            } else {
-                &[[0, 1, 2], [0, 2, 3]]
-            };
-            for &s in splits {
-                let v = s.map(|i| c[i as usize].as_vec3());
-                triangles.push(Triangle::new(v[0], v[1], v[2]));
-                owners.push((k as u32, s));
-            }
-        }
-        LeafTriangles { triangles, owners }
-    }
-}
-
-impl PrimitiveSet for LeafTriangles {
-    fn len(&self) -> usize {
-        self.triangles.len()
-    }
-
-    fn bounds(&self, prim: u32) -> Aabb {
-        Aabb::from_points(self.triangles[prim as usize].vertices())
-    }
-
-    fn intersect(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit> {
-        self.triangles[prim as usize]
-            .intersect(ray, t_max)
-            .map(|(t, b1, b2)| PrimHit {
-                t,
-                prim,
-                local: [b1, b2],
-            })
-    }
-}
 
 /// Where a ray meets the leaf mesh.
 pub struct LeafHit<'a> {
@@ -143,8 +96,8 @@ struct TextureDetail {
 /// A value per element of a solved system (a radiosity, W·m⁻²), found along rays.
 pub struct RadiosityLookup<'s> {
     system: &'s RadiositySystem,
-    triangles: LeafTriangles,
-    accel: Box<dyn Accelerator<LeafTriangles>>,
+    triangles: PatchTriangles,
+    accel: Box<dyn Accelerator<PatchTriangles>>,
     values: ElementValues,
     detail: Option<TextureDetail>,
     shading: Shading,
@@ -154,7 +107,7 @@ impl<'s> RadiosityLookup<'s> {
     /// The lookup of `values` (one per element of `system`, in element order) shown by
     /// `shading`.
     pub fn new(system: &'s RadiositySystem, values: Vec<Rgb64>, shading: Shading) -> Self {
-        let triangles = LeafTriangles::new(system);
+        let triangles = PatchTriangles::new(&system.mesh, &system.leaves);
         let accel = AccelKind::Bvh.build(&triangles);
         RadiosityLookup {
             system,

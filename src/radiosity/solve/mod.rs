@@ -10,6 +10,7 @@ mod interpolate;
 mod lightmap;
 mod lookup;
 mod matrix;
+mod patch_triangles;
 mod progressive;
 mod rounds;
 mod sensors;

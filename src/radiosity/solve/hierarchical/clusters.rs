@@ -65,6 +65,8 @@ struct Cluster {
     radius: f64,
     first: u32,
     end: u32,
+    /// The area of its members (one side each), scene units².
+    area: f64,
     children: Vec<End>,
 }
 
@@ -73,6 +75,8 @@ struct Cluster {
 pub struct ClusterTree {
     clusters: Vec<Cluster>,
     members: Vec<PatchId>,
+    /// Per patch (roots only; others `u32::MAX`): its place in `members`.
+    positions: Vec<u32>,
     /// Per object: the bounds of a closed shape, whose front sides face out.
     enclosures: Vec<Option<(DVec3, DVec3)>>,
 }
@@ -100,10 +104,15 @@ impl ClusterTree {
         let mut tree = ClusterTree {
             clusters: Vec::new(),
             members: mesh.roots.clone(),
+            positions: Vec::new(),
             enclosures,
         };
         let n = tree.members.len();
         tree.build(mesh, 0, n);
+        tree.positions = vec![u32::MAX; mesh.len()];
+        for (k, &p) in tree.members.iter().enumerate() {
+            tree.positions[p as usize] = k as u32;
+        }
         Some(tree)
     }
 
@@ -116,11 +125,16 @@ impl ClusterTree {
     fn build(&mut self, mesh: &PatchMesh, first: usize, end: usize) -> u32 {
         let index = self.clusters.len() as u32;
         let (centre, radius) = ball(mesh, &self.members[first..end]);
+        let area = self.members[first..end]
+            .iter()
+            .map(|&p| mesh.patch(p).area)
+            .sum();
         self.clusters.push(Cluster {
             centre,
             radius,
             first: first as u32,
             end: end as u32,
+            area,
             children: Vec::new(),
         });
         let children = if end - first <= LEAF_MEMBERS {
@@ -158,6 +172,73 @@ impl ClusterTree {
                 &self.members[c.first as usize..c.end as usize]
             }
             End::Patch(p) => std::slice::from_ref(p),
+        }
+    }
+
+    /// The root patches in the tree's order (each cluster's members a contiguous range).
+    pub fn all_members(&self) -> &[PatchId] {
+        &self.members
+    }
+
+    /// The place of root patch `patch` in [`Self::all_members`].
+    pub fn position(&self, patch: PatchId) -> u32 {
+        self.positions[patch as usize]
+    }
+
+    /// The places of `end`'s members in [`Self::all_members`].
+    pub fn range(&self, end: End) -> std::ops::Range<u32> {
+        match end {
+            End::Cluster(c) => {
+                let c = &self.clusters[c as usize];
+                c.first..c.end
+            }
+            End::Patch(p) => {
+                let k = self.position(p);
+                k..k + 1
+            }
+        }
+    }
+
+    /// The area of `end`'s members (one side each), scene units².
+    pub fn area(&self, mesh: &PatchMesh, end: End) -> f64 {
+        match end {
+            End::Cluster(c) => self.clusters[c as usize].area,
+            End::Patch(p) => mesh.patch(p).area,
+        }
+    }
+
+    /// Per cluster: the power its members send out (luminance, both sides), for the
+    /// radiosity `radiosity` per node, W.
+    pub fn sent(&self, mesh: &PatchMesh, radiosity: &[Rgb64]) -> Vec<f64> {
+        self.fold_up(|p| sent_by(mesh, radiosity, p), |a, b| a + b)
+    }
+
+    /// Per cluster: `combine` over its members' `value`s, folded up the tree.
+    fn fold_up(
+        &self,
+        value: impl Fn(PatchId) -> f64,
+        combine: impl Fn(f64, f64) -> f64,
+    ) -> Vec<f64> {
+        let mut folded = vec![0.0; self.clusters.len()];
+        // Children come after their parent in `clusters`.
+        for c in (0..self.clusters.len()).rev() {
+            folded[c] = self.clusters[c]
+                .children
+                .iter()
+                .map(|&child| match child {
+                    End::Cluster(k) => folded[k as usize],
+                    End::Patch(p) => value(p),
+                })
+                .fold(0.0, &combine);
+        }
+        folded
+    }
+
+    /// The power `end`'s members send out, from the clusters' [`Self::sent`], W.
+    pub fn sent_of(sent: &[f64], mesh: &PatchMesh, radiosity: &[Rgb64], end: End) -> f64 {
+        match end {
+            End::Cluster(c) => sent[c as usize],
+            End::Patch(p) => sent_by(mesh, radiosity, p),
         }
     }
 
@@ -489,6 +570,15 @@ fn member_point(patch: &Patch, k: usize) -> DVec3 {
     let k = k as f64;
     let (s, t) = ((0.5 + A1 * k).fract(), (0.5 + A2 * k).fract());
     patch.point_at(0.05 + 0.9 * s, 0.05 + 0.9 * t)
+}
+
+/// The power root patch `patch` sends out from both sides (luminance), W.
+fn sent_by(mesh: &PatchMesh, radiosity: &[Rgb64], patch: PatchId) -> f64 {
+    let b: f64 = Side::BOTH
+        .map(|side| radiosity[node(patch, side)].luminance())
+        .into_iter()
+        .sum();
+    b * mesh.patch(patch).area
 }
 
 /// Whether `shape` encloses a volume with its front sides facing out (a mesh may, but is not

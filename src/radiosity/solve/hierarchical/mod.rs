@@ -38,11 +38,13 @@ mod clusters;
 mod fine_gather;
 mod importance;
 mod links;
+mod near_rays;
 mod nodes;
 mod oracle;
 mod shooting;
 mod solver;
 
+pub use near_rays::NEAR_RAYS_FROM;
 pub use oracle::Oracle;
 pub use shooting::solve_hierarchical_shooting;
 pub use solver::solve_hierarchical;
@@ -90,7 +92,11 @@ pub struct HierarchicalSettings {
     /// Group the root patches into clusters that exchange light as a whole while they are
     /// small against their distance.
     pub clustering: bool,
-    /// Once refinement is done, links whose emitter has been split gather from its pieces,
+    /// Scenes of at least this many root patches carry the light between clusters too close
+    /// for the cluster transport by rays (`near_rays.rs`) instead of by links split down to
+    /// pairs of root patches (0: every scene; `usize::MAX`: none).
+    pub near_rays_from: usize,
+    /// Once refinement is done, links whose emitter has been split gathers from its pieces,
     /// each weighed by its form factor from the receiver (`fine_gather.rs`).
     pub fine_gather: bool,
     /// Keep every link at the end as a segment between its ends' centres
@@ -102,7 +108,8 @@ pub struct HierarchicalSettings {
 impl Default for HierarchicalSettings {
     /// Lischinski's oracle at an error of 10⁻⁴ of the emitted power, minimum area 2·10⁻⁵
     /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds, clustering and the
-    /// final gather over the emitters' pieces on, no link segments kept.
+    /// the near field by rays from [`NEAR_RAYS_FROM`] root patches, the final
+    /// gather over the emitters' pieces on, no link segments kept.
     fn default() -> Self {
         HierarchicalSettings {
             oracle: Oracle::Lischinski,
@@ -113,6 +120,7 @@ impl Default for HierarchicalSettings {
             tolerance: 1e-4,
             max_rounds: 100,
             clustering: true,
+            near_rays_from: NEAR_RAYS_FROM,
             fine_gather: true,
             link_segments: false,
         }

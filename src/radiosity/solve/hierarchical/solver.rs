@@ -5,6 +5,7 @@ use super::clusters::{ClusterLink, ClusterTree, End, Split};
 use super::fine_gather::FineGather;
 use super::importance::Importance;
 use super::links::{LightLink, Link, Linker, Prior};
+use super::near_rays::{NearRays, REFERENCE_SHARE};
 use super::nodes::{Nodes, node, split_node};
 use super::oracle::{Decision, Limits, decide, decide_light};
 use super::{HierarchicalSettings, RefinePass};
@@ -24,6 +25,7 @@ use crate::radiosity::surface::is_textured;
 use crate::radiosity::visibility::Visibility;
 use crate::world::World;
 use rayon::prelude::*;
+use std::f64::consts::PI;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -67,6 +69,11 @@ pub(super) struct Solver<'w, 'v> {
     light_links: Vec<LightLink>,
     clusters: Option<ClusterTree>,
     cluster_links: Vec<ClusterLink>,
+    /// The near field by rays, in scenes of many root patches.
+    near: Option<NearRays>,
+    /// Cluster links whose ends are too close for the cluster transport, carried by `near`
+    /// (receiver, emitter).
+    near_links: Vec<(End, End)>,
     pub(super) linker: Linker<'v>,
     pub(super) limits: Limits,
     /// The chunks' sums of the last gather, kept for the next one.
@@ -195,6 +202,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             light_links: Vec::new(),
             clusters: None,
             cluster_links: Vec::new(),
+            near: None,
+            near_links: Vec::new(),
             linker: Linker {
                 world,
                 visibility,
@@ -232,6 +241,15 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     fn link_root_pairs(&mut self, cancel: &Cancel) {
         if self.settings.clustering {
             self.clusters = ClusterTree::new(&self.world.scene, &self.mesh);
+            if self.mesh.roots.len() >= self.settings.near_rays_from {
+                let area: f64 = self
+                    .mesh
+                    .roots
+                    .iter()
+                    .map(|&r| self.mesh.patch(r).area)
+                    .sum();
+                self.near = Some(NearRays::new(REFERENCE_SHARE * area));
+            }
         }
         if let Some(tree) = &self.clusters {
             let root = tree.root();
@@ -247,9 +265,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         self.links = self.create_links(&pairs);
     }
 
-    /// Patch, cluster and light links.
+    /// Patch, cluster, near and light links.
     fn link_count(&self) -> usize {
-        self.links.len() + self.cluster_links.len() + self.light_links.len()
+        self.links.len() + self.cluster_links.len() + self.near_links.len() + self.light_links.len()
     }
 
     /// Refines cluster links until every one left brings at most the error threshold's
@@ -270,34 +288,66 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             let (mesh, b, error) = (&self.mesh, &self.nodes.radiosity, self.limits.error);
             let importance = &self.importance;
             // Judged and split in parallel: what replaces each link refined, in link order.
-            let splits: Vec<Option<Split>> = self.cluster_links[judged..]
+            let near = self.near.as_ref();
+            let sent = tree.sent(mesh, b);
+            let splits: Vec<Verdict> = self.cluster_links[judged..]
                 .par_iter()
                 .with_max_len(UNEVEN_RUN)
                 .map(|l| {
                     let members = tree.members(&l.receiver);
-                    let refine = tree.power_bound(mesh, l, b)
-                        > importance.error_for_members(mesh, members, error);
-                    refine.then(|| tree.split(mesh, l))
+                    let threshold = importance.error_for_members(mesh, members, error);
+                    let sends = ClusterTree::sent_of(&sent, mesh, b, l.emitter);
+                    let verdict = match near {
+                        // Ends too close for the cluster transport: rays, if their error
+                        // is small enough.
+                        Some(near) if !l.separated() => {
+                            let error = near.error(
+                                tree.area(mesh, l.receiver),
+                                tree.area(mesh, l.emitter),
+                                sends,
+                            );
+                            (error <= threshold).then_some(Verdict::Near)
+                        }
+                        // Separated ends, every cosine 1 first: a bound from the clusters'
+                        // sums, kept without a sum over the members when even that passes.
+                        _ if !(l.separated()
+                            && sends / PI * 2.0 * tree.area(mesh, l.receiver)
+                                / l.gap().powi(2)
+                                <= threshold)
+                            && tree.power_bound(mesh, l, b) > threshold =>
+                        {
+                            None
+                        }
+                        _ => Some(Verdict::Keep),
+                    };
+                    verdict.unwrap_or_else(|| Verdict::Split(tree.split(mesh, l)))
                 })
                 .collect();
-            let count = splits.iter().filter(|s| s.is_some()).count() as u64;
+            let count = splits
+                .iter()
+                .filter(|s| !matches!(s, Verdict::Keep))
+                .count() as u64;
             if count == 0 {
                 break;
             }
             let mut ends: Vec<(End, End)> = Vec::new();
             let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
-            for split in splits.iter().flatten() {
+            for (split, link) in splits.iter().zip(&self.cluster_links[judged..]) {
                 match split {
-                    Split::Links(new) => ends.extend(new),
-                    &Split::Patches(r, e) => pairs.extend(Side::BOTH.into_iter().flat_map(|rs| {
-                        Side::BOTH.map(|es| (node(r, rs), node(e, es), Prior::Unknown))
-                    })),
+                    Verdict::Keep => {}
+                    Verdict::Near => self.near_links.push((link.receiver, link.emitter)),
+                    Verdict::Split(Split::Links(new)) => ends.extend(new),
+                    &Verdict::Split(Split::Patches(r, e)) => {
+                        pairs.extend(Side::BOTH.into_iter().flat_map(|rs| {
+                            Side::BOTH.map(|es| (node(r, rs), node(e, es), Prior::Unknown))
+                        }))
+                    }
                 }
             }
             let mut index = 0;
             self.cluster_links.retain(|_| {
                 index += 1;
-                index <= judged || splits[index - 1 - judged].is_none()
+                index <= judged || matches!(splits[index - 1 - judged], Verdict::Keep)
             });
             refined += count;
             let new: Vec<ClusterLink> = ends
@@ -328,6 +378,10 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             })
             .sum();
         self.linker.rays.fetch_add(rays, Ordering::Relaxed);
+        if let Some(near) = &mut self.near {
+            let rays = near.classify(mesh, tree, &self.near_links[near.classified()..]);
+            self.linker.rays.fetch_add(rays, Ordering::Relaxed);
+        }
         (created, refined)
     }
 
@@ -499,6 +553,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 .iter()
                 .fold(sums[0][n], |total, sum| total + sum[n]);
         });
+        if let (Some(near), Some(tree)) = (&self.near, &self.clusters) {
+            near.gather(tree, b, gathered);
+        }
     }
 
     /// Per node, at the leaves: the irradiance straight from the emitting surfaces and the
@@ -760,4 +817,14 @@ pub(super) fn children(mesh: &mut PatchMesh, n: usize) -> [usize; 4] {
     let (patch, side) = split_node(n);
     let ids: [PatchId; 4] = mesh.subdivide(patch);
     ids.map(|c| node(c, side))
+}
+
+/// What judging a cluster link decides.
+enum Verdict {
+    /// It brings its light well enough as it is.
+    Keep,
+    /// Its ends are too close for the cluster transport: the near field's rays carry it.
+    Near,
+    /// It is replaced.
+    Split(Split),
 }
