@@ -213,6 +213,20 @@ impl ClusterTree {
         self.fold_up(|p| sent_by(mesh, radiosity, p), |a, b| a + b)
     }
 
+    /// Per cluster: the largest of `values` (per node, luminance) over its members' sides.
+    pub fn brightest(&self, values: &[Rgb64]) -> Vec<f64> {
+        self.fold_up(|p| brightest_side(values, p), f64::max)
+    }
+
+    /// The largest of `values` over `end`'s member sides, from the clusters'
+    /// [`Self::brightest`].
+    pub fn brightest_of(brightest: &[f64], values: &[Rgb64], end: End) -> f64 {
+        match end {
+            End::Cluster(c) => brightest[c as usize],
+            End::Patch(p) => brightest_side(values, p),
+        }
+    }
+
     /// Per cluster: `combine` over its members' `value`s, folded up the tree.
     fn fold_up(
         &self,
@@ -570,6 +584,14 @@ fn member_point(patch: &Patch, k: usize) -> DVec3 {
     let k = k as f64;
     let (s, t) = ((0.5 + A1 * k).fract(), (0.5 + A2 * k).fract());
     patch.point_at(0.05 + 0.9 * s, 0.05 + 0.9 * t)
+}
+
+/// The larger of `values` (per node, luminance) on root patch `patch`'s two sides.
+fn brightest_side(values: &[Rgb64], patch: PatchId) -> f64 {
+    Side::BOTH
+        .map(|side| values[node(patch, side)].luminance())
+        .into_iter()
+        .fold(0.0, f64::max)
 }
 
 /// The power root patch `patch` sends out from both sides (luminance), W.

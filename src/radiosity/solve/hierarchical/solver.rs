@@ -290,6 +290,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             // Judged and split in parallel: what replaces each link refined, in link order.
             let near = self.near.as_ref();
             let sent = tree.sent(mesh, b);
+            let emission = &self.nodes.emission;
+            let emitting = near.map(|_| tree.brightest(emission)).unwrap_or_default();
             let splits: Vec<Verdict> = self.cluster_links[judged..]
                 .par_iter()
                 .with_max_len(UNEVEN_RUN)
@@ -305,6 +307,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                                 tree.area(mesh, l.receiver),
                                 tree.area(mesh, l.emitter),
                                 sends,
+                                ClusterTree::brightest_of(&emitting, emission, l.emitter),
                             );
                             (error <= threshold).then_some(Verdict::Near)
                         }
