@@ -376,7 +376,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             .with_max_len(UNEVEN_RUN)
             .map(|link| {
                 let mut rays = 0;
-                tree.see(mesh, visibility, link, &mut rays);
+                tree.see(mesh, visibility, link, &self.nodes.radiosity, &mut rays);
                 rays
             })
             .sum();
