@@ -14,7 +14,7 @@
 //! `J·(r/d')²·cos θ'·V` (`r` the distance between the centres), which is right to first
 //! order in the ends' sizes (measured: +1.8 % at the closest separation the oracle allows,
 //! falling with the distance squared). `V` is the member's own: the share of its rays to
-//! points spread over the emitting end that nothing blocks, shadows within the ends
+//! points of the emitting end (spread by the power each part sends) that nothing blocks, shadows within the ends
 //! included, cast only once the link is kept ([`ClusterTree::see`]). The inner sides of closed shapes (spheres, boxes, capped cylinders, cones and
 //! frustums) exchange light only with ends inside them, their outer sides only with ends
 //! outside.
@@ -422,24 +422,19 @@ impl ClusterTree {
         // lie, the emitter is dark, and aiming by area alone counted the hidden dark parts as
         // much as the open bright ones (the conference room lost 2 % of its light, its
         // ceiling −1.8 %, docs/PERFORMANCE.md). By area where the end sends nothing yet.
-        let facing_by = |power: bool| -> Vec<(DVec3, DVec3, f64)> {
-            self.members(&end)
-                .iter()
-                .filter_map(|&p| {
-                    let patch = mesh.patch(p);
-                    let (side, cos) = self.side_towards(patch, direction, other);
-                    let b = if power {
-                        radiosity[node(p, side)].luminance()
-                    } else {
-                        1.0
-                    };
-                    (cos > 0.0).then(|| (patch.centroid, side.normal(patch), patch.area * cos * b))
-                })
-                .collect()
-        };
-        let mut facing = facing_by(true);
+        let mut facing: Vec<(DVec3, DVec3, f64, f64)> = self
+            .members(&end)
+            .iter()
+            .filter_map(|&p| {
+                let patch = mesh.patch(p);
+                let (side, cos) = self.side_towards(patch, direction, other);
+                let b = radiosity[node(p, side)].luminance();
+                let projected = patch.area * cos;
+                (cos > 0.0).then(|| (patch.centroid, side.normal(patch), projected * b, projected))
+            })
+            .collect();
         if facing.iter().map(|f| f.2).sum::<f64>() <= 0.0 {
-            facing = facing_by(false);
+            facing.iter_mut().for_each(|f| f.2 = f.3);
         }
         let total: f64 = facing.iter().map(|f| f.2).sum();
         if total.is_nan() || total <= 0.0 {
@@ -447,7 +442,7 @@ impl ClusterTree {
         }
         let mut ends = Vec::with_capacity(TARGETS);
         let mut sum = 0.0;
-        for &(centroid, normal, weight) in &facing {
+        for &(centroid, normal, weight, _) in &facing {
             sum += weight;
             // The members whose cumulative share passes the middle of a stratum.
             while ends.len() < TARGETS
@@ -573,6 +568,18 @@ impl ClusterTree {
         intensity * area / link.gap().powi(2)
     }
 
+    /// A looser bound than [`Self::power_bound`] from the clusters' sums alone, W
+    /// (luminance): every cosine 1, so the emitter's intensity at most `sent/π` (`sent` the
+    /// power its members send, both sides, [`Self::sent_of`]) toward the receiver's
+    /// members' area, both sides, over the gap squared; infinite while the ends are not
+    /// well separated. Costs nothing per member: a link that passes it passes the exact one.
+    pub fn loose_power_bound(&self, mesh: &PatchMesh, link: &ClusterLink, sent: f64) -> f64 {
+        if !link.separated() {
+            return f64::INFINITY;
+        }
+        sent / PI * 2.0 * self.area(mesh, link.receiver) / link.gap().powi(2)
+    }
+
     /// Per side of `patch` (front, back): the largest cosine between its normal and the
     /// direction from its centroid to a point of the ball of centre `centre` and radius
     /// `radius`, zero for a side that cannot see it (facing away, or shut in or out by a
@@ -612,21 +619,21 @@ fn member_point(patch: &Patch, k: usize) -> DVec3 {
     patch.point_at(0.05 + 0.9 * s, 0.05 + 0.9 * t)
 }
 
+/// The luminances of `values` (per node) on root patch `patch`'s two sides, front first.
+fn side_luminances(values: &[Rgb64], patch: PatchId) -> [f64; 2] {
+    Side::BOTH.map(|side| values[node(patch, side)].luminance())
+}
+
 /// The larger of `values` (per node, luminance) on root patch `patch`'s two sides.
 fn brightest_side(values: &[Rgb64], patch: PatchId) -> f64 {
-    Side::BOTH
-        .map(|side| values[node(patch, side)].luminance())
-        .into_iter()
-        .fold(0.0, f64::max)
+    let [front, back] = side_luminances(values, patch);
+    front.max(back)
 }
 
 /// The power root patch `patch` sends out from both sides (luminance), W.
 fn sent_by(mesh: &PatchMesh, radiosity: &[Rgb64], patch: PatchId) -> f64 {
-    let b: f64 = Side::BOTH
-        .map(|side| radiosity[node(patch, side)].luminance())
-        .into_iter()
-        .sum();
-    b * mesh.patch(patch).area
+    let [front, back] = side_luminances(radiosity, patch);
+    (front + back) * mesh.patch(patch).area
 }
 
 /// Whether `shape` encloses a volume with its front sides facing out (a mesh may, but is not

@@ -96,7 +96,7 @@ pub struct HierarchicalSettings {
     /// for the cluster transport by rays (`near_rays.rs`) instead of by links split down to
     /// pairs of root patches (0: every scene; `usize::MAX`: none).
     pub near_rays_from: usize,
-    /// Once refinement is done, links whose emitter has been split gathers from its pieces,
+    /// Once refinement is done, links whose emitter has been split gather from its pieces,
     /// each weighed by its form factor from the receiver (`fine_gather.rs`).
     pub fine_gather: bool,
     /// Keep every link at the end as a segment between its ends' centres
@@ -107,9 +107,9 @@ pub struct HierarchicalSettings {
 
 impl Default for HierarchicalSettings {
     /// Lischinski's oracle at an error of 10⁻⁴ of the emitted power, minimum area 2·10⁻⁵
-    /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds, clustering and the
-    /// the near field by rays from [`NEAR_RAYS_FROM`] root patches, the final
-    /// gather over the emitters' pieces on, no link segments kept.
+    /// of the scene, original passes, tolerance 10⁻⁴, at most 100 rounds, clustering, the
+    /// near field by rays from [`NEAR_RAYS_FROM`] root patches and the final gather over the
+    /// emitters' pieces on, no link segments kept.
     fn default() -> Self {
         HierarchicalSettings {
             oracle: Oracle::Lischinski,

@@ -35,6 +35,7 @@ use crate::sampling::warp::cosine_hemisphere;
 use glam::DVec3;
 use glam::Vec2;
 use rayon::prelude::*;
+use smallvec::SmallVec;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Scenes of at least this many root patches carry their near field by rays (the default
@@ -76,15 +77,22 @@ pub struct NearRays {
     origins: Vec<u32>,
     /// Per ray: whether a near link carries its light.
     carried: Vec<AtomicBool>,
+    /// Per cluster of the tree: the brightest emission of a side of its members, W·m⁻²
+    /// (luminance; emission does not change while solving).
+    emitting: Vec<f64>,
     /// How many near links have been classified.
     classified: usize,
+    /// The number of patches of the mesh when the rays were last located (the quadtrees
+    /// only grow).
+    located: usize,
 }
 
 impl NearRays {
     /// The near field, each root patch casting [`RAYS_PER_SIDE`] rays a side per
-    /// `reference_area` scene units² (at least that many); no rays are cast until
-    /// [`Self::classify`].
-    pub fn new(reference_area: f64) -> Self {
+    /// `reference_area` scene units² (at least that many), with the brightest emission per
+    /// cluster `emitting` ([`ClusterTree::brightest`] of the emission); no rays are cast
+    /// until [`Self::classify`].
+    pub fn new(reference_area: f64, emitting: Vec<f64>) -> Self {
         NearRays {
             reference_area,
             first_ray: Vec::new(),
@@ -93,8 +101,16 @@ impl NearRays {
             met: Vec::new(),
             origins: Vec::new(),
             carried: Vec::new(),
+            emitting,
             classified: 0,
+            located: 0,
         }
+    }
+
+    /// The brightest emission of a side of `end`'s members (luminance), W·m⁻², for the
+    /// emission `emission` per node.
+    pub fn emitting(&self, emission: &[Rgb64], end: End) -> f64 {
+        ClusterTree::brightest_of(&self.emitting, emission, end)
     }
 
     /// How many near links [`Self::classify`] has been given: near links stay, so each is
@@ -138,7 +154,10 @@ impl NearRays {
             cast = self.cast(mesh, tree);
         }
         self.classified += links.len();
-        self.locate(mesh, tree);
+        if self.located != mesh.len() {
+            self.locate(mesh, tree);
+            self.located = mesh.len();
+        }
         // Each receiver's rays looked at once, against the emitters of all its new links
         // (disjoint ranges of places: the links cover each pair once).
         let mut by_receiver: Vec<(End, std::ops::Range<u32>)> =
@@ -202,7 +221,6 @@ impl NearRays {
             })
             .collect();
         (self.hits, self.distances) = cast.into_iter().unzip();
-        self.met = vec![MISSED; self.hits.len()];
         self.carried = (0..self.hits.len())
             .map(|_| AtomicBool::new(false))
             .collect();
@@ -265,11 +283,12 @@ impl NearRays {
         let members = tree.all_members();
         // Per root: the nodes its rays leave from, with the sum of what their carried rays
         // meet and how many rays leave from each.
-        let sums: Vec<Vec<(u32, Rgb64, u32)>> = (0..members.len())
+        // Most roots are not split below the reference area: their two sides' sums stay inline.
+        let sums: Vec<SmallVec<[(u32, Rgb64, u32); 2]>> = (0..members.len())
             .into_par_iter()
             .map(|place| {
                 let rays = self.first_ray[place] as usize..self.first_ray[place + 1] as usize;
-                let mut sums: Vec<(u32, Rgb64, u32)> = Vec::new();
+                let mut sums: SmallVec<[(u32, Rgb64, u32); 2]> = SmallVec::new();
                 for k in rays {
                     let origin = self.origins[k];
                     let at = match sums.iter().position(|s| s.0 == origin) {

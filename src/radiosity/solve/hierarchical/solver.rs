@@ -25,7 +25,6 @@ use crate::radiosity::surface::is_textured;
 use crate::radiosity::visibility::Visibility;
 use crate::world::World;
 use rayon::prelude::*;
-use std::f64::consts::PI;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -241,14 +240,17 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     fn link_root_pairs(&mut self, cancel: &Cancel) {
         if self.settings.clustering {
             self.clusters = ClusterTree::new(&self.world.scene, &self.mesh);
-            if self.mesh.roots.len() >= self.settings.near_rays_from {
+            if let Some(tree) = &self.clusters
+                && self.mesh.roots.len() >= self.settings.near_rays_from
+            {
                 let area: f64 = self
                     .mesh
                     .roots
                     .iter()
                     .map(|&r| self.mesh.patch(r).area)
                     .sum();
-                self.near = Some(NearRays::new(REFERENCE_SHARE * area));
+                let emitting = tree.brightest(&self.nodes.emission);
+                self.near = Some(NearRays::new(REFERENCE_SHARE * area, emitting));
             }
         }
         if let Some(tree) = &self.clusters {
@@ -290,8 +292,6 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             // Judged and split in parallel: what replaces each link refined, in link order.
             let near = self.near.as_ref();
             let sent = tree.sent(mesh, b);
-            let emission = &self.nodes.emission;
-            let emitting = near.map(|_| tree.brightest(emission)).unwrap_or_default();
             let splits: Vec<Verdict> = self.cluster_links[judged..]
                 .par_iter()
                 .with_max_len(UNEVEN_RUN)
@@ -307,20 +307,16 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                                 tree.area(mesh, l.receiver),
                                 tree.area(mesh, l.emitter),
                                 sends,
-                                ClusterTree::brightest_of(&emitting, emission, l.emitter),
+                                near.emitting(&self.nodes.emission, l.emitter),
                             );
                             (error <= threshold).then_some(Verdict::Near)
                         }
-                        // Separated ends, every cosine 1 first: a bound from the clusters'
-                        // sums, kept without a sum over the members when even that passes.
-                        _ if !(l.separated()
-                            && sends / PI * 2.0 * tree.area(mesh, l.receiver)
-                                / l.gap().powi(2)
-                                <= threshold)
-                            && tree.power_bound(mesh, l, b) > threshold =>
-                        {
-                            None
+                        // The bound from the clusters' sums first: when it passes, no sum
+                        // over the members.
+                        _ if tree.loose_power_bound(mesh, l, sends) <= threshold => {
+                            Some(Verdict::Keep)
                         }
+                        _ if tree.power_bound(mesh, l, b) > threshold => None,
                         _ => Some(Verdict::Keep),
                     };
                     verdict.unwrap_or_else(|| Verdict::Split(tree.split(mesh, l)))
