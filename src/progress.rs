@@ -9,8 +9,11 @@ pub trait ProgressListener: Sync {
     /// The next work to start is the phase `name` (`"refining"`, `"rendering"`, …), for
     /// listeners that show one bar per phase; ignored by default.
     fn phase(&self, _name: &str) {}
-    /// Work of `total` units starts.
+    /// Work of `total` units starts (0: how much is not known).
     fn start(&self, total: u64);
+    /// The work started is now estimated at `total` units in all, the units done so far
+    /// included (for work whose end is known only as it goes); ignored by default.
+    fn estimate(&self, _total: u64) {}
     /// `units` more units are done.
     fn advance(&self, units: u64);
     /// The work ended (completed or cancelled).

@@ -115,3 +115,92 @@ fn rays_agree_with_the_links_on_the_cornell_box_object_by_object() {
         assert!((y / x - 1.0).abs() < 0.015, "{}: {y} vs {x}", a.name);
     }
 }
+
+/// Records the phases named and the totals estimated; asks `cancel` to stop when the phase
+/// `stop_at` starts.
+struct Phases<'c> {
+    names: std::sync::Mutex<Vec<String>>,
+    estimates: std::sync::Mutex<Vec<u64>>,
+    cancel: &'c Cancel,
+    stop_at: &'static str,
+}
+
+impl strahl::progress::ProgressListener for Phases<'_> {
+    fn phase(&self, name: &str) {
+        self.names.lock().unwrap().push(name.to_string());
+        if name == self.stop_at {
+            self.cancel.request();
+        }
+    }
+    fn start(&self, _: u64) {}
+    fn estimate(&self, total: u64) {
+        self.estimates.lock().unwrap().push(total);
+    }
+    fn advance(&self, _: u64) {}
+    fn finish(&self) {}
+}
+
+/// The Cornell box solved with the near field forced on, the listener stopping it when the
+/// phase `stop_at` starts (never for an unknown name).
+fn watched(stop_at: &'static str) -> (Phases<'static>, strahl::radiosity::solve::Solution) {
+    let cancel = Box::leak(Box::new(Cancel::new()));
+    let phases = Phases {
+        names: Default::default(),
+        estimates: Default::default(),
+        cancel,
+        stop_at,
+    };
+    let world =
+        Arc::new(World::new(builtin::load("cornell").unwrap().unwrap(), AccelKind::Bvh).unwrap());
+    let (_, solution) = solve_hierarchical(
+        &world,
+        SystemOptions::default(),
+        &by_rays(HierarchicalSettings::default().error),
+        &phases,
+        cancel,
+    )
+    .unwrap();
+    (phases, solution)
+}
+
+#[test]
+fn the_solve_names_its_phases_and_estimates_its_rounds() {
+    let (phases, solution) = watched("none");
+    assert_eq!(
+        *phases.names.lock().unwrap(),
+        [
+            "meshing",
+            "linking lights",
+            "linking",
+            "near-field rays",
+            "linking clusters",
+            "solving"
+        ]
+    );
+    // One estimate after each refinement pass that refined something, never past the rounds
+    // allowed.
+    let estimates = phases.estimates.lock().unwrap();
+    assert!(!estimates.is_empty());
+    assert!(
+        estimates.iter().all(|e| (2..=100).contains(e)),
+        "{estimates:?}"
+    );
+    assert!(!solution.interrupted);
+}
+
+#[test]
+fn a_solve_stopped_while_the_rays_are_cast_keeps_what_it_has() {
+    for stop_at in ["linking lights", "near-field rays", "linking clusters"] {
+        let (phases, solution) = watched(stop_at);
+        assert_eq!(phases.names.lock().unwrap().last().unwrap(), "solving");
+        assert!(solution.interrupted, "{stop_at}");
+        // The light it had when stopped, nothing made up: finite and non-negative.
+        assert!(
+            solution
+                .radiosity
+                .iter()
+                .all(|b| b.is_finite() && b.to_array().iter().all(|&c| c >= 0.0)),
+            "{stop_at}"
+        );
+    }
+}

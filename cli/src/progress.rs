@@ -6,6 +6,12 @@ use std::sync::{Mutex, OnceLock};
 use std::time::Duration;
 use strahl::method::{Cancel, ProgressListener, resident_bytes};
 
+/// A phase whose length is known: a bar, the share done, the time taken and the estimate of
+/// the time left.
+const BAR_TEMPLATE: &str = "{msg:16} [{bar:40}] {percent:>3}% {elapsed_precise} (eta {eta})";
+/// A phase whose length is not known: a spinner and the time taken.
+const SPINNER_TEMPLATE: &str = "{msg:16} {spinner} {elapsed_precise}";
+
 /// A progress bar on standard error (hidden with `--quiet`), a new one for each phase of
 /// the work.
 pub struct Bar {
@@ -22,22 +28,23 @@ impl Bar {
         }
     }
 
-    /// A fresh bar labelled `label`.
+    /// A fresh bar labelled `label`, a spinner until its length is known.
     fn labelled(label: &str, quiet: bool) -> ProgressBar {
         let bar = if quiet {
             ProgressBar::hidden()
         } else {
             ProgressBar::new(0)
         };
-        bar.set_style(
-            ProgressStyle::with_template(
-                "{msg:12} [{bar:40}] {percent:>3}% {elapsed_precise} (eta {eta})",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
-        );
+        bar.set_style(Self::style(SPINNER_TEMPLATE));
         bar.set_message(label.to_string());
         bar
+    }
+
+    /// The style of `template`, or indicatif's default bar should it not parse.
+    fn style(template: &str) -> ProgressStyle {
+        ProgressStyle::with_template(template)
+            .unwrap_or_else(|_| ProgressStyle::default_bar())
+            .progress_chars("=> ")
     }
 
     /// The bar of the current phase.
@@ -61,8 +68,18 @@ impl ProgressListener for Bar {
     }
     fn start(&self, total: u64) {
         let bar = self.current();
+        if total == 0 {
+            bar.set_style(Self::style(SPINNER_TEMPLATE));
+            bar.enable_steady_tick(Duration::from_millis(200));
+        } else {
+            bar.set_style(Self::style(BAR_TEMPLATE));
+            bar.disable_steady_tick();
+        }
         bar.set_length(total);
         bar.set_position(0);
+    }
+    fn estimate(&self, total: u64) {
+        self.current().set_length(total);
     }
     fn advance(&self, units: u64) {
         self.current().inc(units);

@@ -115,8 +115,9 @@ fn radiosity(
     })
 }
 
-/// Meshes and solves `world` by the radiosity solver of `settings` (progress phases
-/// `refining`, `shooting` or `form factors`); cancelling keeps the state reached.
+/// Meshes and solves `world` by the radiosity solver of `settings` (progress phases: the
+/// hierarchical solvers' own, [`solve_hierarchical`] and [`solve_hierarchical_shooting`],
+/// `shooting` or `form factors`); cancelling keeps the state reached.
 pub fn solve_radiosity(
     world: &Arc<World>,
     settings: &RadiositySettings,
@@ -127,20 +128,16 @@ pub fn solve_radiosity(
     let options = settings.system;
     let (system, solution) = match settings.solver {
         SolverKind::Hierarchical => {
-            progress.phase("refining");
             solve_hierarchical(world, options, &settings.hierarchical, progress, cancel)?
         }
-        SolverKind::HierarchicalShooting => {
-            progress.phase("shooting");
-            solve_hierarchical_shooting(
-                world,
-                options,
-                &settings.hierarchical,
-                &settings.shooting,
-                progress,
-                cancel,
-            )?
-        }
+        SolverKind::HierarchicalShooting => solve_hierarchical_shooting(
+            world,
+            options,
+            &settings.hierarchical,
+            &settings.shooting,
+            progress,
+            cancel,
+        )?,
         SolverKind::Matrix => {
             let system = RadiositySystem::new(world, options)?;
             progress.phase("form factors");

@@ -28,6 +28,7 @@ use super::nodes::node;
 use crate::accel::AccelKind;
 use crate::color::Rgb64;
 use crate::geometry::{Frame, Ray, spawn_ray};
+use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{Patch, PatchId, PatchMesh};
 use crate::radiosity::solve::patch_triangles::PatchTriangles;
@@ -91,7 +92,7 @@ impl NearRays {
     /// The near field, each root patch casting [`RAYS_PER_SIDE`] rays a side per
     /// `reference_area` scene units² (at least that many), with the brightest emission per
     /// cluster `emitting` ([`ClusterTree::brightest`] of the emission); no rays are cast
-    /// until [`Self::classify`].
+    /// until [`Self::cast`].
     pub fn new(reference_area: f64, emitting: Vec<f64>) -> Self {
         NearRays {
             reference_area,
@@ -146,13 +147,8 @@ impl NearRays {
     }
 
     /// Marks the rays that the near links `links` (receiver, emitter), the ones made since
-    /// the last call, carry, casting every root's rays first if that has not been done.
-    /// Returns the rays cast.
-    pub fn classify(&mut self, mesh: &PatchMesh, tree: &ClusterTree, links: &[(End, End)]) -> u64 {
-        let mut cast = 0;
-        if self.hits.is_empty() {
-            cast = self.cast(mesh, tree);
-        }
+    /// the last call, carry.
+    pub fn classify(&mut self, mesh: &PatchMesh, tree: &ClusterTree, links: &[(End, End)]) {
         self.classified += links.len();
         if self.located != mesh.len() {
             self.locate(mesh, tree);
@@ -184,11 +180,18 @@ impl NearRays {
                 }
             }
         });
-        cast
     }
 
-    /// Casts the rays of every root patch; returns how many.
-    fn cast(&mut self, mesh: &PatchMesh, tree: &ClusterTree) -> u64 {
+    /// Casts the rays of every root patch (`progress` counts the root patches); returns how
+    /// many. Once `cancel` is requested the root patches left cast nothing: their rays count
+    /// as met nothing, and bring nothing.
+    pub fn cast(
+        &mut self,
+        mesh: &PatchMesh,
+        tree: &ClusterTree,
+        progress: &dyn ProgressListener,
+        cancel: &Cancel,
+    ) -> u64 {
         let members = tree.all_members();
         let mut first_ray = Vec::with_capacity(members.len() + 1);
         let mut total = 0u32;
@@ -200,13 +203,19 @@ impl NearRays {
         let triangles = PatchTriangles::new(mesh, members);
         let accel = AccelKind::Bvh.build(&triangles);
         let (triangles, accel) = (&triangles, &accel);
+        progress.start(members.len() as u64);
         let cast: Vec<(u32, f32)> = members
             .par_iter()
             .enumerate()
             .flat_map_iter(|(place, &p)| {
                 let patch = mesh.patch(p);
                 let per_side = (first_ray[place + 1] - first_ray[place]) / 2;
+                let stopped = cancel.is_requested();
+                progress.advance(1);
                 (0..2 * per_side).map(move |k| {
+                    if stopped {
+                        return (MISSED, 0.0);
+                    }
                     let ray = near_ray(patch, place, k, per_side);
                     match accel.closest_hit(triangles, &ray, f32::INFINITY) {
                         Some(hit) => {
@@ -277,7 +286,9 @@ impl NearRays {
     /// Adds to `gathered` (per node) the irradiance the near links bring each member side,
     /// for the radiosity `radiosity` per node, W·m⁻².
     pub fn gather(&self, tree: &ClusterTree, radiosity: &[Rgb64], gathered: &mut [Rgb64]) {
-        if self.hits.is_empty() {
+        // Not located yet (stopped before the first near links were classified): no ray is
+        // carried.
+        if self.origins.is_empty() {
             return;
         }
         let members = tree.all_members();

@@ -54,7 +54,8 @@ const LEAST_PATCH_THRESHOLD: f64 = 1e-6;
 
 /// Solves `world`'s scene by hierarchical shooting: the oracle, error and minimum area come
 /// from `settings`, the tolerance and the most shots from `shooting` (overshooting is not
-/// used). `progress` advances on a log scale of the unshot power; `cancel` stops after the
+/// used). `progress` names the phases (`meshing`, `linking lights`, `linking`, `shooting`)
+/// and advances on a log scale of the unshot power while shooting; `cancel` stops after the
 /// current shot and keeps the state reached.
 pub fn solve_hierarchical_shooting(
     world: &Arc<World>,
@@ -65,14 +66,21 @@ pub fn solve_hierarchical_shooting(
     cancel: &Cancel,
 ) -> Result<(RadiositySystem, Solution), SolveError> {
     let start = Instant::now();
+    progress.phase("meshing");
+    progress.start(0);
     let (mesh, visibility) = prepare(world, &options)?;
     let light_settings = HierarchicalSettings {
         refine_pass: RefinePass::All,
         ..*settings
     };
     let mut solver = Solver::new(world, mesh, &visibility, &options, &light_settings);
-    solver.link_root_lights();
+    progress.phase("linking lights");
+    solver.link_root_lights(progress, cancel);
+    progress.finish();
+    progress.phase("linking");
+    progress.start(0);
     solver.refine(&mut RoundStats::default(), cancel);
+    progress.finish();
     let (_, source) = solver.nodes.push_pull(&solver.mesh);
     let mut times = PhaseTimes {
         setup: start.elapsed().as_secs_f64(),
@@ -80,6 +88,7 @@ pub fn solve_hierarchical_shooting(
     };
     let mut shots = Shots::new(&solver);
     let mut convergence = Vec::new();
+    progress.phase("shooting");
     let mut bar = UnshotProgress::start(progress, shooting.tolerance);
     let mut interrupted = false;
     let source = source.max(f64::MIN_POSITIVE);

@@ -100,8 +100,12 @@ pub(super) fn prepare(
 
 /// Solves `world`'s scene by hierarchical radiosity: the mesh (roots, contact splits and any
 /// initial subdivision) and the visibility and light-link settings come from `options`.
-/// `progress` counts rounds; `cancel` stops after the current gather or refinement pass and
-/// keeps the state reached. Returns the system on the final leaves and its solution.
+/// `progress` names the phases (`meshing`, `linking lights`, `linking`, `near-field rays`
+/// and `linking clusters` where the near field is cast, `solving`) and counts the pairs of
+/// root side and light linked, the root patches that cast their rays and the rounds, whose
+/// number it estimates as refinement settles; `cancel` stops after the current gather or
+/// refinement pass (or within the linking of lights or the ray cast) and keeps the state
+/// reached. Returns the system on the final leaves and its solution.
 pub fn solve_hierarchical(
     world: &Arc<World>,
     options: SystemOptions,
@@ -110,27 +114,35 @@ pub fn solve_hierarchical(
     cancel: &Cancel,
 ) -> Result<(RadiositySystem, Solution), SolveError> {
     let start = Instant::now();
+    progress.phase("meshing");
+    progress.start(0);
     let (mesh, visibility) = prepare(world, &options)?;
     let mut solver = Solver::new(world, mesh, &visibility, &options, settings);
+    progress.finish();
     let setup = start.elapsed().as_secs_f64();
     let mut rounds: Vec<RoundStats> = Vec::new();
     let mut times = PhaseTimes {
         setup,
         ..PhaseTimes::default()
     };
-    progress.start(u64::from(settings.max_rounds));
     let t = Instant::now();
     // The lights first: the cluster links are judged by the radiosity the direct light
     // gives, not by the emission alone (zero on every surface a point light or the sky lights).
-    solver.link_root_lights();
+    progress.phase("linking lights");
+    solver.link_root_lights(progress, cancel);
+    progress.finish();
     solver.nodes.push_pull(&solver.mesh);
-    solver.link_root_pairs(cancel);
+    solver.link_root_pairs(progress, cancel);
     let mut round = RoundStats {
         seconds_linking: t.elapsed().as_secs_f64(),
         ..RoundStats::default()
     };
+    progress.finish();
+    progress.phase("solving");
+    progress.start(u64::from(settings.max_rounds.min(FIRST_ROUNDS_GUESS)));
     let mut converged = false;
     let mut interrupted = false;
+    let mut refined_before = 0;
     for _ in 0..settings.max_rounds {
         solver.gather_to_convergence(&mut round, cancel)?;
         let t = Instant::now();
@@ -157,6 +169,10 @@ pub fn solve_hierarchical(
                 .is_some_and(|r| r.residual <= settings.tolerance);
             break;
         }
+        let left = rounds_left(refined_before, round.links_refined);
+        let total = (rounds.len() as u64 + left).min(u64::from(settings.max_rounds));
+        progress.estimate(total);
+        refined_before = round.links_refined;
     }
     if settings.fine_gather
         && !interrupted
@@ -183,6 +199,29 @@ pub fn solve_hierarchical(
         interrupted,
         rounds,
     )
+}
+
+/// Pairs of root side and light linked between two looks at progress and cancellation.
+const LIGHT_LINK_CHUNK: usize = 1 << 14;
+
+/// The rounds a solve is first thought to take, until refinement shows how fast it
+/// settles ([`rounds_left`]).
+const FIRST_ROUNDS_GUESS: u32 = 8;
+
+/// About how many more rounds a solve takes after a refinement pass that refined `last`
+/// links where the pass before refined `before`: the round this pass prepared, and as many
+/// more as the links refined take to fall below one at the rate they fell (halving each
+/// pass when they did not fall, or on the first pass).
+fn rounds_left(before: u64, last: u64) -> u64 {
+    if last == 0 {
+        return 1;
+    }
+    let fall = if before > last {
+        before as f64 / last as f64
+    } else {
+        2.0
+    };
+    1 + ((last as f64).ln() / fall.ln()).ceil() as u64
 }
 
 impl<'w: 'v, 'v> Solver<'w, 'v> {
@@ -237,7 +276,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// Links every pair of root sides that face and see each other (seed §6.3); with
     /// clustering, links the root cluster with itself and refines that link until every
     /// cluster link is either certain enough or replaced by links between root sides.
-    fn link_root_pairs(&mut self, cancel: &Cancel) {
+    fn link_root_pairs(&mut self, progress: &dyn ProgressListener, cancel: &Cancel) {
+        progress.phase("linking");
+        progress.start(0);
         if self.settings.clustering {
             self.clusters = ClusterTree::new(&self.world.scene, &self.mesh);
             if let Some(tree) = &self.clusters
@@ -250,7 +291,14 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     .map(|&r| self.mesh.patch(r).area)
                     .sum();
                 let emitting = tree.brightest(&self.nodes.emission);
-                self.near = Some(NearRays::new(REFERENCE_SHARE * area, emitting));
+                let mut near = NearRays::new(REFERENCE_SHARE * area, emitting);
+                progress.phase("near-field rays");
+                let rays = near.cast(&self.mesh, tree, progress, cancel);
+                progress.finish();
+                self.linker.rays.fetch_add(rays, Ordering::Relaxed);
+                self.near = Some(near);
+                progress.phase("linking clusters");
+                progress.start(0);
             }
         }
         if let Some(tree) = &self.clusters {
@@ -378,20 +426,29 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             .sum();
         self.linker.rays.fetch_add(rays, Ordering::Relaxed);
         if let Some(near) = &mut self.near {
-            let rays = near.classify(mesh, tree, &self.near_links[near.classified()..]);
-            self.linker.rays.fetch_add(rays, Ordering::Relaxed);
+            near.classify(mesh, tree, &self.near_links[near.classified()..]);
         }
         (created, refined)
     }
 
-    /// Links every root side with every light that reaches it.
-    pub(super) fn link_root_lights(&mut self) {
+    /// Links every root side with every light that reaches it (`progress` counts the pairs
+    /// of root side and light); once `cancel` is requested the pairs left get no link.
+    pub(super) fn link_root_lights(&mut self, progress: &dyn ProgressListener, cancel: &Cancel) {
         let roots = self.root_nodes();
         let lights = self.world.scene.lights.len() as u32;
-        let lights: Vec<(usize, u32)> = (0..lights)
+        let pairs: Vec<(usize, u32)> = (0..lights)
             .flat_map(|l| roots.iter().map(move |&r| (r, l)))
             .collect();
-        self.light_links = self.create_light_links(&lights);
+        progress.start(pairs.len() as u64);
+        let mut links = Vec::new();
+        for chunk in pairs.chunks(LIGHT_LINK_CHUNK) {
+            if cancel.is_requested() {
+                break;
+            }
+            links.extend(self.create_light_links(chunk));
+            progress.advance(chunk.len() as u64);
+        }
+        self.light_links = links;
         self.sum_light_links();
     }
 
