@@ -303,6 +303,18 @@ pub fn finish_solve(
     if !quiet {
         eprintln!("{}: {}", solved.solution.solver_name, solved.summary());
     }
+    let overlaps = solved.system.overlaps;
+    if overlaps.patches > 0 {
+        eprintln!(
+            "warning: {} faces lie on other faces in their plane ({:.4} units² overlapped, \
+             {:.2} % of the surface): the radiosity solvers light each of them, a ray meets \
+             only one, so the solution gains light there; remove the doubled faces",
+            overlaps.patches,
+            overlaps.area,
+            // Both sides of every leaf in the total.
+            200.0 * overlaps.area / solved.system.total_area().max(f64::MIN_POSITIVE)
+        );
+    }
     if let Some(path) = export {
         let lightmaps = ExportFormat::from_path(path)?.carries_lightmaps();
         export_lit_mesh(

@@ -2,7 +2,8 @@
 //! overlapping faces, bent quads (split with a warning), concave polygons (triangulated),
 //! from 10⁻⁶ to 10⁶ units. Every solver and every rendering method gives finite figures that
 //! conserve energy, and the fraction of the light each object absorbs does not depend on the
-//! scale. Bowties are refused alike by the scene file and the OBJ importer.
+//! scale. Bowties are refused alike by the scene file and the OBJ importer; faces lying on
+//! others in their plane are named by the radiosity solvers.
 
 mod common;
 
@@ -251,4 +252,38 @@ fn bowties_are_refused_alike_by_the_scene_file_and_the_obj_importer() {
     let err =
         String::from_utf8_lossy(&strahl(&["info", obj.to_str().unwrap()]).stderr).into_owned();
     assert!(err.contains("line 6: face:"), "{err}");
+}
+
+#[test]
+fn a_floor_modelled_twice_is_named_by_the_radiosity_solvers() {
+    // The floor again: the two overlap whole (4 units²); the lamp overlaps nothing.
+    let obj = temp("degenerate", "doubled.obj");
+    std::fs::write(&obj, junk_obj(&[Junk::DuplicateFloor], 1.0)).unwrap();
+    let scene = temp("degenerate", "doubled.toml");
+    std::fs::write(&scene, self::scene(1.0, obj.to_str().unwrap())).unwrap();
+    let out = temp("degenerate", "doubled.json");
+    let run = strahl(&[
+        "solve",
+        scene.to_str().unwrap(),
+        "-q",
+        "--solver",
+        "hierarchical",
+        "--report",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success());
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        err.contains("warning: 2 faces lie on other faces in their plane (4.0000 units²"),
+        "{err}"
+    );
+    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(out).unwrap()).unwrap();
+    assert_eq!(report["stats"]["overlapping_patches"], 2);
+    let area = report["stats"]["overlapping_area"].as_f64().unwrap();
+    assert!((area - 4.0).abs() < 1e-9, "{area}");
+    // Without the doubled face: no warning.
+    std::fs::write(&obj, junk_obj(&[Junk::ZeroArea(0.0, 0.0)], 1.0)).unwrap();
+    let run = strahl(&["solve", scene.to_str().unwrap(), "-q", "--solver", "matrix"]);
+    assert!(run.status.success());
+    assert!(!String::from_utf8_lossy(&run.stderr).contains("lie on other faces"));
 }

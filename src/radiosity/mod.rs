@@ -13,6 +13,7 @@ mod facing;
 mod form_factor;
 mod light_links;
 mod mesh;
+mod overlap;
 mod shaft;
 mod solid_angle;
 pub mod solve;
@@ -27,5 +28,6 @@ pub use form_factor::{
 };
 pub use light_links::{light_irradiance, solid_angle};
 pub use mesh::{MeshError, MeshOptions, MeshSize, Patch, PatchId, PatchMesh};
+pub use overlap::{Overlaps, coplanar_overlaps};
 pub use surface::non_diffuse_materials;
 pub use visibility::{VisRays, Visibility, VisibilityEstimate, VisibilityOptions};

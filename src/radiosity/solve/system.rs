@@ -30,8 +30,8 @@ use crate::radiosity::element::{Element, Side};
 use crate::radiosity::surface;
 use crate::radiosity::visibility::Blockers;
 use crate::radiosity::{
-    Facing, FormFactorOptions, MeshOptions, Patch, PatchId, PatchMesh, Visibility,
-    VisibilityOptions, facing, form_factor, light_irradiance,
+    Facing, FormFactorOptions, MeshOptions, Overlaps, Patch, PatchId, PatchMesh, Visibility,
+    VisibilityOptions, coplanar_overlaps, facing, form_factor, light_irradiance,
 };
 use crate::world::World;
 use rayon::prelude::*;
@@ -116,6 +116,9 @@ pub struct RadiositySystem {
     pub light_irradiance: Vec<Rgb64>,
     /// Wall-clock seconds spent meshing and linking lights.
     pub setup_seconds: f64,
+    /// The root patches lying on others in their plane, which every radiosity solver lights
+    /// each fully ([`coplanar_overlaps`]).
+    pub overlaps: Overlaps,
     /// Per element: the largest distance from its patch's centroid to a corner.
     radius: Vec<f64>,
     visibility: Arc<Visibility>,
@@ -208,8 +211,10 @@ impl RadiositySystem {
                 })
                 .collect()
         });
+        let overlaps = coplanar_overlaps(&mesh);
         Ok(RadiositySystem {
             world: Arc::clone(world),
+            overlaps,
             leaves,
             elements,
             area,
