@@ -92,6 +92,10 @@ pub struct Solution {
     pub rounds: Vec<RoundStats>,
     /// Hierarchical solvers: links at the end (0 for flat solvers).
     pub links: usize,
+    /// Hierarchical radiosity: the links among them whose light the near field's rays carry
+    /// (estimates, right on average over many patches, not held to the error threshold
+    /// patch by patch like the other links; 0 for the other solvers).
+    pub near_links: usize,
     /// Hierarchical radiosity: the patch links at the end, as segments between the centroids
     /// of their receiver and emitter, when `HierarchicalSettings::link_segments` asked for
     /// them (empty otherwise, and for the other solvers).
@@ -276,7 +280,8 @@ impl Solution {
     }
 
     /// The statistics of the solve: time per phase, rays, leaf patches and elements (their
-    /// sides), form factors, iterations
+    /// sides), form factors, iterations, the root patches lying on others in their plane
+    /// and the area they overlap (scene units²)
     /// and the convergence history (at most [`CONVERGENCE_ROWS`] rows of `[iteration,
     /// value]`, spread evenly in the logarithm of the iteration number).
     fn stats(&self, system: &RadiositySystem) -> Stats {
@@ -299,6 +304,8 @@ impl Solution {
             serde_json::json!(convergence_rows(&self.convergence)),
         );
         stats.insert("source_power", source_power(system));
+        stats.insert("overlapping_patches", system.overlaps.patches);
+        stats.insert("overlapping_area", system.overlaps.area);
         stats.insert("seconds_setup", s.setup);
         stats.insert("seconds_form_factors", s.form_factors);
         stats.insert("seconds_iterations", s.iterations);
@@ -381,6 +388,7 @@ impl Solution {
             },
             rounds: Vec::new(),
             links: 0,
+            near_links: 0,
             link_segments: Vec::new(),
         }
     }

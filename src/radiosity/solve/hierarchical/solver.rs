@@ -833,7 +833,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let irradiance = per_element(&self.nodes.irradiance);
         let direct_irradiance = per_element(&self.direct_irradiance());
         let lit = per_element(&self.nodes.lit_total);
-        let links = self.link_count();
+        let (links, near_links) = (self.link_count(), self.near_links.len());
         let link_segments = if self.settings.link_segments {
             self.link_segments()
         } else {
@@ -862,6 +862,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             seconds,
             rounds,
             links,
+            near_links,
             link_segments,
         };
         Ok((system, solution))
