@@ -16,9 +16,10 @@ high), and everything else as furniture. Then, for example:
     strahl solve OUT_DIR/room.toml --solver hierarchical --report hr.json
 """
 
-import math
 import os
 import sys
+
+from split_obj import split
 
 SCALE = 0.003
 GROUPS = ["floor", "ceiling", "walls", "tables", "furniture"]
@@ -41,15 +42,9 @@ count = [7, 4]
 """
 
 
-def group_of(points):
-    """The group a triangle with corners `points` (metres) belongs to."""
-    (a, b, c) = points[:3]
-    u = [b[i] - a[i] for i in range(3)]
-    v = [c[i] - a[i] for i in range(3)]
-    n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-    length = math.sqrt(sum(x * x for x in n))
-    n = [x / length for x in n] if length > 0 else [0.0, 0.0, 0.0]
-    cx, cy, cz = (sum(p[i] for p in points) / len(points) for i in range(3))
+def group_of(n, centre):
+    """The group of a triangle with unit normal `n` and centroid `centre` (metres)."""
+    cx, cy, cz = centre
     if abs(n[1]) > 0.99 and cy < 0.01:
         return "floor"
     if abs(n[1]) > 0.99 and cy > 1.94:
@@ -65,24 +60,7 @@ def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     source, out = sys.argv[1], sys.argv[2]
-    os.makedirs(out, exist_ok=True)
-    vertices, faces = [], {g: [] for g in GROUPS}
-    with open(source) as f:
-        for line in f:
-            if line.startswith("v "):
-                vertices.append([float(x) * SCALE for x in line.split()[1:4]])
-            elif line.startswith("f "):
-                face = [int(x.split("/")[0]) - 1 for x in line.split()[1:]]
-                faces[group_of([vertices[i] for i in face])].append(face)
-    for group, group_faces in faces.items():
-        used = sorted({i for face in group_faces for i in face})
-        index = {i: k + 1 for k, i in enumerate(used)}
-        with open(os.path.join(out, group + ".obj"), "w") as f:
-            for i in used:
-                f.write("v %.6f %.6f %.6f\n" % tuple(vertices[i]))
-            for face in group_faces:
-                f.write("f " + " ".join(str(index[i]) for i in face) + "\n")
-        print(f"{group}: {len(group_faces)} triangles")
+    split(source, out, SCALE, GROUPS, group_of)
     with open(os.path.join(out, "room.toml"), "w") as f:
         f.write(SCENE_HEAD)
         for group in GROUPS:
