@@ -292,6 +292,10 @@ pub fn warn_non_diffuse(scene: &Scene) {
     );
 }
 
+/// The share of the light arriving on all surfaces that, counted twice on overlapping faces,
+/// is worth a warning.
+const COUNTED_TWICE_WARNING: f64 = 1e-4;
+
 /// Prints one line on the solve unless `quiet`, and writes `export` (the solution as a lit
 /// mesh) when given.
 pub fn finish_solve(
@@ -303,16 +307,16 @@ pub fn finish_solve(
     if !quiet {
         eprintln!("{}: {}", solved.solution.solver_name, solved.summary());
     }
-    let overlaps = solved.system.overlaps;
-    if overlaps.patches > 0 {
+    let twice = solved.solution.light_counted_twice(&solved.system);
+    if twice.power > COUNTED_TWICE_WARNING * twice.received {
         eprintln!(
-            "warning: {} faces lie on other faces in their plane ({:.4} units² overlapped, \
-             {:.2} % of the surface): the radiosity solvers light each of them, a ray meets \
-             only one, so the solution gains light there; remove the doubled faces",
-            overlaps.patches,
-            overlaps.area,
-            // Both sides of every leaf in the total.
-            200.0 * overlaps.area / solved.system.total_area().max(f64::MIN_POSITIVE)
+            "warning: {} faces lie on other faces in their plane and are lit on the same side \
+             ({:.4} units² overlapped): the radiosity solvers light each of them where a ray \
+             meets only one, {:.2} % of the light arriving is counted twice; remove the \
+             doubled faces",
+            twice.patches,
+            twice.area,
+            100.0 * twice.power / twice.received
         );
     }
     if let Some(path) = export {

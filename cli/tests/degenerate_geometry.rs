@@ -256,7 +256,9 @@ fn bowties_are_refused_alike_by_the_scene_file_and_the_obj_importer() {
 
 #[test]
 fn a_floor_modelled_twice_is_named_by_the_radiosity_solvers() {
-    // The floor again: the two overlap whole (4 units²); the lamp overlaps nothing.
+    // The floor again: the two overlap whole (4 units²), both lit from above, so the floor's
+    // light is counted twice (about half of all the light arriving); the lamp overlaps
+    // nothing.
     let obj = temp("degenerate", "doubled.obj");
     std::fs::write(&obj, junk_obj(&[Junk::DuplicateFloor], 1.0)).unwrap();
     let scene = temp("degenerate", "doubled.toml");
@@ -274,13 +276,22 @@ fn a_floor_modelled_twice_is_named_by_the_radiosity_solvers() {
     assert!(run.status.success());
     let err = String::from_utf8_lossy(&run.stderr);
     assert!(
-        err.contains("warning: 2 faces lie on other faces in their plane (4.0000 units²"),
+        err.contains(
+            "warning: 2 faces lie on other faces in their plane and are lit on the same side \
+             (4.0000 units² overlapped)"
+        ),
         "{err}"
     );
     let report: serde_json::Value = serde_json::from_slice(&std::fs::read(out).unwrap()).unwrap();
     assert_eq!(report["stats"]["overlapping_patches"], 2);
     let area = report["stats"]["overlapping_area"].as_f64().unwrap();
     assert!((area - 4.0).abs() < 1e-9, "{area}");
+    // Counted twice: what one copy of the floor receives (luminance, W).
+    let floor = &report["objects"][0];
+    assert_eq!(floor["name"], "floor");
+    let twice = report["stats"]["light_counted_twice"].as_f64().unwrap();
+    let received = floor["incident_power"][1].as_f64().unwrap();
+    assert!((twice / received - 1.0).abs() < 0.02, "{twice} {received}");
     // Without the doubled face: no warning.
     std::fs::write(&obj, junk_obj(&[Junk::ZeroArea(0.0, 0.0)], 1.0)).unwrap();
     let run = strahl(&["solve", scene.to_str().unwrap(), "-q", "--solver", "matrix"]);

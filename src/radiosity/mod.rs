@@ -28,6 +28,6 @@ pub use form_factor::{
 };
 pub use light_links::{light_irradiance, solid_angle};
 pub use mesh::{MeshError, MeshOptions, MeshSize, Patch, PatchId, PatchMesh};
-pub use overlap::{Overlaps, coplanar_overlaps};
+pub use overlap::{Overlap, coplanar_overlaps};
 pub use surface::non_diffuse_materials;
 pub use visibility::{VisRays, Visibility, VisibilityEstimate, VisibilityOptions};

@@ -1,12 +1,16 @@
 //! Faces lying on other faces: root patches in one plane whose areas overlap (a floor
-//! modelled twice, a decal on a wall, the two faces of a thin slab with no thickness).
+//! modelled twice, a decal on a wall, but also a box standing on a floor, its bottom on the
+//! floor's face).
 //!
 //! The radiosity solvers light each such face fully — a ray from a point on one toward a
 //! light leaves from just in front of it and meets nothing of the other — while a ray method
-//! lights only the one a ray meets first: the overlap receives its light twice in radiosity
-//! and reflects it twice, so the solution makes light out of nothing there (the Šibenik
-//! cathedral, about 18 m² of horizontal faces doubled: 1.2 % more light absorbed than emitted).
-//! Which face should have it is not the solver's to decide; what it can do is say so.
+//! lights only the one a ray meets first: where both faces are lit on the same side, the
+//! overlap receives its light twice in radiosity and reflects it twice, and the solution
+//! makes light out of nothing there (the Šibenik cathedral: 1.2 % more light absorbed than
+//! emitted). Where solids touch, the sides facing into them are dark and nothing is counted
+//! twice; which case a pair is shows only in the solution (`Solution::light_counted_twice`),
+//! not in the planes: faces' orientations in real models are not to be trusted. Which face
+//! should have the light is not the solver's to decide; what it can do is say so.
 
 use super::clip::{Plane, clip_to_front};
 use super::mesh::{PatchId, PatchMesh};
@@ -22,18 +26,21 @@ const OFFSET_SHARE: f64 = 1e-6;
 /// An overlap of less than this share of the smaller patch is a shared edge, not an overlap.
 const NEGLIGIBLE: f64 = 1e-6;
 
-/// What lies on something else.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Overlaps {
-    /// Root patches that overlap another in their plane.
-    pub patches: usize,
-    /// The area overlapped, each overlapping pair counted once, scene units².
+/// Two root patches in one plane whose areas overlap.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Overlap {
+    /// One patch.
+    pub first: PatchId,
+    /// The other.
+    pub second: PatchId,
+    /// Whether their front sides face the same way (else opposite ways).
+    pub same_facing: bool,
+    /// The area they share, scene units².
     pub area: f64,
 }
 
-/// The root patches of `mesh` that overlap another root patch in the same plane (facing
-/// either way), and the area they overlap.
-pub fn coplanar_overlaps(mesh: &PatchMesh) -> Overlaps {
+/// Every pair of root patches of `mesh` that overlap in the same plane (facing either way).
+pub fn coplanar_overlaps(mesh: &PatchMesh) -> Vec<Overlap> {
     let size = mesh
         .roots
         .iter()
@@ -56,19 +63,18 @@ pub fn coplanar_overlaps(mesh: &PatchMesh) -> Overlaps {
             .or_default()
             .push(r);
     }
-    let mut overlapping = vec![false; mesh.patches.len()];
-    let mut area = 0.0;
-    for (key, patches) in &planes {
+    let mut found = Vec::new();
+    let mut keys: Vec<&[i64; 4]> = planes.keys().collect();
+    keys.sort_unstable();
+    for key in keys {
+        let patches = &planes[key];
         // The neighbouring offset too: a plane can round either way.
         let above = [key[0], key[1], key[2], key[3] + 1];
         let neighbours = planes.get(&above).map_or(&[][..], |v| v.as_slice());
         let candidates: Vec<PatchId> = patches.iter().chain(neighbours).copied().collect();
-        area += overlaps_among(mesh, &candidates, patches.len(), &mut overlapping);
+        overlaps_among(mesh, &candidates, patches.len(), &mut found);
     }
-    Overlaps {
-        patches: overlapping.iter().filter(|&&o| o).count(),
-        area,
-    }
+    found
 }
 
 /// The unit normal of root `r`'s plane turned so that its largest component is positive,
@@ -98,17 +104,11 @@ fn plane_key(normal: DVec3, offset: f64, offset_step: f64) -> [i64; 4] {
     ]
 }
 
-/// The area overlapped among `candidates` (one plane), each pair with at least one of the
-/// first `own` counted (pairs within the neighbouring plane are that plane's); marks the
-/// patches that overlap in `overlapping`.
-fn overlaps_among(
-    mesh: &PatchMesh,
-    candidates: &[PatchId],
-    own: usize,
-    overlapping: &mut [bool],
-) -> f64 {
+/// Adds to `found` the overlapping pairs among `candidates` (one plane) with at least one
+/// of the first `own` (pairs within the neighbouring plane are that plane's).
+fn overlaps_among(mesh: &PatchMesh, candidates: &[PatchId], own: usize, found: &mut Vec<Overlap>) {
     if candidates.len() < 2 {
-        return 0.0;
+        return;
     }
     let normal = canonical_plane(mesh, candidates[0]).0;
     let (u, v) = normal.any_orthonormal_pair();
@@ -129,29 +129,30 @@ fn overlaps_among(
         .collect();
     let mut order: Vec<usize> = (0..candidates.len()).collect();
     order.sort_by(|&a, &b| bounds[a][0].total_cmp(&bounds[b][0]));
-    let mut area = 0.0;
     for (i, &a) in order.iter().enumerate() {
         for &b in &order[i + 1..] {
             if bounds[b][0] >= bounds[a][1] {
                 break;
             }
+            let (p, q) = (candidates[a], candidates[b]);
             if (a >= own && b >= own)
                 || bounds[b][2] >= bounds[a][3]
                 || bounds[a][2] >= bounds[b][3]
             {
                 continue;
             }
-            let (p, q) = (candidates[a], candidates[b]);
-            let shared = overlap_area(mesh, p, q);
-            let smaller = mesh.patch(p).area.min(mesh.patch(q).area);
-            if shared > NEGLIGIBLE * smaller {
-                area += shared;
-                overlapping[p as usize] = true;
-                overlapping[q as usize] = true;
+            let area = overlap_area(mesh, p, q);
+            let (pp, qp) = (mesh.patch(p), mesh.patch(q));
+            if area > NEGLIGIBLE * pp.area.min(qp.area) {
+                found.push(Overlap {
+                    first: p,
+                    second: q,
+                    same_facing: pp.normal.dot(qp.normal) > 0.0,
+                    area,
+                });
             }
         }
     }
-    area
 }
 
 /// The area of the part of root `p` that lies within root `q` (both convex, in one plane),
@@ -159,10 +160,10 @@ fn overlaps_among(
 fn overlap_area(mesh: &PatchMesh, p: PatchId, q: PatchId) -> f64 {
     let (p, q) = (mesh.patch(p), mesh.patch(q));
     let corners = q.corners();
+    // Inward from each edge is normal × edge for corners winding counter-clockwise.
     let mut part: Vec<DVec3> = p.corners().to_vec();
     for (k, &a) in corners.iter().enumerate() {
         let b = corners[(k + 1) % corners.len()];
-        // The corners wind counter-clockwise around q's normal: inward is normal × edge.
         let inward = q.normal.cross(b - a).normalize_or_zero();
         part = clip_to_front(&Plane::new(a, inward), &part).into_owned();
         if part.len() < 3 {
@@ -205,26 +206,38 @@ mod tests {
         PatchMesh::from_scene(&scene, &options).unwrap()
     }
 
+    /// The area of every overlap found, and whether each pair faces the same way.
+    fn found(mesh: &PatchMesh) -> Vec<(f64, bool)> {
+        coplanar_overlaps(mesh)
+            .iter()
+            .map(|o| (o.area, o.same_facing))
+            .collect()
+    }
+
     #[test]
     fn a_square_half_on_another_overlaps_by_half_its_area() {
         let mesh = squares(&[
             (Vec3::ZERO, Vec3::X, Vec3::Z),
             (Vec3::new(0.5, 0.0, 0.0), Vec3::X, Vec3::Z),
         ]);
-        let found = coplanar_overlaps(&mesh);
-        assert_eq!(found.patches, 2);
-        assert!((found.area - 0.5).abs() < 1e-12, "{found:?}");
+        let found = found(&mesh);
+        assert_eq!(found.len(), 1);
+        assert!((found[0].0 - 0.5).abs() < 1e-12 && found[0].1, "{found:?}");
     }
 
     #[test]
-    fn faces_turned_opposite_ways_in_one_plane_overlap_too() {
+    fn a_square_facing_down_onto_a_larger_one_overlaps_facing_the_other_way() {
+        // The foot of a box standing on a floor.
         let mesh = squares(&[
             (Vec3::ZERO, Vec3::X, Vec3::Z),
             (Vec3::new(0.25, 0.0, 0.25), Vec3::Z * 0.5, Vec3::X * 0.5),
         ]);
-        let found = coplanar_overlaps(&mesh);
-        assert_eq!(found.patches, 2);
-        assert!((found.area - 0.25).abs() < 1e-12, "{found:?}");
+        let found = found(&mesh);
+        assert_eq!(found.len(), 1);
+        assert!(
+            (found[0].0 - 0.25).abs() < 1e-12 && !found[0].1,
+            "{found:?}"
+        );
     }
 
     #[test]
@@ -234,6 +247,6 @@ mod tests {
             (Vec3::new(1.0, 0.0, 0.0), Vec3::X, Vec3::Z),
             (Vec3::new(0.0, 1e-3, 0.0), Vec3::X, Vec3::Z),
         ]);
-        assert_eq!(coplanar_overlaps(&mesh), Overlaps::default());
+        assert!(coplanar_overlaps(&mesh).is_empty());
     }
 }

@@ -4,6 +4,7 @@
 //! sky; display of a solution (flat or smooth, with wireframe), and what a solution hands
 //! on: its power per reported surface, its statistics and its lit mesh.
 
+mod counted_twice;
 mod display;
 pub mod hierarchical;
 mod interpolate;
@@ -20,6 +21,7 @@ pub mod steady_state;
 mod system;
 mod unshot_progress;
 
+pub use counted_twice::CountedTwice;
 pub use display::{DisplaySettings, LinkDisplay, render_solution};
 pub use interpolate::{CornerValues, SmoothCorners, vertex_radiosity};
 pub use lookup::{LeafHit, RadiosityLookup, Shading};

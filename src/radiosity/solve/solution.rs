@@ -281,7 +281,8 @@ impl Solution {
 
     /// The statistics of the solve: time per phase, rays, leaf patches and elements (their
     /// sides), form factors, iterations, the root patches lying on others in their plane
-    /// and the area they overlap (scene units²)
+    /// lit on the same side, the area they overlap (scene units²) and the light counted
+    /// twice there (W, luminance; [`Solution::light_counted_twice`])
     /// and the convergence history (at most [`CONVERGENCE_ROWS`] rows of `[iteration,
     /// value]`, spread evenly in the logarithm of the iteration number).
     fn stats(&self, system: &RadiositySystem) -> Stats {
@@ -304,8 +305,10 @@ impl Solution {
             serde_json::json!(convergence_rows(&self.convergence)),
         );
         stats.insert("source_power", source_power(system));
-        stats.insert("overlapping_patches", system.overlaps.patches);
-        stats.insert("overlapping_area", system.overlaps.area);
+        let twice = self.light_counted_twice(system);
+        stats.insert("overlapping_patches", twice.patches);
+        stats.insert("overlapping_area", twice.area);
+        stats.insert("light_counted_twice", twice.power);
         stats.insert("seconds_setup", s.setup);
         stats.insert("seconds_form_factors", s.form_factors);
         stats.insert("seconds_iterations", s.iterations);

@@ -30,7 +30,7 @@ use crate::radiosity::element::{Element, Side};
 use crate::radiosity::surface;
 use crate::radiosity::visibility::Blockers;
 use crate::radiosity::{
-    Facing, FormFactorOptions, MeshOptions, Overlaps, Patch, PatchId, PatchMesh, Visibility,
+    Facing, FormFactorOptions, MeshOptions, Overlap, Patch, PatchId, PatchMesh, Visibility,
     VisibilityOptions, coplanar_overlaps, facing, form_factor, light_irradiance,
 };
 use crate::world::World;
@@ -116,9 +116,9 @@ pub struct RadiositySystem {
     pub light_irradiance: Vec<Rgb64>,
     /// Wall-clock seconds spent meshing and linking lights.
     pub setup_seconds: f64,
-    /// The root patches lying on others in their plane, which every radiosity solver lights
-    /// each fully ([`coplanar_overlaps`]).
-    pub overlaps: Overlaps,
+    /// The pairs of root patches overlapping in their plane, which every radiosity solver
+    /// lights each fully ([`coplanar_overlaps`]; [`Solution::light_counted_twice`]).
+    pub overlaps: Vec<Overlap>,
     /// Per element: the largest distance from its patch's centroid to a corner.
     radius: Vec<f64>,
     visibility: Arc<Visibility>,
