@@ -1,8 +1,9 @@
 //! Scenes built into the engine, loaded by name: `cornell`, `cornell-textured`, `spheres`
-//! (or `spheres:N`), `neon`, `canopy` (or `canopy:N`) and `blocks` (or `blocks:N`). Lengths
-//! are in metres.
+//! (or `spheres:N`), `neon`, `canopy` (or `canopy:N`), `blocks` (or `blocks:N`) and
+//! `building` (or `building:N`). Lengths are in metres.
 
 pub mod blocks;
+pub mod building;
 pub mod canopy;
 pub mod cornell;
 pub mod cornell_textured;
@@ -13,7 +14,7 @@ pub mod spheres;
 use super::Scene;
 
 /// The built-in scenes: name and one-line description.
-const NAMES: [(&str, &str); 6] = [
+const NAMES: [(&str, &str); 7] = [
     (
         "cornell",
         "the measured Cornell box (Cornell University data, metres, spectral colours)",
@@ -38,6 +39,10 @@ const NAMES: [(&str, &str); 6] = [
         "blocks",
         "blocks:N (default 1000) small cubes in a closed room under a lamp, for radiosity",
     ),
+    (
+        "building",
+        "building:N (default 100) furnished offices, about 1,100 triangles each, for radiosity",
+    ),
 ];
 
 /// The built-in scene names with a one-line description each.
@@ -46,7 +51,7 @@ pub fn names() -> &'static [(&'static str, &'static str)] {
 }
 
 /// Builds the built-in scene `spec`: a name from [`names`], optionally followed by `:` and a
-/// parameter (`spheres:N`, `canopy:N` and `blocks:N` take one). `None` when `spec` names no built-in scene;
+/// parameter (`spheres:N`, `canopy:N`, `blocks:N` and `building:N` take one). `None` when `spec` names no built-in scene;
 /// `Some(Err)` with a message for a bad parameter.
 pub fn load(spec: &str) -> Option<Result<Scene, String>> {
     let (name, parameter) = match spec.split_once(':') {
@@ -66,6 +71,7 @@ pub fn load(spec: &str) -> Option<Result<Scene, String>> {
         "spheres" => spheres::parse_count(parameter).map(spheres::scene),
         "canopy" => canopy::parse_count(parameter).map(canopy::scene),
         "blocks" => blocks::parse_count(parameter).map(blocks::scene),
+        "building" => building::parse_count(parameter).map(building::scene),
         _ => return None,
     })
 }
@@ -105,7 +111,8 @@ mod tests {
                 "spheres",
                 "neon",
                 "canopy",
-                "blocks"
+                "blocks",
+                "building"
             ]
         );
         for (name, description) in names() {
