@@ -293,8 +293,9 @@ pub fn warn_non_diffuse(scene: &Scene) {
 }
 
 /// The share of the light arriving on all surfaces that, counted twice on overlapping faces,
-/// is worth a warning.
-const COUNTED_TWICE_WARNING: f64 = 1e-4;
+/// is worth a warning (the conference room counts 0.02 % twice on 51,279 small faces lying
+/// on others, the Šibenik cathedral 0.5 %).
+const COUNTED_TWICE_WARNING: f64 = 1e-3;
 
 /// Prints one line on the solve unless `quiet`, and writes `export` (the solution as a lit
 /// mesh) when given.
