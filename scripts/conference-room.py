@@ -19,7 +19,7 @@ high), and everything else as furniture. Then, for example:
 import os
 import sys
 
-from split_obj import split
+from split_obj import object_entries, split
 
 SCALE = 0.003
 GROUPS = ["floor", "ceiling", "walls", "tables", "furniture"]
@@ -63,9 +63,7 @@ def main():
     split(source, out, SCALE, GROUPS, group_of)
     with open(os.path.join(out, "room.toml"), "w") as f:
         f.write(SCENE_HEAD)
-        for group in GROUPS:
-            f.write(f'\n[[objects]]\nname = "{group}"\ntype = "mesh"\n')
-            f.write(f'file = "{group}.obj"\nmaterial = "grey"\n')
+        f.write(object_entries(GROUPS, "grey"))
         for x, z in LIGHTS:
             f.write(f'\n[[lights]]\ntype = "lambertian"\nposition = [{x}, 1.90, {z}]\n')
             f.write("direction = [0, -1, 0]\nflux_lm = 3000\n")

@@ -19,7 +19,7 @@ arches, the undersides of cornices), vertical faces (walls, piers) and everythin
 import os
 import sys
 
-from split_obj import split
+from split_obj import object_entries, split
 
 GROUPS = ["floor", "vaults", "walls", "other"]
 
@@ -71,9 +71,7 @@ def main():
     split(source, out, 1.0, GROUPS, group_of)
     with open(os.path.join(out, "cathedral.toml"), "w") as f:
         f.write(SCENE_HEAD)
-        for group in GROUPS:
-            f.write(f'\n[[objects]]\nname = "{group}"\ntype = "mesh"\n')
-            f.write(f'file = "{group}.obj"\nmaterial = "grey"\n')
+        f.write(object_entries(GROUPS, "grey"))
         for x, y, z, lumen in LAMPS:
             f.write(f'\n[[lights]]\ntype = "lambertian"\nposition = [{x}, {y}, {z}]\n')
             f.write(f"direction = [0, -1, 0]\nflux_lm = {lumen}\n")

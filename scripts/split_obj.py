@@ -39,3 +39,12 @@ def split(source, out, scale, groups, group_of):
             for face in group_faces:
                 f.write("f " + " ".join(str(index[i]) for i in face) + "\n")
         print(f"{group}: {len(group_faces)} triangles")
+
+
+def object_entries(groups, material):
+    """The scene file's `[[objects]]` entries of the OBJ files `split` wrote for `groups`,
+    each of the material `material`."""
+    return "".join(
+        f'\n[[objects]]\nname = "{g}"\ntype = "mesh"\nfile = "{g}.obj"\nmaterial = "{material}"\n'
+        for g in groups
+    )
