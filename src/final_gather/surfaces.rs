@@ -23,8 +23,8 @@
 //! Two passes: a surface sees itself two reflections away (a block face over the floor
 //! beside it), so one the solution has far off keeps a part of its own error. A first pass
 //! to three times the error asked for finds such surfaces; where it finds none it goes on to the
-//! error asked for, else a second pass measures anew over the solution with the first pass's
-//! values in place of the gathered surfaces' ([`Solution::with_irradiance`]). On the
+//! error asked for, else a second pass measures anew over the solution with the surfaces it
+//! found off brought to the first pass's level ([`Solution::with_irradiance`]). On the
 //! Cornell box face by face under hierarchical shooting, whose solution has the tall block's
 //! face toward the red wall 13 % high: worst face from 0.93–1.49 % to 0.77–0.88 % (seeds 0–3).
 //!
@@ -237,11 +237,7 @@ impl Pass<'_> {
             let n = points(&first);
             return Some((first, n, false));
         }
-        // Only the surfaces found off take the first pass's values: the others' would bring
-        // its noise (three times the error asked for) two reflections away.
-        let measured: Vec<Option<Rgb64>> = (0..system.len())
-            .map(|k| off[self.surfaces.of[k]].then(|| first[k].mean()))
-            .collect();
+        let measured = self.surfaces.levelled(&first, solution, &off);
         let corrected = solution.with_irradiance(system, &measured);
         let integrator = FinalGather::over(system, &corrected, Shading::Flat, 1, 1);
         let mut second = vec![Estimate::default(); system.len()];
@@ -466,10 +462,46 @@ impl Surfaces {
         power
     }
 
+    /// Per element of the surfaces `off`, the solution's display irradiance scaled to the
+    /// surface's incident power by `estimates` (per channel; the estimate's own mean where
+    /// the solution has none): the surface's level from the first pass, its spread over
+    /// the elements from the solution. Only the surfaces found off are replaced, and only
+    /// in level: the first pass's values element by element, a few points each, would bring
+    /// its noise back two reflections away, frozen into what the second pass reads. `None`
+    /// for the other elements.
+    fn levelled(
+        &self,
+        estimates: &[Estimate],
+        solution: &Solution,
+        off: &[bool],
+    ) -> Vec<Option<Rgb64>> {
+        let display = solution.display_irradiance();
+        let mut solved = vec![Rgb64::BLACK; self.count];
+        for (k, &h) in display.iter().enumerate() {
+            solved[self.of[k]] += h * self.weight[k];
+        }
+        let totals = self.totals(estimates);
+        (0..display.len())
+            .map(|k| {
+                let s = self.of[k];
+                off[s].then(|| {
+                    let (measured, mean) = (totals[s].0.to_array(), estimates[k].mean());
+                    let level = |c: usize| {
+                        if solved[s][c] > 0.0 {
+                            display[k][c] * measured[c] / solved[s][c]
+                        } else {
+                            mean[c]
+                        }
+                    };
+                    Rgb64::new(level(0), level(1), level(2))
+                })
+            })
+            .collect()
+    }
+
     /// Per surface, whether the solution has it off, for the `gathered` ones: `estimates`
     /// differ from its incident power, in a channel not very dim, by more than
-    /// [`SIGNIFICANT`] standard errors and by more than `target` (times the surface's
-    /// error share) of it.
+    /// [`SIGNIFICANT`] standard errors and by more than `target` (the error asked for) of it.
     fn off(
         &self,
         estimates: &[Estimate],
@@ -488,8 +520,7 @@ impl Surfaces {
                 gathered[s]
                     && lit_channels(sum).any(|c| {
                         let off = (sum[c] - solved[s][c]).abs();
-                        off > SIGNIFICANT * variance[c].sqrt()
-                            && off > target * self.error_share[s] * sum[c]
+                        off > SIGNIFICANT * variance[c].sqrt() && off > target * sum[c]
                     })
             })
             .collect()
