@@ -117,7 +117,7 @@ pub struct RadiositySystem {
     /// Wall-clock seconds spent meshing and linking lights.
     pub setup_seconds: f64,
     /// The pairs of root patches overlapping in their plane, which every radiosity solver
-    /// lights each fully ([`coplanar_overlaps`]; [`Solution::light_counted_twice`]).
+    /// lights each fully ([`coplanar_overlaps`]; [`super::Solution::light_counted_twice`]).
     pub overlaps: Vec<Overlap>,
     /// Per element: the largest distance from its patch's centroid to a corner.
     radius: Vec<f64>,
