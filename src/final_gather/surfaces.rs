@@ -369,13 +369,10 @@ impl Surfaces {
         if solution.near_links == 0 {
             return;
         }
-        let mut incident = vec![0.0; self.count];
-        for (k, &s) in self.of.iter().enumerate() {
-            incident[s] += solution.irradiance[k].luminance() * self.weight[k];
-        }
-        let total: f64 = incident.iter().sum();
-        for (share, &p) in self.error_share.iter_mut().zip(&incident) {
-            if p >= LARGE_SHARE * total {
+        let incident = self.power(&solution.irradiance);
+        let total: f64 = incident.iter().map(|p| p.luminance()).sum();
+        for (share, p) in self.error_share.iter_mut().zip(&incident) {
+            if p.luminance() >= LARGE_SHARE * total {
                 *share = LARGE_SURFACE_ERROR;
             }
         }
@@ -396,19 +393,19 @@ impl Surfaces {
         if share >= 1.0 {
             return vec![true; self.count];
         }
-        let mut incident = vec![0.0; self.count];
-        let mut linked = vec![0.0; self.count];
-        for (k, &s) in self.of.iter().enumerate() {
-            incident[s] += solution.irradiance[k].luminance() * self.weight[k];
-            linked[s] += system.light_irradiance[k].luminance() * self.weight[k];
-        }
+        let incident: Vec<f64> = self
+            .power(&solution.irradiance)
+            .iter()
+            .map(|p| p.luminance())
+            .collect();
+        let linked = self.power(&system.light_irradiance);
         let total: f64 = incident.iter().sum();
         let apart = solution.direct_irradiance.is_some();
         let below = |p: f64| p < share * total || solution.near_links > 0;
         incident
             .iter()
             .zip(linked)
-            .map(|(&p, lit)| below(p) && (!apart || p - lit >= INDIRECT_SHARE * p))
+            .map(|(&p, lit)| below(p) && (!apart || p - lit.luminance() >= INDIRECT_SHARE * p))
             .collect()
     }
 
@@ -449,6 +446,15 @@ impl Surfaces {
         short
     }
 
+    /// Per surface: its incident power for the irradiance `irradiance` per element, W.
+    fn power(&self, irradiance: &[Rgb64]) -> Vec<Rgb64> {
+        let mut power = vec![Rgb64::BLACK; self.count];
+        for (k, &h) in irradiance.iter().enumerate() {
+            power[self.of[k]] += h * self.weight[k];
+        }
+        power
+    }
+
     /// Per surface: its incident power by `estimates` (W), the variance of that estimate
     /// (W²) and the points drawn.
     fn totals(&self, estimates: &[Estimate]) -> Vec<(Rgb64, Rgb64, u64)> {
@@ -476,10 +482,7 @@ impl Surfaces {
         off: &[bool],
     ) -> Vec<Option<Rgb64>> {
         let display = solution.display_irradiance();
-        let mut solved = vec![Rgb64::BLACK; self.count];
-        for (k, &h) in display.iter().enumerate() {
-            solved[self.of[k]] += h * self.weight[k];
-        }
+        let solved = self.power(&display);
         let totals = self.totals(estimates);
         (0..display.len())
             .map(|k| {
@@ -509,10 +512,7 @@ impl Surfaces {
         solution: &Solution,
         target: f64,
     ) -> Vec<bool> {
-        let mut solved = vec![Rgb64::BLACK; self.count];
-        for (k, h) in solution.display_irradiance().into_iter().enumerate() {
-            solved[self.of[k]] += h * self.weight[k];
-        }
+        let solved = self.power(&solution.display_irradiance());
         let totals = self.totals(estimates);
         (0..self.count)
             .map(|s| {

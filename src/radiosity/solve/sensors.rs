@@ -2,8 +2,10 @@
 //! every leaf side of the solution and from every non-surface light,
 //! `E = Σⱼ Bⱼ·F(x→j)·Vⱼ + Σ_lights E_light(x)`, with `F(x→j)` the exact point-to-polygon form
 //! factor of the part of leaf side `j` in front of the sensor and `Vⱼ` its visible share
-//! (rays spread by form factor, none where shaft culling finds nothing in the way). The direct part is
-//! what the leaves emit themselves plus the lights; the indirect part what they reflect.
+//! (rays spread by form factor, as many as the side's share of the sensor's unoccluded light
+//! asks; none where shaft culling, run for the sides that get 16 rays or more, finds nothing
+//! in the way). The direct part is what the leaves emit themselves plus the lights; the
+//! indirect part what they reflect.
 
 use super::solution::Solution;
 use super::system::RadiositySystem;
