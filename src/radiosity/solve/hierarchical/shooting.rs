@@ -52,11 +52,16 @@ use std::time::Instant;
 /// minimum area for it (the patches of `meters`, at 10⁻⁷ of the scene's power, need 10⁻⁵).
 const LEAST_PATCH_THRESHOLD: f64 = 1e-6;
 
+/// Links of a shot computed between two looks at cancellation: the first level of a shot
+/// links the shooter with every root side (10⁶ of them in a furnished building).
+const SHOT_CHUNK: usize = 1 << 14;
+
 /// Solves `world`'s scene by hierarchical shooting: the oracle, error and minimum area come
 /// from `settings`, the tolerance and the most shots from `shooting` (overshooting is not
 /// used). `progress` names the phases (`meshing`, `linking lights`, `linking`, `shooting`)
-/// and advances on a log scale of the unshot power while shooting; `cancel` stops after the
-/// current shot and keeps the state reached.
+/// and advances on a log scale of the unshot power while shooting; `cancel` stops within
+/// the current shot (which is then dropped, its shooter's light left unshot) and keeps the
+/// state the shots before reached.
 pub fn solve_hierarchical_shooting(
     world: &Arc<World>,
     options: SystemOptions,
@@ -102,8 +107,10 @@ pub fn solve_hierarchical_shooting(
         }
         let t = Instant::now();
         let sent = shots.unshot_below(&solver, shooter);
-        shots.take_unshot(&solver, shooter);
-        let received = shots.shoot(&mut solver, shooter);
+        let Some(received) = shots.shot_from(&mut solver, shooter, cancel) else {
+            interrupted = true;
+            break;
+        };
         times.form_factors += t.elapsed().as_secs_f64();
         let t = Instant::now();
         for (receiver, irradiance) in received {
@@ -197,6 +204,40 @@ impl Shots {
         }
     }
 
+    /// One shot from root side `shooter`: takes its unshot radiosity and sends it to every
+    /// root side ([`Shots::shoot`]). Returns the nodes that took light and the irradiance each
+    /// took, W·m⁻², already added to what they gathered; `None` when `cancel` was requested
+    /// before the shot was complete, with nothing of it kept (the shooter's light stays
+    /// unshot): a shot over a large scene links the shooter with every root side and may take
+    /// far longer than a second.
+    fn shot_from(
+        &mut self,
+        solver: &mut Solver,
+        shooter: usize,
+        cancel: &Cancel,
+    ) -> Option<Vec<(usize, Rgb64)>> {
+        let before: Vec<(usize, Rgb64)> = leaf_nodes(solver, shooter)
+            .map(|n| (n, self.shot[n]))
+            .collect();
+        self.take_unshot(solver, shooter);
+        let measured = self.measured.clone();
+        let received = self.shoot(solver, shooter, cancel);
+        match &received {
+            Some(received) => {
+                for &(n, irradiance) in received {
+                    solver.nodes.gathered[n] += irradiance;
+                }
+            }
+            None => {
+                for (n, shot) in before {
+                    self.shot[n] = shot;
+                }
+                self.measured = measured;
+            }
+        }
+        received
+    }
+
     /// Takes the unshot radiosity of every node below `n` (the area mean over its leaves,
     /// and their range) and marks its leaves as shot.
     fn take_unshot(&mut self, solver: &Solver, n: usize) {
@@ -273,8 +314,15 @@ impl Shots {
 
     /// Sends the unshot radiosity taken from root side `shooter` to every root side, each
     /// link refined at either end until the oracle keeps it (nodes split on the way).
-    /// Returns the nodes that took light and the irradiance each took, W·m⁻².
-    fn shoot(&mut self, solver: &mut Solver, shooter: usize) -> Vec<(usize, Rgb64)> {
+    /// Returns the nodes that took light and the irradiance each took, W·m⁻², not yet added
+    /// to what they gathered; `None` once `cancel` is requested (looked at every
+    /// [`SHOT_CHUNK`] links).
+    fn shoot(
+        &mut self,
+        solver: &mut Solver,
+        shooter: usize,
+        cancel: &Cancel,
+    ) -> Option<Vec<(usize, Rgb64)>> {
         let mut received = Vec::new();
         let mut thresholds = vec![None; self.measured.len()];
         let mut frontier: Vec<(usize, usize, Prior)> = solver
@@ -283,7 +331,13 @@ impl Shots {
             .map(|r| (r, shooter, Prior::Unknown))
             .collect();
         while !frontier.is_empty() {
-            let links = solver.create_links(&frontier);
+            let mut links = Vec::with_capacity(frontier.len());
+            for chunk in frontier.chunks(SHOT_CHUNK) {
+                if cancel.is_requested() {
+                    return None;
+                }
+                links.extend(solver.create_links(chunk));
+            }
             let (oracle, limits) = (solver.settings.oracle, solver.limits);
             let mut next = Vec::new();
             let mut kept = Vec::new();
@@ -311,7 +365,6 @@ impl Shots {
             for link in kept {
                 let sent = link.emitter_radiosity(&solver.mesh, &self.unshot) * link.coupling;
                 for (n, irradiance) in link.divide(&solver.mesh, sent) {
-                    solver.nodes.gathered[n] += irradiance;
                     received.push((n, irradiance));
                     let patch = solver.mesh.patch(split_node(n).0);
                     if let Some(measured) = self.measured.get_mut(patch.object as usize) {
@@ -321,8 +374,15 @@ impl Shots {
             }
             frontier = next;
         }
-        received
+        Some(received)
     }
+}
+
+/// The leaf nodes below node `n` (its side).
+fn leaf_nodes(solver: &Solver, n: usize) -> impl Iterator<Item = usize> {
+    let (patch, side) = split_node(n);
+    let leaves = solver.mesh.leaves_under(patch);
+    leaves.into_iter().map(move |leaf| node(leaf, side))
 }
 
 /// The push (§5.3.2): irradiance `h` taken at node `n` reaches every leaf below it, where it
@@ -335,5 +395,51 @@ fn push(solver: &mut Solver, n: usize, h: Rgb64) {
         nodes.irradiance[l] += h;
         nodes.radiosity[l] += nodes.reflectance[l] * h;
         nodes.radiosity[other] += nodes.translucency[other] * h;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::AccelKind;
+    use crate::scene::builtin;
+
+    #[test]
+    fn a_shot_stopped_before_it_is_complete_leaves_nothing_of_itself() {
+        let scene = builtin::load("cornell").unwrap().unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+        let options = SystemOptions::default();
+        let (mesh, visibility) = prepare(&world, &options).unwrap();
+        let settings = HierarchicalSettings::default();
+        let mut solver = Solver::new(&world, mesh, &visibility, &options, &settings);
+        solver.link_root_lights(&crate::progress::NoProgress, &Cancel::new());
+        solver.refine(&mut RoundStats::default(), &Cancel::new());
+        solver.nodes.push_pull(&solver.mesh);
+        let mut shots = Shots::new(&solver);
+        let (shooter, unshot) = shots.unshot_power(&solver);
+        assert!(unshot > 0.0);
+
+        let stopped = Cancel::new();
+        stopped.request();
+        let (shot, measured) = (shots.shot.clone(), shots.measured.clone());
+        let gathered = solver.nodes.gathered.clone();
+        assert!(shots.shot_from(&mut solver, shooter, &stopped).is_none());
+        assert_eq!(shots.shot[..shot.len()], shot[..]);
+        assert_eq!(shots.measured, measured);
+        assert_eq!(solver.nodes.gathered[..gathered.len()], gathered[..]);
+        assert!(
+            solver.nodes.gathered[gathered.len()..]
+                .iter()
+                .all(|&h| h == Rgb64::BLACK)
+        );
+        assert_eq!(shots.unshot_power(&solver), (shooter, unshot));
+
+        // Not stopped, the same shot sends everything: the shooter has nothing left unshot.
+        let received = shots
+            .shot_from(&mut solver, shooter, &Cancel::new())
+            .unwrap();
+        assert!(!received.is_empty());
+        assert_eq!(shots.unshot_below(&solver, shooter), 0.0);
+        assert!(shots.measured.iter().sum::<f64>() > measured.iter().sum::<f64>());
     }
 }
