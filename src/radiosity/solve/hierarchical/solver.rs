@@ -397,15 +397,16 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 index <= judged || matches!(splits[index - 1 - judged], Verdict::Keep)
             });
             refined += count;
-            let new: Vec<ClusterLink> = ends
-                .par_iter()
-                .with_max_len(UNEVEN_RUN)
-                .map(|&(r, e)| tree.link(mesh, r, e))
-                .collect();
             judged = self.cluster_links.len();
+            // Written in place, in parallel: 2.6·10⁵ links of 136 bytes collected first and
+            // then moved took 20 ms on one thread (canopy:3000).
+            self.cluster_links.par_extend(
+                ends.par_iter()
+                    .with_max_len(UNEVEN_RUN)
+                    .map(|&(r, e)| tree.link(mesh, r, e)),
+            );
             let patch_links = self.create_links(&pairs);
-            created += (new.len() + patch_links.len()) as u64;
-            self.cluster_links.extend(new);
+            created += (ends.len() + patch_links.len()) as u64;
             self.links.extend(patch_links);
         }
         // The links kept look at what lies between their ends (those split at once never
