@@ -14,6 +14,10 @@ use std::io::{self, BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 
+/// Bytes gathered before each write to the file: a report of 3,000 objects (3 MB of JSON)
+/// went out in 386 writes with the standard 8 KiB.
+const BUFFER: usize = 1 << 20;
+
 /// A file being written; the target changes only on [`AtomicFile::commit`].
 pub struct AtomicFile {
     /// The file the bytes go to (the temporary file, or the target itself when it is not a
@@ -47,7 +51,7 @@ impl AtomicFile {
         }
         if existing.as_ref().is_some_and(|m| !m.is_file()) {
             return Ok(AtomicFile {
-                out: BufWriter::new(File::create(path)?),
+                out: BufWriter::with_capacity(BUFFER, File::create(path)?),
                 target: path.to_path_buf(),
                 temporary: None,
             });
@@ -61,7 +65,7 @@ impl AtomicFile {
             file.set_permissions(metadata.permissions())?;
         }
         Ok(AtomicFile {
-            out: BufWriter::new(file),
+            out: BufWriter::with_capacity(BUFFER, file),
             target: path.to_path_buf(),
             temporary: Some(temporary),
         })
