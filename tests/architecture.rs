@@ -29,7 +29,10 @@ const ALLOWED: &[(&str, &[&str])] = &[
         ],
     ),
     // What the algorithms fill.
-    ("measure", &["color", "geometry", "scene", "world"]),
+    (
+        "measure",
+        &["choice", "color", "geometry", "scene", "world"],
+    ),
     // The algorithms, side by side.
     ("trace", ALGORITHM_BASE),
     ("light_model", ALGORITHM_BASE),

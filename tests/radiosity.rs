@@ -1,5 +1,6 @@
 //! Radiosity solvers end to end: the furnace, matrix against progressive on the Cornell box,
-//! Jacobi against Gauss-Seidel, light links, the report, display and export.
+//! Jacobi against Gauss-Seidel, light links, the report, display (and its illuminance and
+//! luminance per pixel) and export.
 
 use glam::Vec3;
 use std::sync::Arc;
@@ -7,6 +8,7 @@ use strahl::accel::AccelKind;
 use strahl::color::{Rgb, Rgb64};
 use strahl::image::{ToneMap, ToneMapping};
 use strahl::light_model::{LightTraceSettings, trace_light};
+use strahl::measure::Photometric;
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::solid_angle;
@@ -16,10 +18,11 @@ use strahl::radiosity::solve::hierarchical::{
 use strahl::radiosity::solve::{
     DisplaySettings, Iteration, LinkDisplay, MatrixSettings, RadiositySystem, Shading,
     ShootingSettings, Solution, SystemOptions, render_solution, solve_matrix, solve_progressive,
+    value_image,
 };
 use strahl::radiosity::{MeshOptions, MeshSize, Side};
 use strahl::report::{Report, export_lit_mesh};
-use strahl::scene::{Light, LightKind, Material, Scene, Shape, builtin};
+use strahl::scene::{Camera, Light, LightKind, Material, Scene, Shape, builtin};
 use strahl::world::World;
 
 const RHO: f32 = 0.5;
@@ -377,6 +380,76 @@ fn display_renders_light_and_flat_and_smooth_have_equal_means() {
         .filter(|p| p.luminance() <= 0.0)
         .count();
     assert!(dark < flat.pixels().len() / 10, "{dark} black pixels");
+}
+
+#[test]
+fn inside_the_furnace_every_pixel_reads_its_illuminance_and_luminance() {
+    // Every face emits πL and reflects ρ: B = πL/(1 − ρ) = 4π W·m⁻², and inside the closed
+    // cube the irradiance is B too: 683·4π lux, and 683·B/π = 2732 cd·m⁻².
+    let world = furnace();
+    let system = RadiositySystem::new(&world, options(2)).unwrap();
+    let solution = matrix(&system, Iteration::GaussSeidel, 1e-8);
+    let camera = Camera {
+        position: Vec3::new(0.5, 0.5, 0.9),
+        look_at: Vec3::new(0.5, 0.4, 0.0),
+        up: Vec3::Y,
+        fov_degrees: 100.0,
+        width: 40,
+        height: 30,
+    };
+    let settings = DisplaySettings {
+        links: LinkDisplay::None,
+        width: 40,
+        height: 30,
+        shading: Shading::Smooth,
+        wireframe: false,
+        samples_per_axis: 2,
+    };
+    let b = std::f64::consts::PI * f64::from(L) / (1.0 - f64::from(RHO));
+    for (quantity, expected) in [
+        (Photometric::Illuminance, 683.0 * b),
+        (Photometric::Luminance, 683.0 * b / std::f64::consts::PI),
+    ] {
+        let image = value_image(
+            &system,
+            &solution,
+            &camera,
+            &settings,
+            quantity,
+            &NoProgress,
+            &Cancel::new(),
+        )
+        .unwrap();
+        assert_eq!(
+            (image.width, image.height, image.quantity),
+            (40, 30, quantity)
+        );
+        assert_eq!(image.values.len(), 1200);
+        for v in &image.values {
+            let v = f64::from(v.expect("every pixel sees a face"));
+            assert!(
+                (v / expected - 1.0).abs() < 1e-3,
+                "{quantity}: {v} vs {expected}"
+            );
+        }
+    }
+    // Looking out of the open Cornell box's front, the pixels past its walls see nothing.
+    let cornell = cornell();
+    let system = RadiositySystem::new(&cornell, options(1)).unwrap();
+    let solution = matrix(&system, Iteration::GaussSeidel, 1e-5);
+    let mut outside = cornell.scene.camera.clone();
+    outside.look_at = outside.position * 2.0 - outside.look_at;
+    let image = value_image(
+        &system,
+        &solution,
+        &outside,
+        &settings,
+        Photometric::Illuminance,
+        &NoProgress,
+        &Cancel::new(),
+    )
+    .unwrap();
+    assert!(image.values.iter().all(Option::is_none));
 }
 
 #[test]

@@ -10,10 +10,11 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
-use strahl::image::{self, ToneMap, ToneMapping};
+use strahl::image::{self, FalseColor, MAX_ISOLINES, ToneMap, ToneMapping};
 use strahl::method::{
-    AccelKind, Antialias, AntialiasMode, FinalGatherSettings, ImageSize, Method, MethodKind,
-    PathTraceSettings, RadiosityImageSettings, RayTraceSettings, ShadowMode, World,
+    AccelKind, Antialias, AntialiasMode, Cancel, DisplaySettings, FinalGatherSettings, ImageSize,
+    LinkDisplay, Method, MethodKind, NoProgress, PathTraceSettings, Photometric,
+    RadiosityImageSettings, RayTraceSettings, ShadowMode, SolvedRadiosity, World,
 };
 
 /// Arguments of `strahl render`.
@@ -83,6 +84,18 @@ pub struct RenderArgs {
     /// No progress bar or summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// radiosity: write this quantity in false colour with its legend instead of the image
+    /// (isolines with --isolines, the scale's ends with --range; -o must name a .png file).
+    #[arg(long, value_parser = choice::<Photometric>())]
+    pub false_color: Option<Photometric>,
+    /// With --false-color: the values at the colour scale's low and high ends, `MIN,MAX` in
+    /// lux or cd/m² (default: 0 to the largest value seen, rounded up to 1, 2, 2.5 or 5 × 10ⁿ).
+    #[arg(long, value_parser = parse_range)]
+    pub range: Option<(f32, f32)>,
+    /// With --false-color: isolines at this many levels evenly spaced inside the range,
+    /// each labelled in the legend.
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_ISOLINES)))]
+    pub isolines: u32,
     /// Radiosity options.
     #[command(flatten)]
     pub radiosity: RadiosityDisplayArgs,
@@ -106,6 +119,24 @@ impl RenderArgs {
         )?;
         if let Some(path) = &self.radiosity.solve.export {
             strahl::report::ExportFormat::from_path(path).context("--export")?;
+        }
+        match self.false_color {
+            Some(_) if self.method != MethodKind::RadiosityImage => bail!(
+                "--false-color needs --method radiosity (the illuminance and luminance it shows \
+                 come from the radiosity solution), not {}",
+                self.method
+            ),
+            Some(_) if image::FileFormat::from_path(&self.output)? != image::FileFormat::Png => {
+                bail!(
+                    "-o {}: a false-colour image is written as PNG (its colours and legend are \
+                     display colours, not radiance)",
+                    self.output.display()
+                )
+            }
+            None if self.range.is_some() || self.isolines > 0 => {
+                bail!("--range and --isolines apply to --false-color only")
+            }
+            _ => {}
         }
         if let Some(map) = &self.aa_map {
             image::FileFormat::from_path(map).context("--aa-map")?;
@@ -277,8 +308,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             args.quiet,
         )?;
     }
-    let film = outcome.image.context("the method made no image")?;
-    image::save(&film, &args.output, &tone_mapping)?;
+    match (args.false_color, &outcome.radiosity) {
+        (Some(quantity), Some(solved)) => {
+            save_false_color(args, &world, solved, quantity, width, height, cancel)?
+        }
+        _ => {
+            let film = outcome.image.context("the method made no image")?;
+            image::save(&film, &args.output, &tone_mapping)?;
+        }
+    }
     if let Some(map) = &args.aa_map {
         save_subdivision_map(&outcome.subdivisions, width, height, map)?;
     }
@@ -297,6 +335,67 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// Writes `quantity` over `solved` through the scene camera at `width × height` in false
+/// colour with its legend to `-o`, the solution looked up as the image was (shading, rays
+/// per pixel).
+fn save_false_color(
+    args: &RenderArgs,
+    world: &World,
+    solved: &SolvedRadiosity,
+    quantity: Photometric,
+    width: u32,
+    height: u32,
+    cancel: &Cancel,
+) -> Result<()> {
+    let settings = DisplaySettings {
+        width,
+        height,
+        shading: args.radiosity.shading,
+        wireframe: false,
+        samples_per_axis: (args
+            .spp
+            .unwrap_or(RadiosityImageSettings::default().samples_per_pixel)
+            as f64)
+            .sqrt()
+            .ceil() as u32,
+        links: LinkDisplay::None,
+    };
+    let values = solved
+        .value_image(
+            &world.scene.camera,
+            &settings,
+            quantity,
+            &NoProgress,
+            cancel,
+        )
+        .context("the scene camera is degenerate")?;
+    let false_color = FalseColor {
+        range: args.range,
+        isolines: args.isolines,
+    };
+    image::save_false_color(&values, &false_color, &args.output)?;
+    Ok(())
+}
+
+/// `MIN,MAX`: two finite numbers, MIN below MAX.
+fn parse_range(text: &str) -> Result<(f32, f32), String> {
+    let parse = |s: &str| {
+        s.trim()
+            .parse::<f32>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| format!("'{s}' is not a finite number"))
+    };
+    let (low, high) = text
+        .split_once(',')
+        .ok_or_else(|| format!("expected MIN,MAX (e.g. 0,500), got '{text}'"))?;
+    let (low, high) = (parse(low)?, parse(high)?);
+    if low >= high {
+        return Err(format!("MIN must lie below MAX (got {low},{high})"));
+    }
+    Ok((low, high))
 }
 
 /// Writes the subdivision counts as a grey image: black = never subdivided, white = the

@@ -197,3 +197,65 @@ fn the_help_states_the_final_gather_s_defaults() {
         );
     }
 }
+
+/// Runs `strahl` with `args`, asserts that it failed, and returns its standard error.
+fn refused(args: &[&str]) -> String {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args(args)
+        .output()
+        .unwrap();
+    assert!(!out.status.success(), "{args:?} succeeded");
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// `strahl render` of the Cornell box by radiosity at 80 × 60 to `output`, then `extra`.
+fn render<'a>(extra: &[&'a str], output: &'a std::path::Path) -> Vec<&'a str> {
+    let mut args = vec![
+        "render",
+        "cornell",
+        "--method",
+        "radiosity",
+        "--width",
+        "80",
+        "--height",
+        "60",
+        "-q",
+        "-o",
+        output.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    args
+}
+
+#[test]
+fn false_colour_images_carry_their_legend_and_refuse_what_they_cannot_show() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-false-colour-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("lux.png");
+    run(&render(&["--false-color", "lux", "--isolines", "3"], &png));
+    let film = strahl::image::load(&png).unwrap();
+    // The image and the 72-pixel legend beside it.
+    assert_eq!((film.width(), film.height()), (80 + 72, 60));
+    let srgb = |x: u32, y: u32| {
+        let p = film.pixels()[(y * film.width() + x) as usize];
+        p.to_array()
+            .map(|v| (strahl::color::linear_to_srgb(v) * 255.0).round() as u8)
+    };
+    // The colour bar: the scale's top colour at its top, its bottom colour at its bottom.
+    let close = |a: [u8; 3], b: [u8; 3]| a.iter().zip(b).all(|(&a, b)| a.abs_diff(b) <= 1);
+    assert!(close(srgb(80 + 6, 14), strahl::image::scale_colour(1.0)));
+    assert!(close(srgb(80 + 6, 54), strahl::image::scale_colour(0.0)));
+
+    let exr = dir.join("lux.exr");
+    let says = refused(&render(&["--false-color", "lux"], &exr));
+    assert!(says.contains("PNG"), "{says}");
+    let mut pathtrace = render(&["--false-color", "lux"], &png);
+    pathtrace[3] = "pathtrace";
+    let says = refused(&pathtrace);
+    assert!(says.contains("--method radiosity"), "{says}");
+    let says = refused(&render(&["--isolines", "3"], &png));
+    assert!(says.contains("--false-color"), "{says}");
+    let says = refused(&render(&["--false-color", "lux", "--range", "5,1"], &png));
+    assert!(says.contains("MIN must lie below MAX"), "{says}");
+}

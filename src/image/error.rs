@@ -20,6 +20,16 @@ pub enum ImageError {
         /// Its extension without the dot, `None` when it has none.
         extension: Option<String>,
     },
+    /// A false-colour image was asked for in a format other than PNG.
+    #[error(
+        "'{}': a false-colour image is written as PNG (its colours and legend are display \
+         colours, not radiance); name a .png file",
+        path.display()
+    )]
+    FalseColorNotPng {
+        /// The file.
+        path: PathBuf,
+    },
     /// The film has no pixels, which the file formats cannot store.
     #[error("cannot write '{}': the image is empty ({width}×{height})", path.display())]
     EmptyImage {

@@ -73,6 +73,17 @@ fn save_png(film: &Film, path: &Path, tone_mapping: &ToneMapping) -> Result<(), 
         .flat_map(Rgb::to_array)
         .map(|v| (linear_to_srgb(v) * 255.0).round() as u8)
         .collect();
+    write_png(&bytes, film.width(), film.height(), path)
+}
+
+/// Writes `bytes` (8-bit sRGB, three per pixel, rows from the top) as a PNG of `width ×
+/// height` to `path`, in place of any file there only once it is complete.
+pub(super) fn write_png(
+    bytes: &[u8],
+    width: u32,
+    height: u32,
+    path: &Path,
+) -> Result<(), ImageError> {
     let io_error = |source| ImageError::Io {
         path: path.to_path_buf(),
         source,
@@ -80,9 +91,9 @@ fn save_png(film: &Film, path: &Path, tone_mapping: &ToneMapping) -> Result<(), 
     let mut out = AtomicFile::create(path).map_err(io_error)?;
     ::image::write_buffer_with_format(
         &mut out,
-        &bytes,
-        film.width(),
-        film.height(),
+        bytes,
+        width,
+        height,
         ::image::ExtendedColorType::Rgb8,
         ::image::ImageFormat::Png,
     )

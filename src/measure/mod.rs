@@ -1,7 +1,7 @@
 //! What the algorithms measure, in plain containers that they fill and that `report` and
 //! `image` turn into files: the [`Film`] (radiance per pixel), the [`SurfacePower`] (power
 //! per reported surface, over the [`SurfaceTable`] of a scene), the [`LitMesh`] (radiosity
-//! per polygon corner), the [`SensorReading`]s of the scene's point sensors and the run's
+//! per polygon corner), the [`ValueImage`] (lux or cd·m⁻² per pixel), the [`SensorReading`]s of the scene's point sensors and the run's
 //! [`Stats`], with the process's peak memory; a solver's [`Measurement`] holds its surface
 //! power, sensor readings and statistics together.
 
@@ -13,6 +13,7 @@ mod sensor_reading;
 mod stats;
 mod surface_power;
 mod surfaces;
+mod value_image;
 
 pub use film::Film;
 pub use lit_mesh::{LightmappedSurface, LitMesh};
@@ -22,3 +23,4 @@ pub use sensor_reading::SensorReading;
 pub use stats::Stats;
 pub use surface_power::{PowerBalance, SurfacePower, Totals};
 pub use surfaces::{ReportSurface, SurfaceTable};
+pub use value_image::{Photometric, ValueImage};

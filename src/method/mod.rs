@@ -50,14 +50,14 @@ pub use settings::{
 pub use crate::accel::AccelKind;
 pub use crate::choice::{Choice, UnknownName};
 pub use crate::measure::{
-    Film, LitMesh, Measurement, SensorReading, peak_resident_bytes, resident_bytes,
-    usable_memory_bytes,
+    Film, LitMesh, Measurement, Photometric, SensorReading, ValueImage, peak_resident_bytes,
+    resident_bytes, usable_memory_bytes,
 };
 pub use crate::progress::{Cancel, NoProgress, ProgressListener};
 pub use crate::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, RefinePass};
 pub use crate::radiosity::solve::{
-    Iteration, MatrixSettings, RoundStats, Shading, ShootingSettings, Solution, SolverKind,
-    SystemOptions,
+    DisplaySettings, Iteration, LinkDisplay, MatrixSettings, RoundStats, Shading, ShootingSettings,
+    Solution, SolverKind, SystemOptions,
 };
 pub use crate::radiosity::{
     FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,

@@ -3,10 +3,10 @@
 //! it ran to the end and one phrase on the work done.
 
 use crate::final_gather::FinalGather;
-use crate::measure::{Film, LitMesh, Measurement, SensorReading};
+use crate::measure::{Film, LitMesh, Measurement, Photometric, SensorReading, ValueImage};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::{
-    DisplaySettings, RadiositySystem, Shading, Solution, render_solution,
+    DisplaySettings, RadiositySystem, Shading, Solution, render_solution, value_image,
 };
 use crate::scene::Camera;
 use crate::world::World;
@@ -131,6 +131,28 @@ impl SolvedRadiosity {
             &self.solution,
             camera,
             settings,
+            progress,
+            cancel,
+        )
+    }
+
+    /// `quantity` (lux or cd·m⁻²) per pixel through `camera` at the resolution, rays per
+    /// pixel and shading of `settings` (for a false-colour image); `None` for a degenerate
+    /// camera.
+    pub fn value_image(
+        &self,
+        camera: &Camera,
+        settings: &DisplaySettings,
+        quantity: Photometric,
+        progress: &dyn ProgressListener,
+        cancel: &Cancel,
+    ) -> Option<ValueImage> {
+        value_image(
+            &self.system,
+            &self.solution,
+            camera,
+            settings,
+            quantity,
             progress,
             cancel,
         )

@@ -4,17 +4,21 @@
 //! the patch edges optionally drawn as black lines one pixel wide. Each side of a patch shows
 //! its own radiosity; a textured surface shows its texture at full resolution, lit by the
 //! irradiance on the mesh. Surfaces that are not in the mesh (infinite planes) are not shown.
+//! The same rays give a [`ValueImage`] of illuminance or luminance per pixel, for false
+//! colour.
 
 use super::lookup::{RadiosityLookup, Shading};
 use super::solution::{LinkSegment, Solution};
 use super::system::RadiositySystem;
+use crate::color::LUMINOUS_EFFICACY;
 use crate::color::Rgb;
 use crate::geometry::Ray;
-use crate::measure::Film;
+use crate::measure::{Film, Photometric, ValueImage};
 use crate::progress::{Cancel, ProgressListener};
 use crate::scene::{Camera, CameraRays};
 use glam::DVec3;
 use rayon::prelude::*;
+use std::f64::consts::PI;
 
 /// Wireframe line half-width in pixels.
 const LINE_HALF_WIDTH_PIXELS: f64 = 0.6;
@@ -114,6 +118,73 @@ pub fn render_solution(
         draw_links(&mut film, &rays, solution, settings.links);
     }
     Some(film)
+}
+
+/// `quantity` seen through `camera` at the settings' resolution and rays per pixel (its
+/// shading; wireframe and links are not drawn): illuminance from the solution's irradiance
+/// on the side each ray meets, or luminance from its radiance `B/π` (textures at full
+/// resolution), both × 683 lm/W on the luminance weighting. A pixel where fewer than half
+/// its rays meet a surface has no value; the others hold the mean over the rays that met
+/// one. `None` when the camera is degenerate; `cancel` leaves the remaining rows without
+/// values.
+pub fn value_image(
+    system: &RadiositySystem,
+    solution: &Solution,
+    camera: &Camera,
+    settings: &DisplaySettings,
+    quantity: Photometric,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Option<ValueImage> {
+    let rays = camera
+        .with_resolution(settings.width, settings.height)
+        .rays()?;
+    let (lookup, scale) = match quantity {
+        Photometric::Illuminance => (
+            RadiosityLookup::new(system, solution.display_irradiance(), settings.shading),
+            LUMINOUS_EFFICACY * PI,
+        ),
+        Photometric::Luminance => (
+            solution.display_lookup(system, settings.shading),
+            LUMINOUS_EFFICACY,
+        ),
+    };
+    let n = settings.samples_per_axis.max(1);
+    progress.start(settings.height as u64);
+    let values: Vec<Option<f32>> = (0..settings.height)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            let row: Vec<Option<f32>> = if cancel.is_requested() {
+                vec![None; settings.width as usize]
+            } else {
+                (0..settings.width)
+                    .map(|x| {
+                        let (mut sum, mut hits) = (0.0f64, 0u32);
+                        for i in 0..n {
+                            for j in 0..n {
+                                let px = x as f32 + (i as f32 + 0.5) / n as f32;
+                                let py = y as f32 + (j as f32 + 0.5) / n as f32;
+                                if let Some(hit) = lookup.hit(&rays.ray(px, py)) {
+                                    sum += f64::from(hit.radiance.luminance().max(0.0));
+                                    hits += 1;
+                                }
+                            }
+                        }
+                        (2 * hits >= n * n).then(|| (sum / f64::from(hits) * scale) as f32)
+                    })
+                    .collect()
+            };
+            progress.advance(1);
+            row
+        })
+        .collect();
+    progress.finish();
+    Some(ValueImage {
+        width: settings.width,
+        height: settings.height,
+        quantity,
+        values,
+    })
 }
 
 /// Draws the links `which` selects as one-pixel lines in a light cyan twice as bright as
