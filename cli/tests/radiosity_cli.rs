@@ -1,11 +1,16 @@
 //! The radiosity solvers through the command line: a solve with its report and export, and a render.
 
-/// Runs `strahl` with `args` and asserts that it succeeded.
-fn run(args: &[&str]) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+/// Runs `strahl` with `args` to its end.
+fn strahl(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
         .args(args)
         .output()
-        .unwrap();
+        .unwrap()
+}
+
+/// Runs `strahl` with `args` and asserts that it succeeded.
+fn run(args: &[&str]) {
+    let out = strahl(args);
     assert!(
         out.status.success(),
         "{}",
@@ -200,10 +205,7 @@ fn the_help_states_the_final_gather_s_defaults() {
 
 /// Runs `strahl` with `args`, asserts that it failed, and returns its standard error.
 fn refused(args: &[&str]) -> String {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
-        .args(args)
-        .output()
-        .unwrap();
+    let out = strahl(args);
     assert!(!out.status.success(), "{args:?} succeeded");
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
