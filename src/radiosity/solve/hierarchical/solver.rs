@@ -620,7 +620,12 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// with the light links), W·m⁻².
     fn direct_irradiance(&self) -> Vec<Rgb64> {
         let mut gathered = Vec::new();
-        self.gather_from(&self.nodes.emission, &mut gathered);
+        if self.nodes.emission.iter().any(|&e| e != Rgb64::BLACK) {
+            self.gather_from(&self.nodes.emission, &mut gathered);
+        } else {
+            // Lit by lights alone (the canopy's sun and sky): the gather would bring nothing.
+            gathered.resize(self.nodes.emission.len(), Rgb64::BLACK);
+        }
         self.nodes.push_down(&self.mesh, &gathered)
     }
 
@@ -832,7 +837,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         };
         let radiosity = per_element(&self.nodes.radiosity);
         let irradiance = per_element(&self.nodes.irradiance);
-        let direct_irradiance = per_element(&self.direct_irradiance());
+        // Only hierarchical radiosity tells direct from indirect light apart.
+        let direct_irradiance =
+            (kind == SolverKind::Hierarchical).then(|| per_element(&self.direct_irradiance()));
         let lit = per_element(&self.nodes.lit_total);
         let (links, near_links) = (self.link_count(), self.near_links.len());
         let link_segments = if self.settings.link_segments {
@@ -855,7 +862,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             solver_name: kind.name(),
             radiosity,
             irradiance,
-            direct_irradiance: (kind == SolverKind::Hierarchical).then_some(direct_irradiance),
+            direct_irradiance,
             ambient: Rgb64::BLACK,
             convergence,
             converged,
