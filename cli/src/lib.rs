@@ -1,5 +1,6 @@
-//! The `strahl` command line: `render`, `solve`, `validate`, `scenes`, `info` and `bench`. The only part
-//! of strahl that knows the argument parser; everything it runs is in the library.
+//! The `strahl` command line: `render`, `solve`, `validate`, `scenes`, `info`, `bench` and
+//! `view`. The only part of strahl that knows the argument parser and HTTP; everything it
+//! runs is in the library.
 
 mod bench;
 mod choice;
@@ -12,6 +13,7 @@ mod render;
 mod solve;
 mod tone;
 mod validate;
+mod view;
 
 use clap::{Parser, Subcommand};
 
@@ -39,6 +41,8 @@ pub enum Command {
     Info(info::InfoArgs),
     /// Measure ray-query speed of an accelerator (prints one JSON line).
     Bench(bench::BenchArgs),
+    /// Solve a scene by radiosity and show it in the browser: orbit, read the lux anywhere.
+    View(view::ViewArgs),
 }
 
 /// Runs the command line with the process arguments; returns the process exit code.
@@ -70,6 +74,10 @@ pub fn main() -> std::process::ExitCode {
         Command::Bench(args) => {
             progress::watch_memory(args.memory.bytes());
             bench::run(&args)
+        }
+        Command::View(args) => {
+            progress::watch_memory(args.limits.memory_bytes());
+            view::run(&args)
         }
     };
     if let Some(bytes) = progress::over_memory() {

@@ -49,6 +49,7 @@ pub use settings::{
 // only.
 pub use crate::accel::AccelKind;
 pub use crate::choice::{Choice, UnknownName};
+pub use crate::geometry::Ray;
 pub use crate::measure::{
     Film, LitMesh, Measurement, Photometric, SensorReading, ValueImage, peak_resident_bytes,
     resident_bytes, usable_memory_bytes,
@@ -56,8 +57,8 @@ pub use crate::measure::{
 pub use crate::progress::{Cancel, NoProgress, ProgressListener};
 pub use crate::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, RefinePass};
 pub use crate::radiosity::solve::{
-    DisplaySettings, Iteration, LinkDisplay, MatrixSettings, RoundStats, Shading, ShootingSettings,
-    Solution, SolverKind, SystemOptions,
+    DisplaySettings, Iteration, LinkDisplay, MatrixSettings, Probe, ProbeHit, RoundStats, Shading,
+    ShootingSettings, Solution, SolverKind, SystemOptions,
 };
 pub use crate::radiosity::{
     FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,

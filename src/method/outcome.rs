@@ -6,7 +6,7 @@ use crate::final_gather::FinalGather;
 use crate::measure::{Film, LitMesh, Measurement, Photometric, SensorReading, ValueImage};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::{
-    DisplaySettings, RadiositySystem, Shading, Solution, render_solution, value_image,
+    DisplaySettings, Probe, RadiositySystem, Shading, Solution, render_solution, value_image,
 };
 use crate::scene::Camera;
 use crate::world::World;
@@ -134,6 +134,12 @@ impl SolvedRadiosity {
             progress,
             cancel,
         )
+    }
+
+    /// A probe reading the solution along any ray (illuminance and luminance where it meets
+    /// a surface), looked up by `shading`.
+    pub fn probe(&self, shading: Shading) -> Probe<'_> {
+        Probe::new(&self.system, &self.solution, shading)
     }
 
     /// `quantity` (lux or cd·m⁻²) per pixel through `camera` at the resolution, rays per

@@ -187,6 +187,54 @@ pub fn value_image(
     })
 }
 
+/// What a ray meets on a solution ([`Probe::at`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProbeHit {
+    /// The scene object hit (its index).
+    pub object: u32,
+    /// The point hit, scene units.
+    pub point: DVec3,
+    /// Distance along the ray, scene units.
+    pub distance: f64,
+    /// Illuminance there, on the side the ray meets, lux.
+    pub illuminance: f64,
+    /// Luminance there, seen along the ray, cd·m⁻².
+    pub luminance: f64,
+}
+
+/// Reads a solution along any ray: the illuminance and luminance where the ray meets the
+/// leaf mesh, looked up as the display shows them (`shading`).
+pub struct Probe<'s> {
+    irradiance: RadiosityLookup<'s>,
+    radiance: RadiosityLookup<'s>,
+}
+
+impl<'s> Probe<'s> {
+    /// The probe of `solution` on `system`.
+    pub fn new(system: &'s RadiositySystem, solution: &Solution, shading: Shading) -> Self {
+        Probe {
+            irradiance: RadiosityLookup::new(system, solution.display_irradiance(), shading),
+            radiance: solution.display_lookup(system, shading),
+        }
+    }
+
+    /// What `ray` meets first, `None` when it meets no surface of the mesh.
+    pub fn at(&self, ray: &Ray) -> Option<ProbeHit> {
+        let hit = self.irradiance.hit(ray)?;
+        let luminance = self
+            .radiance
+            .hit(ray)
+            .map_or(0.0, |h| f64::from(h.radiance.luminance()));
+        Some(ProbeHit {
+            object: hit.patch.object,
+            point: hit.point,
+            distance: hit.distance,
+            illuminance: LUMINOUS_EFFICACY * PI * f64::from(hit.radiance.luminance()),
+            luminance: LUMINOUS_EFFICACY * luminance,
+        })
+    }
+}
+
 /// Draws the links `which` selects as one-pixel lines in a light cyan twice as bright as
 /// the image's mean luminance (so tone mapping keeps them visible).
 fn draw_links(film: &mut Film, rays: &CameraRays, solution: &Solution, which: LinkDisplay) {

@@ -1,0 +1,239 @@
+//! `strahl view` as a browser meets it: the page, the scene, the lit mesh and the readings
+//! along rays over HTTP, against the furnace's closed form; refusals of what it does not
+//! serve; several clients at once; Ctrl-C.
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// A running `strahl view` and the `host:port` it serves.
+struct Viewer {
+    child: Child,
+    address: String,
+}
+
+impl Drop for Viewer {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Starts `strahl view ARGS --port 0 -q` and waits for the address it prints.
+fn start(args: &[&str]) -> Viewer {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .arg("view")
+        .args(args)
+        .args(["--port", "0", "-q"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let address = line
+        .split("http://")
+        .nth(1)
+        .and_then(|rest| rest.split('/').next())
+        .unwrap_or_else(|| panic!("no address in '{line}'"))
+        .to_string();
+    Viewer { child, address }
+}
+
+/// Sends `request` (a whole HTTP request) and returns the status, the headers (lower case)
+/// and the body.
+fn send(address: &str, request: &str) -> (u16, String, Vec<u8>) {
+    let mut stream = TcpStream::connect(address).unwrap();
+    stream
+        .set_read_timeout(Some(Duration::from_secs(30)))
+        .unwrap();
+    stream.write_all(request.as_bytes()).unwrap();
+    let mut response = Vec::new();
+    stream.read_to_end(&mut response).unwrap();
+    let split = response
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("a header");
+    let head = String::from_utf8_lossy(&response[..split]).to_lowercase();
+    let status = head
+        .split_whitespace()
+        .nth(1)
+        .and_then(|s| s.parse().ok())
+        .expect("a status");
+    (status, head, response[split + 4..].to_vec())
+}
+
+/// `method path` over a connection of its own.
+fn request(address: &str, method: &str, path: &str) -> (u16, String, Vec<u8>) {
+    send(
+        address,
+        &format!("{method} {path} HTTP/1.1\r\nHost: {address}\r\nConnection: close\r\n\r\n"),
+    )
+}
+
+fn get(address: &str, path: &str) -> (u16, String, Vec<u8>) {
+    request(address, "GET", path)
+}
+
+fn json(body: &[u8]) -> serde_json::Value {
+    serde_json::from_slice(body).unwrap()
+}
+
+#[test]
+fn inside_the_furnace_a_click_reads_its_closed_form_and_the_mesh_is_whole() {
+    // A closed unit box emitting L = 2 on both sides, ρ = 0.5: inside, B = E = πL/(1 − ρ)
+    // = 4π W·m⁻², 683·4π lux and 683·4 cd/m².
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-view-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("furnace.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0.5, 0.5, 0.5]\nlook_at = [0.5, 0.4, 0.0]\nfov = 90\n\n\
+         [materials.glow]\ndiffuse = 0.5\nemission = 2.0\ntwo_sided = true\n\n\
+         [[objects]]\nname = \"box\"\ntype = \"box\"\nmaterial = \"glow\"\n\
+         min = [0, 0, 0]\nmax = [1, 1, 1]\n",
+    )
+    .unwrap();
+    let viewer = start(&[
+        scene.to_str().unwrap(),
+        "--solver",
+        "matrix",
+        "--mesh-size",
+        "levels:2",
+    ]);
+    let b = 4.0 * std::f64::consts::PI;
+    for direction in ["0.3,-1,0.2", "-1,0.1,0.4", "0.1,0.9,-0.2"] {
+        let (status, _, body) = get(
+            &viewer.address,
+            &format!("/api/pick?o=0.5,0.5,0.5&d={direction}"),
+        );
+        assert_eq!(status, 200);
+        let pick = json(&body);
+        assert_eq!(pick["hit"], true);
+        assert_eq!(pick["object"], "box");
+        let lux = pick["illuminance_lux"].as_f64().unwrap();
+        assert!((lux / (683.0 * b) - 1.0).abs() < 1e-3, "{direction}: {lux}");
+        let luminance = pick["luminance_cd_m2"].as_f64().unwrap();
+        assert!(
+            (luminance / 2732.0 - 1.0).abs() < 1e-3,
+            "{direction}: {luminance}"
+        );
+    }
+    // Looking out of the box's wall from outside, away from it: nothing.
+    let (_, _, body) = get(&viewer.address, "/api/pick?o=3,3,3&d=1,1,1");
+    assert_eq!(json(&body)["hit"], false);
+
+    let (status, head, mesh) = get(&viewer.address, "/api/mesh");
+    assert_eq!(status, 200);
+    assert!(head.contains("application/octet-stream"));
+    let word = |k: usize| u32::from_le_bytes(mesh[4 * k..4 * k + 4].try_into().unwrap()) as usize;
+    let (vertices, triangles) = (word(0), word(1));
+    // Six faces of 4 × 4 patches, two sides each, two triangles per patch.
+    assert_eq!(triangles, 6 * 16 * 2 * 2);
+    assert_eq!(mesh.len(), 8 + 24 * vertices + 12 * triangles);
+    let indices = (8 + 24 * vertices) / 4;
+    assert!((0..3 * triangles).all(|k| word(indices + k) < vertices));
+    // Every vertex of the inside shows the radiance B/π = 4 W·sr⁻¹·m⁻² (the outside too: it
+    // emits and reflects alike, but only what it emits, L = 2, leaves it).
+    let radiance =
+        |k: usize| f32::from_le_bytes(mesh[8 + 12 * vertices + 4 * k..][..4].try_into().unwrap());
+    let values: Vec<f32> = (0..3 * vertices).map(radiance).collect();
+    assert!(
+        values
+            .iter()
+            .all(|&v| (v - 4.0).abs() < 4e-3 || (v - 2.0).abs() < 2e-3)
+    );
+}
+
+#[test]
+fn it_serves_its_page_and_scene_refuses_everything_else_and_keeps_serving() {
+    let viewer = start(&["cornell"]);
+    let address = viewer.address.as_str();
+    assert!(address.starts_with("127.0.0.1:"), "{address}");
+
+    let (status, head, page) = get(address, "/");
+    assert_eq!(status, 200);
+    assert!(head.contains("text/html"));
+    assert!(head.contains("x-content-type-options: nosniff"));
+    assert!(head.contains("content-security-policy: default-src 'self'"));
+    assert!(String::from_utf8_lossy(&page).contains("<canvas"));
+    let (status, head, _) = get(address, "/view.js");
+    assert_eq!(status, 200);
+    assert!(head.contains("text/javascript"));
+    let (status, _, scene) = get(address, "/api/scene");
+    assert_eq!(status, 200);
+    let scene = json(&scene);
+    assert_eq!(scene["name"], "cornell");
+    let objects = scene["report"]["objects"].as_array().unwrap();
+    assert!(objects.iter().any(|o| o["name"] == "floor"));
+    // A click on the floor names it and reads a positive illuminance.
+    let (_, _, pick) = get(address, "/api/pick?o=0.278,0.273,-0.8&d=0,-0.3,1");
+    let pick = json(&pick);
+    assert_eq!(pick["object"], "floor");
+    assert!(pick["illuminance_lux"].as_f64().unwrap() > 0.0);
+
+    for path in [
+        "/../../etc/passwd",
+        "/..%2F..%2Fetc%2Fpasswd",
+        "/api/unknown",
+        "/assets/view.js",
+        "/Cargo.toml",
+    ] {
+        assert_eq!(get(address, path).0, 404, "{path}");
+    }
+    assert_eq!(request(address, "POST", "/").0, 405);
+    assert_eq!(request(address, "DELETE", "/api/mesh").0, 405);
+    for query in [
+        "o=1,2&d=0,0,1",
+        "o=0,0,0",
+        "o=0,0,0&d=0,0,0",
+        "o=nan,0,0&d=0,0,1",
+        "x=1",
+    ] {
+        let (status, _, body) = get(address, &format!("/api/pick?{query}"));
+        assert_eq!(status, 400, "{query}: {}", String::from_utf8_lossy(&body));
+    }
+    assert_eq!(get(address, &format!("/{}", "a".repeat(5000))).0, 414);
+    // Garbage instead of a request, and a client that leaves mid-request: still serving.
+    let (status, _, _) = send(address, "NONSENSE\r\n\r\n");
+    assert!((400..500).contains(&status), "{status}");
+    let mut gone = TcpStream::connect(address).unwrap();
+    gone.write_all(b"GET /api/mesh HTTP/1.1\r\nHost: x\r\n")
+        .unwrap();
+    drop(gone);
+    // Several clients at once, each given the whole mesh.
+    let (_, _, mesh) = get(address, "/api/mesh");
+    let clients: Vec<_> = (0..6)
+        .map(|_| {
+            let address = address.to_string();
+            std::thread::spawn(move || get(&address, "/api/mesh"))
+        })
+        .collect();
+    for client in clients {
+        let (status, _, body) = client.join().unwrap();
+        assert_eq!(status, 200);
+        assert_eq!(body, mesh);
+    }
+}
+
+#[test]
+fn ctrl_c_stops_the_server_within_a_second() {
+    let mut viewer = start(&["cornell"]);
+    assert_eq!(get(&viewer.address, "/").0, 200);
+    let sent = Instant::now();
+    let kill = Command::new("kill")
+        .args(["-INT", &viewer.child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let status = viewer.child.wait().unwrap();
+    let took = sent.elapsed();
+    assert_eq!(status.code(), Some(130));
+    // The workers look at Ctrl-C every 0.2 s; generous against a loaded machine.
+    assert!(took < Duration::from_secs(3), "{took:?}");
+    assert!(TcpStream::connect(&viewer.address).is_err());
+}
