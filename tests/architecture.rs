@@ -58,6 +58,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
             "accel",
             "choice",
             "final_gather",
+            "geometry",
             "light_model",
             "measure",
             "progress",
