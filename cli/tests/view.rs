@@ -237,3 +237,68 @@ fn ctrl_c_stops_the_server_within_a_second() {
     assert!(took < Duration::from_secs(3), "{took:?}");
     assert!(TcpStream::connect(&viewer.address).is_err());
 }
+
+/// The Chromium the browser test runs: `STRAHL_CHROMIUM`, or `chromium` on the path
+/// (`scripts/test`, the README's test command, installs Debian's).
+fn chromium() -> String {
+    if let Ok(path) = std::env::var("STRAHL_CHROMIUM") {
+        return path;
+    }
+    let found = Command::new("chromium")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    assert!(
+        found,
+        "the viewer's browser test needs Chromium: run scripts/test (it installs Debian's \
+         chromium) or set STRAHL_CHROMIUM"
+    );
+    "chromium".to_string()
+}
+
+/// Runs headless Chromium on `url` with `extra` (what to hand back), the page given ten
+/// seconds of its own time to load, fetch and draw (WebGL2 by SwiftShader, no GPU needed).
+fn headless(url: &str, profile: &std::path::Path, extra: &[&str]) -> std::process::Output {
+    Command::new(chromium())
+        .args([
+            "--headless=new",
+            "--no-sandbox",
+            "--use-angle=swiftshader",
+            "--enable-unsafe-swiftshader",
+            "--window-size=800,600",
+            "--virtual-time-budget=10000",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .args(extra)
+        .arg(url)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
+    let viewer = start(&["cornell"]);
+    let url = format!("http://{}/", viewer.address);
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-view-browser-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // The page's script ran: it fetched the scene and the mesh and says what it drew.
+    let dom = headless(&url, &dir.join("profile-dom"), &["--dump-dom"]);
+    let dom = String::from_utf8_lossy(&dom.stdout);
+    assert!(dom.contains("strahl view — cornell"), "{dom}");
+    assert!(dom.contains("triangles"), "{dom}");
+    assert!(!dom.contains("error:"), "{dom}");
+    // What it drew: the red wall on the left, the green one on the right, lit.
+    let shot = dir.join("view.png");
+    let screenshot = format!("--screenshot={}", shot.display());
+    headless(&url, &dir.join("profile-shot"), &[&screenshot]);
+    let film = strahl::image::load(&shot).unwrap();
+    assert_eq!((film.width(), film.height()), (800, 600));
+    let pixel = |x: u32, y: u32| film.pixels()[(y * film.width() + x) as usize];
+    let (left, right) = (pixel(160, 300), pixel(640, 300));
+    assert!(left.r > 3.0 * left.g && left.r > 0.05, "left wall {left:?}");
+    assert!(
+        right.g > 3.0 * right.r && right.g > 0.05,
+        "right wall {right:?}"
+    );
+}
