@@ -57,6 +57,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
         &[
             "accel",
             "choice",
+            "color",
             "final_gather",
             "geometry",
             "light_model",

@@ -134,8 +134,8 @@ fn inside_the_furnace_a_click_reads_its_closed_form_and_the_mesh_is_whole() {
     let (vertices, triangles) = (word(0), word(1));
     // Six faces of 4 × 4 patches, two sides each, two triangles per patch.
     assert_eq!(triangles, 6 * 16 * 2 * 2);
-    assert_eq!(mesh.len(), 8 + 24 * vertices + 12 * triangles);
-    let indices = (8 + 24 * vertices) / 4;
+    assert_eq!(mesh.len(), 8 + 28 * vertices + 12 * triangles);
+    let indices = (8 + 28 * vertices) / 4;
     assert!((0..3 * triangles).all(|k| word(indices + k) < vertices));
     // Every vertex of the inside shows the radiance B/π = 4 W·sr⁻¹·m⁻² (the outside too: it
     // emits and reflects alike, but only what it emits, L = 2, leaves it).
@@ -146,6 +146,22 @@ fn inside_the_furnace_a_click_reads_its_closed_form_and_the_mesh_is_whole() {
         values
             .iter()
             .all(|&v| (v - 4.0).abs() < 4e-3 || (v - 2.0).abs() < 2e-3)
+    );
+    // And the illuminance per vertex: 683·4π lux inside, nothing arriving outside.
+    let lux =
+        |k: usize| f32::from_le_bytes(mesh[8 + 24 * vertices + 4 * k..][..4].try_into().unwrap());
+    let inside = (683.0 * b) as f32;
+    assert!((0..vertices).all(|k| (lux(k) / inside - 1.0).abs() < 1e-3 || lux(k) == 0.0));
+    assert_eq!(
+        (0..vertices).filter(|&k| lux(k) > 0.0).count(),
+        vertices / 2
+    );
+    // The page's false-colour range holds the brightest vertex.
+    let (_, _, scene) = get(&viewer.address, "/api/scene");
+    let range = &json(&scene)["false_color"]["range"];
+    assert_eq!(
+        (range[0].as_f64(), range[1].as_f64()),
+        (Some(0.0), Some(10_000.0))
     );
 }
 
@@ -300,5 +316,21 @@ fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
     assert!(
         right.g > 3.0 * right.r && right.g > 0.05,
         "right wall {right:?}"
+    );
+
+    // In false colour (on from the address): the legend shows, and the walls take the
+    // scale's colours for their illuminance, no longer red and green.
+    let url = format!("{url}?false-color");
+    let dom = headless(&url, &dir.join("profile-false-dom"), &["--dump-dom"]);
+    let dom = String::from_utf8_lossy(&dom.stdout);
+    let legend = dom.split("id=\"legend\"").nth(1).expect("a legend");
+    assert!(!legend.starts_with(" hidden"), "{dom}");
+    assert!(legend.contains(">lux<"), "{dom}");
+    headless(&url, &dir.join("profile-false-shot"), &[&screenshot]);
+    let film = strahl::image::load(&shot).unwrap();
+    let left = film.pixels()[(300 * film.width() + 160) as usize];
+    assert!(
+        left.b > left.r || left.g > left.r,
+        "left wall in false colour {left:?}"
     );
 }

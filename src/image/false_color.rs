@@ -10,8 +10,9 @@ use super::output::{FileFormat, write_png};
 use crate::measure::ValueImage;
 use std::path::Path;
 
-/// The colour scale's stops (position on the scale, sRGB colour).
-const STOPS: [(f32, [u8; 3]); 6] = [
+/// The colour scale's stops (position on the scale, sRGB colour), between which
+/// [`scale_colour`] interpolates.
+pub const STOPS: [(f32, [u8; 3]); 6] = [
     (0.0, [20, 16, 96]),
     (0.2, [0, 92, 230]),
     (0.4, [0, 190, 190]),
@@ -178,8 +179,9 @@ fn level_label(value: f32, step: f32) -> String {
     format!("{value:.decimals$}")
 }
 
-/// The smallest of 1, 2, 2.5, 5 × 10ᵏ at or above `v`; 1 for `v` ≤ 0.
-fn nice_ceiling(v: f32) -> f32 {
+/// The smallest of 1, 2, 2.5, 5 × 10ᵏ at or above `v`; 1 for `v` ≤ 0: the top of a
+/// false-colour range that holds `v`.
+pub fn nice_ceiling(v: f32) -> f32 {
     if v.is_nan() || v <= 0.0 || v.is_infinite() {
         return 1.0;
     }

@@ -12,7 +12,9 @@ mod tonemap;
 
 pub use count_map::count_map;
 pub use error::ImageError;
-pub use false_color::{FalseColor, MAX_ISOLINES, false_color, save_false_color, scale_colour};
+pub use false_color::{
+    FalseColor, MAX_ISOLINES, STOPS, false_color, nice_ceiling, save_false_color, scale_colour,
+};
 pub use glyphs::Canvas;
 pub use output::{FileFormat, load, save};
 pub use tonemap::{REINHARD_KEY, ToneMap, ToneMapping};

@@ -34,6 +34,8 @@ pub struct LitMesh {
     pub normals: Vec<Vec3>,
     /// Radiosity leaving the vertex's surface, W·m⁻².
     pub radiosity: Vec<Rgb64>,
+    /// Irradiance arriving at the vertex on its polygon's side, W·m⁻².
+    pub irradiance: Vec<Rgb64>,
     /// Vertex indices of each polygon (3 or 4, counter-clockwise seen from the front).
     pub polygons: Vec<Vec<u32>>,
     /// Per vertex: the material's texture coordinates (`(0, 0)` on untextured surfaces).
@@ -52,16 +54,16 @@ pub struct LitMesh {
 
 impl LitMesh {
     /// Adds a polygon of scene object `object` with its `corners`, unit `normal` and
-    /// per-corner `radiosity` (W·m⁻², one per corner).
+    /// per-corner `(radiosity, irradiance)` (W·m⁻², one each per corner).
     pub fn push_polygon(
         &mut self,
         object: u32,
         corners: &[Vec3],
         normal: Vec3,
-        radiosity: &[Rgb64],
+        values: (&[Rgb64], &[Rgb64]),
     ) {
         let zero = vec![Vec2::ZERO; corners.len()];
-        self.push_mapped_polygon(object, corners, normal, radiosity, (&zero, &zero), None);
+        self.push_mapped_polygon(object, corners, normal, values, (&zero, &zero), None);
     }
 
     /// [`Self::push_polygon`] with per-corner texture coordinates `(material, lightmap)` on
@@ -71,15 +73,16 @@ impl LitMesh {
         object: u32,
         corners: &[Vec3],
         normal: Vec3,
-        radiosity: &[Rgb64],
+        (radiosity, irradiance): (&[Rgb64], &[Rgb64]),
         (texcoords, lightmap_texcoords): (&[Vec2], &[Vec2]),
         surface: Option<u32>,
     ) {
         let first = self.positions.len() as u32;
-        for (k, (&p, &b)) in corners.iter().zip(radiosity).enumerate() {
+        for (k, &p) in corners.iter().enumerate() {
             self.positions.push(p);
             self.normals.push(normal);
-            self.radiosity.push(b);
+            self.radiosity.push(radiosity[k]);
+            self.irradiance.push(irradiance[k]);
             self.texcoords.push(texcoords[k]);
             self.lightmap_texcoords.push(lightmap_texcoords[k]);
         }

@@ -49,6 +49,7 @@ pub use settings::{
 // only.
 pub use crate::accel::AccelKind;
 pub use crate::choice::{Choice, UnknownName};
+pub use crate::color::LUMINOUS_EFFICACY;
 pub use crate::geometry::Ray;
 pub use crate::measure::{
     Film, LitMesh, Measurement, Photometric, SensorReading, ValueImage, peak_resident_bytes,

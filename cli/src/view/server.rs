@@ -5,13 +5,16 @@
 use anyhow::Result;
 use serde::Serialize;
 use std::io::Cursor;
-use strahl::method::{Probe, Ray, Shading, SolvedRadiosity};
+use strahl::method::{LUMINOUS_EFFICACY, Probe, Ray, Shading, SolvedRadiosity};
 use strahl::report::Report;
 
 /// The page.
 const INDEX: &str = include_str!("assets/index.html");
 /// Its script.
 const SCRIPT: &str = include_str!("assets/view.js");
+
+/// The share of the surface area whose illuminance the false-colour range holds.
+const TOP_QUANTILE: f64 = 0.99;
 
 /// Most bytes of a request's path and query.
 const MAX_URL: usize = 2048;
@@ -35,6 +38,17 @@ struct SceneInfo<'a> {
     camera: CameraInfo,
     summary: String,
     report: &'a Report,
+    false_color: FalseColorInfo,
+}
+
+/// The false-colour scale of the page, as `strahl render --false-color` draws it.
+#[derive(Serialize)]
+struct FalseColorInfo {
+    /// Position on the scale (0–1) and sRGB colour (0–255) of each stop.
+    stops: Vec<(f32, [u8; 3])>,
+    /// The illuminance at the scale's ends, lux: 0 to what 99 % of the area stays at or
+    /// below, rounded up (brighter places take the top colour).
+    range: (f32, f32),
 }
 
 /// The scene camera, scene units and degrees.
@@ -66,6 +80,7 @@ impl<'s> ViewState<'s> {
     pub fn new(solved: &'s SolvedRadiosity, report: &Report, shading: Shading) -> Result<Self> {
         let scene = &solved.world().scene;
         let c = &scene.camera;
+        let (mesh, brightest) = mesh_bytes(solved);
         let info = SceneInfo {
             name: &report.scene,
             camera: CameraInfo {
@@ -76,10 +91,14 @@ impl<'s> ViewState<'s> {
             },
             summary: solved.summary(),
             report,
+            false_color: FalseColorInfo {
+                stops: strahl::image::STOPS.to_vec(),
+                range: (0.0, strahl::image::nice_ceiling(brightest)),
+            },
         };
         Ok(ViewState {
             scene: serde_json::to_vec(&info)?,
-            mesh: mesh_bytes(solved),
+            mesh,
             probe: solved.probe(shading),
             objects: (0..scene.objects.len())
                 .map(|k| scene.object_name(k).to_string())
@@ -178,17 +197,25 @@ fn vector(text: &str) -> Option<glam::Vec3> {
 
 /// The lit mesh as the page reads it, little-endian: the vertex count `V` and triangle count
 /// `T` (u32 each), `V` positions (3 × f32, scene units), `V` radiances (3 × f32, the
-/// radiosity leaving the vertex over π, W·sr⁻¹·m⁻²), `T` triangles (3 × u32 vertex indices,
-/// counter-clockwise from the side the radiance leaves). Each side of a patch is its own
-/// polygon, so both sides show their own light.
-fn mesh_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
+/// radiosity leaving the vertex over π, W·sr⁻¹·m⁻²), `V` illuminances (f32, lux on the
+/// vertex's side), `T` triangles (3 × u32 vertex indices, counter-clockwise from the side
+/// the light leaves). Each side of a patch is its own polygon, so both sides show their
+/// own light. Also returns the illuminance that 99 % of the surface area stays at or below,
+/// lux (the top of the false-colour range: the small, bright patches beside a lamp would
+/// squeeze the rest into the scale's lowest colours).
+fn mesh_bytes(solved: &SolvedRadiosity) -> (Vec<u8>, f32) {
     let lit = solved.lit_mesh(false);
     let triangles: Vec<[u32; 3]> = lit
         .polygons
         .iter()
         .flat_map(|p| (1..p.len() - 1).map(move |k| [p[0], p[k], p[k + 1]]))
         .collect();
-    let mut out = Vec::with_capacity(8 + lit.positions.len() * 24 + triangles.len() * 12);
+    let lux: Vec<f32> = lit
+        .irradiance
+        .iter()
+        .map(|e| (LUMINOUS_EFFICACY * e.luminance()).max(0.0) as f32)
+        .collect();
+    let mut out = Vec::with_capacity(8 + lit.positions.len() * 28 + triangles.len() * 12);
     out.extend((lit.positions.len() as u32).to_le_bytes());
     out.extend((triangles.len() as u32).to_le_bytes());
     for p in &lit.positions {
@@ -202,10 +229,30 @@ fn mesh_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
             .iter()
             .for_each(|v| out.extend((v / std::f32::consts::PI).to_le_bytes()));
     }
+    lux.iter().for_each(|v| out.extend(v.to_le_bytes()));
     for t in &triangles {
         t.iter().for_each(|i| out.extend(i.to_le_bytes()));
     }
-    out
+    // Each vertex stands for a third of its triangles' area (every polygon has its own).
+    let mut weight = vec![0.0f64; lux.len()];
+    for t in &triangles {
+        let [a, b, c] = t.map(|i| lit.positions[i as usize]);
+        let third = f64::from((b - a).cross(c - a).length()) / 6.0;
+        t.iter().for_each(|&i| weight[i as usize] += third);
+    }
+    let mut order: Vec<usize> = (0..lux.len()).collect();
+    order.sort_by(|&i, &j| lux[i].total_cmp(&lux[j]));
+    let total: f64 = weight.iter().sum();
+    let mut below = 0.0;
+    let top = order
+        .iter()
+        .find(|&&i| {
+            below += weight[i];
+            below >= TOP_QUANTILE * total
+        })
+        .or(order.last())
+        .map_or(0.0, |&i| lux[i]);
+    (out, top)
 }
 
 /// Answers one request and sends the answer; a client gone before it is sent is no error.

@@ -321,7 +321,7 @@ impl Solution {
 
     /// The solution as a lit mesh: both sides of every leaf as polygons (the back with its
     /// corners reversed and its normal turned), with the smooth corner values of
-    /// [`vertex_radiosity`] (display radiosity, ambient term included) of that side; the
+    /// [`vertex_radiosity`] (display radiosity and irradiance, ambient term included) of that side; the
     /// polygons of textured materials also carry their texture coordinates and their place in
     /// their surface's lightmap (baked by `radiosity::solve::lightmap`) when `lightmaps`
     /// asks for them (a format that carries textures).
@@ -336,16 +336,21 @@ impl Solution {
             surfaces: lightmaps.surfaces,
             ..LitMesh::default()
         };
+        let irradiance = self.display_irradiance();
         for side in Side::BOTH {
-            let values: Vec<Rgb64> = (0..system.leaves.len())
-                .map(|k| display[RadiositySystem::element(k, side)])
-                .collect();
-            let corners = vertex_radiosity(&system.mesh, &system.leaves, &values).corners;
+            let smooth = |per_element: &[Rgb64]| {
+                let values: Vec<Rgb64> = (0..system.leaves.len())
+                    .map(|k| per_element[RadiositySystem::element(k, side)])
+                    .collect();
+                vertex_radiosity(&system.mesh, &system.leaves, &values).corners
+            };
+            let (corners, arriving) = (smooth(&display), smooth(&irradiance));
             for (k, values) in corners.iter().enumerate() {
                 let patch = system.mesh.patch(system.leaves[k]);
                 let n = patch.corners().len();
                 let mut points: Vec<Vec3> = patch.corners().iter().map(|c| c.as_vec3()).collect();
                 let mut values = values[..n].to_vec();
+                let mut arrived = arriving[k][..n].to_vec();
                 let mut texcoords: Vec<Vec2> = patch.uvs().iter().map(|uv| uv.as_vec2()).collect();
                 let mapped = &lightmaps.corners[RadiositySystem::element(k, side)];
                 let mut lightmap_texcoords =
@@ -353,6 +358,7 @@ impl Solution {
                 if side == Side::Back {
                     points.reverse();
                     values.reverse();
+                    arrived.reverse();
                     texcoords.reverse();
                     lightmap_texcoords.reverse();
                 }
@@ -360,7 +366,7 @@ impl Solution {
                     patch.object,
                     &points,
                     side.normal(patch).as_vec3(),
-                    &values,
+                    (&values, &arrived),
                     (&texcoords, &lightmap_texcoords),
                     mapped.as_ref().map(|m| m.0),
                 );

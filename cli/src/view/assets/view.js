@@ -1,6 +1,8 @@
 // strahl view: the radiosity solution served by `strahl view`, drawn with WebGL2.
 // Drag to orbit, shift-drag (or right-drag) to pan, wheel to zoom, arrow keys and
-// PageUp/PageDown to walk; a click reads the illuminance where it lands.
+// PageUp/PageDown to walk; a click reads the illuminance where it lands. False colour shows
+// the illuminance on the scale `strahl render --false-color` uses (`?false-color` in the
+// address starts with it on).
 "use strict";
 
 const canvas = document.getElementById("view");
@@ -11,25 +13,49 @@ const gl = canvas.getContext("webgl2", { antialias: true });
 const VERTEX = `#version 300 es
 in vec3 position;
 in vec3 radiance;
+in float lux;
 uniform mat4 viewProjection;
 uniform float scale;
 out vec3 colour;
+out float illuminance;
 void main() {
   colour = radiance * scale;
+  illuminance = lux;
   gl_Position = viewProjection * vec4(position, 1.0);
 }`;
 
 const FRAGMENT = `#version 300 es
 precision highp float;
 in vec3 colour;
+in float illuminance;
 uniform bool lines;
+uniform bool falseColour;
+uniform vec2 range;
+uniform float stopAt[6];
+uniform vec3 stopColour[6];
 out vec4 result;
+// The false-colour scale, in sRGB, at t (0–1).
+vec3 scaleColour(float t) {
+  t = clamp(t, 0.0, 1.0);
+  for (int k = 0; k < 5; k++) {
+    if (t <= stopAt[k + 1]) {
+      return mix(stopColour[k], stopColour[k + 1], (t - stopAt[k]) / (stopAt[k + 1] - stopAt[k]));
+    }
+  }
+  return stopColour[5];
+}
 vec3 srgb(vec3 c) {
   return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
 }
 void main() {
-  // Reinhard per channel, then the sRGB curve.
-  result = lines ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(srgb(colour / (1.0 + colour)), 1.0);
+  if (lines) {
+    result = vec4(0.0, 0.0, 0.0, 1.0);
+  } else if (falseColour) {
+    result = vec4(scaleColour((illuminance - range.x) / (range.y - range.x)), 1.0);
+  } else {
+    // Reinhard per channel, then the sRGB curve.
+    result = vec4(srgb(colour / (1.0 + colour)), 1.0);
+  }
 }`;
 
 function shader(type, source) {
@@ -61,11 +87,12 @@ const normalize = (a) => mul(a, 1 / Math.hypot(a[0], a[1], a[2]));
 function parseMesh(buffer) {
   const header = new Uint32Array(buffer, 0, 2);
   const [vertices, triangles] = header;
-  const floats = new Float32Array(buffer, 8, vertices * 6);
+  const floats = new Float32Array(buffer, 8, vertices * 7);
   const positions = floats.subarray(0, vertices * 3);
   const radiance = floats.subarray(vertices * 3, vertices * 6);
-  const indices = new Uint32Array(buffer, 8 + vertices * 24, triangles * 3);
-  return { vertices, triangles, positions, radiance, indices };
+  const lux = floats.subarray(vertices * 6, vertices * 7);
+  const indices = new Uint32Array(buffer, 8 + vertices * 28, triangles * 3);
+  return { vertices, triangles, positions, radiance, lux, indices };
 }
 
 // The exposure that puts the mean luminance of the lit vertices at middle grey.
@@ -161,16 +188,17 @@ async function main() {
   const prog = program();
   const vao = gl.createVertexArray();
   gl.bindVertexArray(vao);
-  const attribute = (name, data) => {
+  const attribute = (name, data, size) => {
     const b = gl.createBuffer();
     gl.bindBuffer(gl.ARRAY_BUFFER, b);
     gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
     const at = gl.getAttribLocation(prog, name);
     gl.enableVertexAttribArray(at);
-    gl.vertexAttribPointer(at, 3, gl.FLOAT, false, 0, 0);
+    gl.vertexAttribPointer(at, size, gl.FLOAT, false, 0, 0);
   };
-  attribute("position", mesh.positions);
-  attribute("radiance", mesh.radiance);
+  attribute("position", mesh.positions, 3);
+  attribute("radiance", mesh.radiance, 3);
+  attribute("lux", mesh.lux, 1);
   const triangles = gl.createBuffer();
   gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triangles);
   gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, mesh.indices, gl.STATIC_DRAW);
@@ -183,6 +211,11 @@ async function main() {
   const baseScale = autoScale(mesh);
   const wireframe = document.getElementById("wireframe");
   const exposure = document.getElementById("exposure");
+  const falseColour = document.getElementById("false-colour");
+  const legend = document.getElementById("legend");
+  const scale = scene.false_color;
+  falseColour.checked = new URLSearchParams(location.search).has("false-color");
+  drawLegend(legend, scale);
 
   function draw() {
     const dpr = window.devicePixelRatio || 1;
@@ -201,6 +234,11 @@ async function main() {
                             lookAt(eye(), view.target, [0, 1, 0]));
     gl.uniformMatrix4fv(uniform("viewProjection"), false, matrix);
     gl.uniform1f(uniform("scale"), baseScale * Math.pow(2, Number(exposure.value)));
+    gl.uniform1i(uniform("falseColour"), falseColour.checked ? 1 : 0);
+    gl.uniform2f(uniform("range"), scale.range[0], scale.range[1]);
+    gl.uniform1fv(uniform("stopAt"), scale.stops.map((s) => s[0]));
+    gl.uniform3fv(uniform("stopColour"), scale.stops.flatMap((s) => s[1].map((c) => c / 255)));
+    legend.hidden = !falseColour.checked;
     gl.bindVertexArray(vao);
     gl.uniform1i(uniform("lines"), 0);
     gl.enable(gl.POLYGON_OFFSET_FILL);
@@ -217,6 +255,7 @@ async function main() {
   window.addEventListener("resize", redraw);
   wireframe.addEventListener("change", redraw);
   exposure.addEventListener("input", redraw);
+  falseColour.addEventListener("change", redraw);
 
   let drag = null;
   canvas.addEventListener("contextmenu", (e) => e.preventDefault());
@@ -275,6 +314,26 @@ async function main() {
     redraw();
   });
   redraw();
+}
+
+// The legend of the false-colour scale: the unit, a bar from the scale's stops (high end up)
+// and the values at five levels.
+function drawLegend(legend, scale) {
+  const css = (c) => `rgb(${c[0]}, ${c[1]}, ${c[2]})`;
+  const bar = document.createElement("div");
+  bar.className = "bar";
+  bar.style.background = `linear-gradient(to top, ${scale.stops.map((s) => `${css(s[1])} ${100 * s[0]}%`).join(", ")})`;
+  const labels = document.createElement("div");
+  labels.className = "labels";
+  const [low, high] = scale.range;
+  for (let k = 4; k >= 0; k--) {
+    const label = document.createElement("div");
+    label.textContent = String(+(low + ((high - low) * k) / 4).toPrecision(4));
+    labels.appendChild(label);
+  }
+  const unit = document.createElement("div");
+  unit.textContent = "lux";
+  legend.append(unit, bar, labels);
 }
 
 // One pick in words, with the report's row for the object hit.
