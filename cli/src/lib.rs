@@ -128,6 +128,21 @@ fn useful_threads(threads: usize) -> usize {
     }
 }
 
+/// Runs `method` on `world` on `threads` threads (0 = one per core) with a progress bar
+/// labelled `label` (none when `quiet`); Ctrl-C stops it, keeping what it has.
+fn run_method(
+    world: &std::sync::Arc<strahl::method::World>,
+    method: &strahl::method::Method,
+    label: &str,
+    quiet: bool,
+    threads: usize,
+) -> anyhow::Result<strahl::method::Outcome> {
+    let bar = progress::Bar::new(label, quiet);
+    let cancel = progress::cancel_flag();
+    with_threads(threads, || strahl::method::run(world, method, &bar, cancel))?
+        .map_err(radiosity::method_error)
+}
+
 /// Runs `f` on a rayon pool of `threads` threads (0 = one per core), at most
 /// [`THREADS_PER_CORE`] per core ([`useful_threads`]).
 fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> anyhow::Result<T> {

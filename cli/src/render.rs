@@ -4,7 +4,7 @@ use super::choice::{choice, choice_among};
 use super::limits::{LimitArgs, finite};
 use super::radiosity::{self, RadiosityDisplayArgs, method_error};
 use super::tone::ToneArgs;
-use super::{progress, with_threads};
+use super::{progress, run_method};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -12,7 +12,7 @@ use std::sync::Arc;
 use std::time::Instant;
 use strahl::image::{self, FalseColor, MAX_ISOLINES, ToneMap, ToneMapping};
 use strahl::method::{
-    AccelKind, Antialias, AntialiasMode, Cancel, DisplaySettings, FinalGatherSettings, ImageSize,
+    AccelKind, Antialias, AntialiasMode, DisplaySettings, FinalGatherSettings, ImageSize,
     LinkDisplay, Method, MethodKind, NoProgress, PathTraceSettings, Photometric,
     RadiosityImageSettings, RayTraceSettings, ShadowMode, SolvedRadiosity, World,
 };
@@ -291,14 +291,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         radiosity::warn_non_diffuse(&world.scene);
     }
     let world = Arc::new(world);
-    let cancel = progress::cancel_flag();
-    let bar = progress::Bar::new("rendering", args.quiet);
     let start = Instant::now();
     let tone_mapping = args.tone.mapping();
-    let outcome = with_threads(args.threads, || {
-        strahl::method::run(&world, &method, &bar, cancel)
-    })?
-    .map_err(method_error)?;
+    let outcome = run_method(&world, &method, "rendering", args.quiet, args.threads)?;
     let seconds = start.elapsed().as_secs_f64();
     if let Some(solved) = &outcome.radiosity {
         radiosity::finish_solve(
@@ -310,7 +305,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     match (args.false_color, &outcome.radiosity) {
         (Some(quantity), Some(solved)) => {
-            save_false_color(args, &world, solved, quantity, width, height, cancel)?
+            save_false_color(args, &world, solved, quantity, width, height)?
         }
         _ => {
             let film = outcome.image.context("the method made no image")?;
@@ -347,7 +342,6 @@ fn save_false_color(
     quantity: Photometric,
     width: u32,
     height: u32,
-    cancel: &Cancel,
 ) -> Result<()> {
     let settings = DisplaySettings {
         width,
@@ -368,7 +362,7 @@ fn save_false_color(
             &settings,
             quantity,
             &NoProgress,
-            cancel,
+            progress::cancel_flag(),
         )
         .context("the scene camera is degenerate")?;
     let false_color = FalseColor {

@@ -4,8 +4,8 @@
 use super::choice::{choice, choice_among};
 use super::limits::LimitArgs;
 use super::radiosity::{self, RadiosityArgs, SurfaceGatherArgs, method_error, print_convergence};
+use super::run_method;
 use super::tone::ToneArgs;
-use super::{progress, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::PathBuf;
@@ -176,12 +176,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         radiosity::warn_non_diffuse(&world.scene);
     }
     let world = Arc::new(world);
-    let cancel = progress::cancel_flag();
-    let bar = progress::Bar::new("solving", args.quiet);
-    let outcome = with_threads(args.threads, || {
-        strahl::method::run(&world, &method, &bar, cancel)
-    })?
-    .map_err(method_error)?;
+    let outcome = run_method(&world, &method, "solving", args.quiet, args.threads)?;
     match &outcome.radiosity {
         Some(solved) => {
             radiosity::finish_solve(

@@ -7,7 +7,7 @@ mod server;
 use super::choice::{choice, choice_among};
 use super::limits::LimitArgs;
 use super::radiosity::{self, RadiosityArgs, SurfaceGatherArgs, method_error};
-use super::{progress, with_threads};
+use super::{progress, run_method};
 use anyhow::{Context, Result};
 use clap::Args;
 use server::ViewState;
@@ -97,12 +97,7 @@ pub fn run(args: &ViewArgs) -> Result<()> {
             args.port
         )
     })?;
-    let cancel = progress::cancel_flag();
-    let bar = progress::Bar::new("solving", args.quiet);
-    let outcome = with_threads(args.threads, || {
-        strahl::method::run(&world, &method, &bar, cancel)
-    })?
-    .map_err(method_error)?;
+    let outcome = run_method(&world, &method, "solving", args.quiet, args.threads)?;
     if progress::interrupted() {
         return Ok(());
     }
@@ -128,6 +123,7 @@ pub fn run(args: &ViewArgs) -> Result<()> {
         .context("the server has no IP address")?;
     println!("strahl view: http://{address}/ (Ctrl-C stops)");
     std::io::stdout().flush()?;
+    let cancel = progress::cancel_flag();
     std::thread::scope(|scope| {
         for _ in 0..WORKERS {
             scope.spawn(|| {
