@@ -286,7 +286,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             args.scene
         );
     }
-    let method = args.method()?;
+    let method = match (args.method()?, args.false_color) {
+        // False colour reads the solution itself: no image of it to render and drop.
+        (Method::RadiosityImage(image), Some(_)) => Method::Radiosity(image.radiosity),
+        (method, _) => method,
+    };
     if method.radiosity().is_some() {
         radiosity::warn_non_diffuse(&world.scene);
     }

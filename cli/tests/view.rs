@@ -207,6 +207,7 @@ fn it_serves_its_page_and_scene_refuses_everything_else_and_keeps_serving() {
         "o=1,2&d=0,0,1",
         "o=0,0,0",
         "o=0,0,0&d=0,0,0",
+        "o=0,0,0&d=1e-30,0,0",
         "o=nan,0,0&d=0,0,1",
         "x=1",
     ] {

@@ -163,10 +163,10 @@ impl<'s> ViewState<'s> {
                 "a pick needs o=X,Y,Z (the ray's origin) and d=X,Y,Z (its direction)".into(),
             );
         };
-        if d.length_squared() == 0.0 {
-            return Err("d must not be zero".into());
-        }
-        let ray = Ray::new(o, d.normalize());
+        let Some(d) = d.try_normalize() else {
+            return Err("d must have a direction (not zero, not too small to normalise)".into());
+        };
+        let ray = Ray::new(o, d);
         Ok(match self.probe.at(&ray) {
             None => PickInfo {
                 hit: false,

@@ -87,32 +87,12 @@ pub fn render_solution(
             / settings.height as f64,
     };
     let n = settings.samples_per_axis.max(1);
-    progress.start(settings.height as u64);
-    let pixels: Vec<Rgb> = (0..settings.height)
-        .into_par_iter()
-        .flat_map_iter(|y| {
-            let row: Vec<Rgb> = if cancel.is_requested() {
-                vec![Rgb::BLACK; settings.width as usize]
-            } else {
-                (0..settings.width)
-                    .map(|x| {
-                        let mut sum = Rgb::BLACK;
-                        for i in 0..n {
-                            for j in 0..n {
-                                let px = x as f32 + (i as f32 + 0.5) / n as f32;
-                                let py = y as f32 + (j as f32 + 0.5) / n as f32;
-                                sum += view.radiance(&rays.ray(px, py));
-                            }
-                        }
-                        sum / (n * n) as f32
-                    })
-                    .collect()
-            };
-            progress.advance(1);
-            row
-        })
-        .collect();
-    progress.finish();
+    let pixels = by_rows(settings, Rgb::BLACK, progress, cancel, |x, y| {
+        let sum = samples(x, y, n).fold(Rgb::BLACK, |sum, (px, py)| {
+            sum + view.radiance(&rays.ray(px, py))
+        });
+        sum / (n * n) as f32
+    });
     let mut film = Film::from_pixels(settings.width, settings.height, pixels)?;
     if settings.links != LinkDisplay::None {
         draw_links(&mut film, &rays, solution, settings.links);
@@ -150,35 +130,16 @@ pub fn value_image(
         ),
     };
     let n = settings.samples_per_axis.max(1);
-    progress.start(settings.height as u64);
-    let values: Vec<Option<f32>> = (0..settings.height)
-        .into_par_iter()
-        .flat_map_iter(|y| {
-            let row: Vec<Option<f32>> = if cancel.is_requested() {
-                vec![None; settings.width as usize]
-            } else {
-                (0..settings.width)
-                    .map(|x| {
-                        let (mut sum, mut hits) = (0.0f64, 0u32);
-                        for i in 0..n {
-                            for j in 0..n {
-                                let px = x as f32 + (i as f32 + 0.5) / n as f32;
-                                let py = y as f32 + (j as f32 + 0.5) / n as f32;
-                                if let Some(hit) = lookup.hit(&rays.ray(px, py)) {
-                                    sum += f64::from(hit.radiance.luminance().max(0.0));
-                                    hits += 1;
-                                }
-                            }
-                        }
-                        (2 * hits >= n * n).then(|| (sum / f64::from(hits) * scale) as f32)
-                    })
-                    .collect()
-            };
-            progress.advance(1);
-            row
-        })
-        .collect();
-    progress.finish();
+    let values = by_rows(settings, None, progress, cancel, |x, y| {
+        let (mut sum, mut hits) = (0.0f64, 0u32);
+        for (px, py) in samples(x, y, n) {
+            if let Some(hit) = lookup.hit(&rays.ray(px, py)) {
+                sum += f64::from(hit.radiance.luminance().max(0.0));
+                hits += 1;
+            }
+        }
+        (2 * hits >= n * n).then(|| (sum / f64::from(hits) * scale) as f32)
+    });
     Some(ValueImage {
         width: settings.width,
         height: settings.height,
@@ -233,6 +194,44 @@ impl<'s> Probe<'s> {
             luminance: LUMINOUS_EFFICACY * luminance,
         })
     }
+}
+
+/// `pixel(x, y)` for every pixel of the settings' image, row by row, the rows in parallel;
+/// `progress` counts the rows, and the rows begun after `cancel` take `blank`.
+fn by_rows<T: Clone + Send + Sync>(
+    settings: &DisplaySettings,
+    blank: T,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+    pixel: impl Fn(u32, u32) -> T + Sync,
+) -> Vec<T> {
+    progress.start(settings.height as u64);
+    let pixels = (0..settings.height)
+        .into_par_iter()
+        .flat_map_iter(|y| {
+            let row: Vec<T> = if cancel.is_requested() {
+                vec![blank.clone(); settings.width as usize]
+            } else {
+                (0..settings.width).map(|x| pixel(x, y)).collect()
+            };
+            progress.advance(1);
+            row
+        })
+        .collect();
+    progress.finish();
+    pixels
+}
+
+/// The image positions of an `n × n` grid of samples inside pixel (`x`, `y`), pixels.
+fn samples(x: u32, y: u32, n: u32) -> impl Iterator<Item = (f32, f32)> {
+    (0..n).flat_map(move |i| {
+        (0..n).map(move |j| {
+            (
+                x as f32 + (i as f32 + 0.5) / n as f32,
+                y as f32 + (j as f32 + 0.5) / n as f32,
+            )
+        })
+    })
 }
 
 /// Draws the links `which` selects as one-pixel lines in a light cyan twice as bright as
