@@ -849,13 +849,21 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         };
         let form_factors = self.linker.form_factors.load(Ordering::Relaxed);
         let rays = self.linker.rays.load(Ordering::Relaxed);
-        let system = RadiositySystem::from_mesh(
-            self.world,
-            self.mesh,
-            options,
-            Some(lit),
-            Some(visibility),
-        )?;
+        let Solver {
+            world,
+            mesh,
+            links: patch_links,
+            cluster_links,
+            gather_sums,
+            ..
+        } = self;
+        // Freeing 10⁵–10⁶ links (each cluster link with its own visibility list) takes a
+        // thread several milliseconds: another thread does it while this one builds the system.
+        let ((), system) = rayon::join(
+            move || drop((patch_links, cluster_links, gather_sums)),
+            move || RadiositySystem::from_mesh(world, mesh, options, Some(lit), Some(visibility)),
+        );
+        let system = system?;
         system.count_work(form_factors, rays);
         let solution = Solution {
             solver: kind,
