@@ -1,6 +1,7 @@
-//! `strahl view` as a browser meets it: the page, the scene, the lit mesh and the readings
-//! along rays over HTTP, against the furnace's closed form; refusals of what it does not
-//! serve; several clients at once; Ctrl-C.
+//! `strahl view` as a browser meets it: the page, the scene, the lit mesh, the links and
+//! the readings along rays over HTTP, against the furnace's closed form; moves re-solved as
+//! a solve from scratch of the moved scene; refusals of what it does not serve; several
+//! clients at once; Ctrl-C; and the page itself in headless Chromium.
 
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
@@ -66,11 +67,12 @@ fn send(address: &str, request: &str) -> (u16, String, Vec<u8>) {
     (status, head, response[split + 4..].to_vec())
 }
 
-/// `method path` over a connection of its own.
+/// `method path` over a connection of its own (HTTP/1.0: the body comes whole, never in
+/// chunks).
 fn request(address: &str, method: &str, path: &str) -> (u16, String, Vec<u8>) {
     send(
         address,
-        &format!("{method} {path} HTTP/1.1\r\nHost: {address}\r\nConnection: close\r\n\r\n"),
+        &format!("{method} {path} HTTP/1.0\r\nHost: {address}\r\n\r\n"),
     )
 }
 
@@ -80,6 +82,27 @@ fn get(address: &str, path: &str) -> (u16, String, Vec<u8>) {
 
 fn json(body: &[u8]) -> serde_json::Value {
     serde_json::from_slice(body).unwrap()
+}
+
+/// Waits until the viewer serves the final solution of every move asked for; returns its
+/// status.
+fn solved(address: &str) -> serde_json::Value {
+    let started = Instant::now();
+    let mut version = 0;
+    loop {
+        let (code, _, body) = get(address, &format!("/api/status?version={version}"));
+        assert_eq!(code, 200);
+        let status = json(&body);
+        assert!(status["error"].is_null(), "{status}");
+        if status["stage"] == "final"
+            && status["solving"] == false
+            && status["solved_moves"] == status["moves"]
+        {
+            return status;
+        }
+        version = status["version"].as_u64().unwrap();
+        assert!(started.elapsed() < Duration::from_secs(120), "{status}");
+    }
 }
 
 #[test]
@@ -105,6 +128,7 @@ fn inside_the_furnace_a_click_reads_its_closed_form_and_the_mesh_is_whole() {
         "--mesh-size",
         "levels:2",
     ]);
+    solved(&viewer.address);
     let b = 4.0 * std::f64::consts::PI;
     for direction in ["0.3,-1,0.2", "-1,0.1,0.4", "0.1,0.9,-0.2"] {
         let (status, _, body) = get(
@@ -170,6 +194,7 @@ fn it_serves_its_page_and_scene_refuses_everything_else_and_keeps_serving() {
     let viewer = start(&["cornell"]);
     let address = viewer.address.as_str();
     assert!(address.starts_with("127.0.0.1:"), "{address}");
+    solved(address);
 
     let (status, head, page) = get(address, "/");
     assert_eq!(status, 200);
@@ -203,6 +228,19 @@ fn it_serves_its_page_and_scene_refuses_everything_else_and_keeps_serving() {
     }
     assert_eq!(request(address, "POST", "/").0, 405);
     assert_eq!(request(address, "DELETE", "/api/mesh").0, 405);
+    assert_eq!(get(address, "/api/move?name=light&by=0,0,0").0, 405);
+    for query in [
+        "name=nothing&by=0,0,0.1",
+        "name=light",
+        "name=light&by=1,2",
+        "name=light&by=inf,0,0",
+        "by=0,0,1",
+        "name=light&by=0,0,1&what=3",
+    ] {
+        let (status, _, body) = request(address, "POST", &format!("/api/move?{query}"));
+        assert_eq!(status, 400, "{query}: {}", String::from_utf8_lossy(&body));
+    }
+    assert_eq!(get(address, "/api/status?version=x").0, 400);
     for query in [
         "o=1,2&d=0,0,1",
         "o=0,0,0",
@@ -234,6 +272,98 @@ fn it_serves_its_page_and_scene_refuses_everything_else_and_keeps_serving() {
         let (status, _, body) = client.join().unwrap();
         assert_eq!(status, 200);
         assert_eq!(body, mesh);
+    }
+}
+
+/// The illuminance read straight down onto the floor at `(x, 0, z)`, lux: by the viewer at
+/// `address`.
+fn floor_lux(address: &str, x: f64, z: f64) -> f64 {
+    let (_, _, body) = get(address, &format!("/api/pick?o={x},0.3,{z}&d=0,-1,0"));
+    let pick = json(&body);
+    assert_eq!(pick["object"], "floor");
+    pick["illuminance_lux"].as_f64().unwrap()
+}
+
+/// The same by a solve from scratch of the built-in box with the light moved `by`, at the
+/// defaults the viewer solves with.
+fn floor_lux_from_scratch(by: glam::Vec3, x: f32, z: f32) -> f64 {
+    use strahl::method::{AccelKind, Cancel, Method, NoProgress, RadiositySettings, World};
+    let mut scene = strahl::scene::open("cornell", &Default::default()).unwrap();
+    scene.move_named("light", by).unwrap();
+    let world = std::sync::Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let method = Method::Radiosity(RadiositySettings::default());
+    let outcome = strahl::method::run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+    let ray = strahl::method::Ray::new(glam::Vec3::new(x, 0.3, z), glam::Vec3::NEG_Y);
+    let hit = outcome
+        .radiosity
+        .unwrap()
+        .probe(Default::default())
+        .at(&ray);
+    hit.unwrap().illuminance
+}
+
+#[test]
+fn a_moved_light_is_solved_again_as_a_solve_from_scratch_would() {
+    let viewer = start(&["cornell"]);
+    let address = viewer.address.as_str();
+    let before = solved(address);
+    assert_eq!(before["moves"], 0);
+    // Under the light's first place.
+    let at_first = floor_lux(address, 0.278, 0.28);
+    // Two moves in a row (the second stops the solve of the first): the light 10 cm toward
+    // the back wall, then 5 cm back.
+    for by in ["0,0,0.1", "0,0,-0.05"] {
+        let (status, _, body) = request(address, "POST", &format!("/api/move?name=light&by={by}"));
+        assert_eq!(status, 202, "{}", String::from_utf8_lossy(&body));
+    }
+    let after = solved(address);
+    assert_eq!(after["moves"], 2);
+    assert!(after["final_seconds"].as_f64().unwrap() > 0.0, "{after}");
+    let (_, _, scene) = get(address, "/api/scene");
+    let scene = json(&scene);
+    assert_eq!(
+        (scene["moves"].as_u64(), scene["stage"].as_str()),
+        (Some(2), Some("final"))
+    );
+    let moved = floor_lux(address, 0.278, 0.28);
+    let from_scratch = floor_lux_from_scratch(glam::Vec3::new(0.0, 0.0, 0.05), 0.278, 0.28);
+    // The light moved away from the point: less light there, as a solve from scratch finds.
+    assert!(moved < 0.97 * at_first, "{at_first} → {moved}");
+    assert!(
+        (moved / from_scratch - 1.0).abs() < 0.01,
+        "{moved} vs {from_scratch}"
+    );
+}
+
+#[test]
+fn the_links_are_served_with_the_objects_at_their_ends() {
+    let viewer = start(&["cornell"]);
+    let address = viewer.address.as_str();
+    solved(address);
+    let (_, _, scene) = get(address, "/api/scene");
+    let scene = json(&scene);
+    let (shown, total) = (
+        scene["links"][0].as_u64().unwrap() as usize,
+        scene["links"][1].as_u64().unwrap() as usize,
+    );
+    assert!(shown > 1000 && shown == total, "{shown} of {total}");
+    let objects = scene["objects"].as_array().unwrap().len() as i32;
+    let (status, _, links) = get(address, "/api/links");
+    assert_eq!(status, 200);
+    assert_eq!(links.len(), 4 + 32 * shown);
+    let word = |at: usize| <[u8; 4]>::try_from(&links[at..at + 4]).unwrap();
+    assert_eq!(u32::from_le_bytes(word(0)) as usize, shown);
+    for k in 0..shown {
+        let at = 4 + 32 * k;
+        // Both ends inside the box (0.56 m wide, 0.55 m high and deep; a little slack).
+        for j in 0..6 {
+            let v = f32::from_le_bytes(word(at + 4 * j));
+            assert!((-0.01..0.6).contains(&v), "link {k}: {v}");
+        }
+        for j in [6, 7] {
+            let object = i32::from_le_bytes(word(at + 4 * j));
+            assert!((-1..objects).contains(&object), "link {k}: object {object}");
+        }
     }
 }
 
@@ -295,7 +425,9 @@ fn headless(url: &str, profile: &std::path::Path, extra: &[&str]) -> std::proces
 #[test]
 fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
     let viewer = start(&["cornell"]);
-    let url = format!("http://{}/", viewer.address);
+    solved(&viewer.address);
+    let url = format!("http://{}/?still", viewer.address);
+    let url_solid = url.clone();
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join(format!("strahl-view-browser-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -321,7 +453,7 @@ fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
 
     // In false colour (on from the address): the legend shows, and the walls take the
     // scale's colours for their illuminance, no longer red and green.
-    let url = format!("{url}?false-color");
+    let url = format!("{url}&false-color");
     let dom = headless(&url, &dir.join("profile-false-dom"), &["--dump-dom"]);
     let dom = String::from_utf8_lossy(&dom.stdout);
     let legend = dom.split("id=\"legend\"").nth(1).expect("a legend");
@@ -333,5 +465,88 @@ fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
     assert!(
         left.b > left.r || left.g > left.r,
         "left wall in false colour {left:?}"
+    );
+
+    // The wireframe and the links drawn over the solid view change much of the picture.
+    let solid = strahl::image::load(&dir.join("view.png")).ok();
+    let differing = |query: &str, profile: &str| {
+        let other = dir.join(format!("{profile}.png"));
+        let shot = format!("--screenshot={}", other.display());
+        headless(
+            &format!("{url_solid}&{query}"),
+            &dir.join(profile),
+            &[&shot],
+        );
+        let (a, b) = (
+            solid.as_ref().unwrap(),
+            strahl::image::load(&other).unwrap(),
+        );
+        let changed = a
+            .pixels()
+            .iter()
+            .zip(b.pixels())
+            .filter(|(p, q)| (p.r - q.r).abs() + (p.g - q.g).abs() + (p.b - q.b).abs() > 0.05)
+            .count();
+        changed as f64 / a.pixels().len() as f64
+    };
+    let wireframe = differing("wireframe", "profile-wireframe");
+    assert!(wireframe > 0.05, "wireframe changed {wireframe}");
+    let links = differing("links", "profile-links");
+    assert!(links > 0.05, "links changed {links}");
+
+    // A click on the floor near the front reads what the solution gives there; after the
+    // page moves the light 5 cm toward the back, the same click reads what a solve from
+    // scratch of the moved box gives (the page waits for the final solution of the move).
+    let read = |query: &str, profile: &str| {
+        let dom = headless(
+            &format!("{url_solid}&{query}"),
+            &dir.join(profile),
+            &["--dump-dom"],
+        );
+        let dom = String::from_utf8_lossy(&dom.stdout).to_string();
+        let reading = dom
+            .split("id=\"reading\"")
+            .nth(1)
+            .expect("a reading")
+            .to_string();
+        let attribute = |name: &str| {
+            reading
+                .split(&format!("data-{name}=\""))
+                .nth(1)
+                .and_then(|rest| rest.split('"').next())
+                .unwrap_or_else(|| panic!("no data-{name} in {dom}"))
+                .to_string()
+        };
+        let point: Vec<f32> = attribute("point")
+            .split(',')
+            .map(|v| v.parse().unwrap())
+            .collect();
+        (
+            attribute("object"),
+            attribute("lux").parse::<f64>().unwrap(),
+            point,
+        )
+    };
+    let (object, before, point) = read("pick=0.5,0.95", "profile-pick");
+    assert_eq!(object, "floor");
+    let (x, z) = (point[0], point[2]);
+    let first = floor_lux_from_scratch(glam::Vec3::ZERO, x, z);
+    assert!((before / first - 1.0).abs() < 0.01, "{before} vs {first}");
+    let (object, after, moved_point) = read("move=light:0,0,0.05&pick=0.5,0.95", "profile-move");
+    assert_eq!(object, "floor");
+    assert!(
+        moved_point
+            .iter()
+            .zip(&point)
+            .all(|(a, b)| (a - b).abs() < 1e-5)
+    );
+    let from_scratch = floor_lux_from_scratch(glam::Vec3::new(0.0, 0.0, 0.05), x, z);
+    assert!(
+        (after / from_scratch - 1.0).abs() < 0.01,
+        "{after} vs {from_scratch}"
+    );
+    assert!(
+        after < 0.97 * before,
+        "moving the light away: {before} → {after}"
     );
 }

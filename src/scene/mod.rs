@@ -9,6 +9,7 @@ pub mod import;
 mod light;
 mod material;
 mod mesh;
+mod moving;
 mod object;
 mod open;
 pub(crate) mod polygon;
@@ -21,6 +22,7 @@ pub use file::{LoadOptions, SceneError, load, load_mesh_file, load_str, load_str
 pub use light::{Incidence, Light, LightKind};
 pub use material::{ENERGY_TOLERANCE, Lobe, MAX_COLOUR, Material, MaterialId};
 pub use mesh::PolygonMesh;
+pub use moving::{MoveError, Moved};
 pub use object::{AnalyticKind, Object, Shape};
 pub use open::{OpenError, is_mesh_file, open};
 pub use sensor::{MAX_SENSORS, Sensor};

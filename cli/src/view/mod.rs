@@ -3,20 +3,20 @@
 //! illuminance anywhere on it, with the object's report row, by a click.
 
 mod server;
+mod snapshot;
+mod solving;
 
 use super::choice::{choice, choice_among};
 use super::limits::LimitArgs;
+use super::progress;
 use super::radiosity::{self, RadiosityArgs, SurfaceGatherArgs, method_error};
-use super::{progress, run_method};
 use anyhow::{Context, Result};
 use clap::Args;
-use server::ViewState;
+use solving::Solving;
 use std::io::Write;
 use std::net::IpAddr;
-use std::sync::Arc;
 use std::time::Duration;
 use strahl::method::{AccelKind, Method, MethodKind, Shading, SolverKind, World};
-use strahl::report::Report;
 
 /// Arguments of `strahl view`.
 #[derive(Debug, Args)]
@@ -69,27 +69,27 @@ impl ViewArgs {
         };
         let mut settings = self.radiosity.settings(solver, self.seed, &self.limits)?;
         settings.surface_gather = self.gather.settings();
+        // The page shows the hierarchical solvers' links.
+        settings.hierarchical.link_segments = true;
         settings.check().map_err(|e| method_error(e.into()))?;
         Ok(Method::Radiosity(settings))
     }
 }
 
-/// Requests served at once.
-const WORKERS: usize = 4;
+/// Requests served at once (a page holds one while it waits for the next solution).
+const WORKERS: usize = 8;
 
 /// How long a worker waits for a request before it looks at Ctrl-C again.
 const POLL: Duration = Duration::from_millis(200);
 
-/// Runs `strahl view`: solves, prints the address, serves until Ctrl-C.
+/// Runs `strahl view`: prints the address, serves at once (the page shows the solve's
+/// progress), solves on a thread of its own — again after every move — until Ctrl-C.
 pub fn run(args: &ViewArgs) -> Result<()> {
     let method = args.method()?;
     let scene = strahl::scene::open(&args.scene, &args.limits.load_options())?;
-    let name = scene.name.clone();
-    let world =
-        World::new(scene, AccelKind::Bvh).with_context(|| format!("scene '{}'", args.scene))?;
-    radiosity::warn_non_diffuse(&world.scene);
-    let world = Arc::new(world);
-    // Listening first: a port in use is refused before minutes of solving.
+    // Checked here, so that a scene that cannot be compiled fails before anything is served.
+    World::new(scene.clone(), AccelKind::Bvh).with_context(|| format!("scene '{}'", args.scene))?;
+    radiosity::warn_non_diffuse(&scene);
     let server = tiny_http::Server::http((args.bind, args.port)).map_err(|e| {
         anyhow::anyhow!(
             "cannot listen on {}:{}: {e} (--port 0 picks a free port)",
@@ -97,47 +97,42 @@ pub fn run(args: &ViewArgs) -> Result<()> {
             args.port
         )
     })?;
-    let outcome = run_method(&world, &method, "solving", args.quiet, args.threads)?;
-    if progress::interrupted() {
-        return Ok(());
-    }
-    let solved = outcome
-        .radiosity
-        .as_ref()
-        .context("the solver made no solution")?;
-    radiosity::finish_solve(
-        solved,
-        args.radiosity.export.as_deref(),
-        &Default::default(),
-        args.quiet,
-    )?;
-    let measured = outcome
-        .measurement
-        .as_ref()
-        .context("the solver measured no surfaces")?;
-    let report = Report::new(&name, measured);
-    let state = ViewState::new(solved, &report, args.shading)?;
     let address = server
         .server_addr()
         .to_ip()
         .context("the server has no IP address")?;
+    let solving = Solving::new(
+        scene,
+        method,
+        args.threads,
+        args.shading,
+        args.quiet,
+        args.radiosity.export.clone(),
+    );
     println!("strahl view: http://{address}/ (Ctrl-C stops)");
     std::io::stdout().flush()?;
     let cancel = progress::cancel_flag();
     std::thread::scope(|scope| {
-        for _ in 0..WORKERS {
-            scope.spawn(|| {
-                while !cancel.is_requested() {
-                    match server.recv_timeout(POLL) {
-                        Ok(Some(request)) => server::answer(request, &state),
-                        Ok(None) => {}
-                        Err(e) => {
-                            eprintln!("warning: a request could not be read: {e}");
+        scope.spawn(|| solving.run());
+        let workers: Vec<_> = (0..WORKERS)
+            .map(|_| {
+                scope.spawn(|| {
+                    while !cancel.is_requested() {
+                        match server.recv_timeout(POLL) {
+                            Ok(Some(request)) => server::answer(request, &solving),
+                            Ok(None) => {}
+                            Err(e) => {
+                                eprintln!("warning: a request could not be read: {e}");
+                            }
                         }
                     }
-                }
-            });
+                })
+            })
+            .collect();
+        for worker in workers {
+            let _ = worker.join();
         }
+        solving.shut_down();
     });
     Ok(())
 }

@@ -1,13 +1,23 @@
-// strahl view: the radiosity solution served by `strahl view`, drawn with WebGL2.
+// strahl view: the radiosity solution served by `strahl view`, drawn with WebGL2, redrawn
+// whenever the server has a newer one (a preview, then the final solution, after a move).
 // Drag to orbit, shift-drag (or right-drag) to pan, wheel to zoom, arrow keys and
 // PageUp/PageDown to walk; a click reads the illuminance where it lands. False colour shows
-// the illuminance on the scale `strahl render --false-color` uses (`?false-color` in the
-// address starts with it on).
+// the illuminance on the scale `strahl render --false-color` uses.
+//
+// The address may ask for a view and for actions once the first final solution is drawn:
+// `?false-color`, `?wireframe`, `?links` (all links) or `?links=picked` start with those on;
+// `?move=NAME:X,Y,Z` moves an object or light by the offset; `?pick=X,Y` then reads the
+// surface at that point of the final solution (X, Y: fractions of the view's width and
+// height from its top left corner); `?orbit=N` draws N frames
+// turning round the target and shows the frame times; `?still` stops listening for newer
+// solutions once these are done (for scripted screenshots: the page then goes quiet).
 "use strict";
 
 const canvas = document.getElementById("view");
 const status = document.getElementById("status");
 const reading = document.getElementById("reading");
+const timing = document.getElementById("timing");
+const params = new URLSearchParams(location.search);
 const gl = canvas.getContext("webgl2", { antialias: true });
 
 const VERTEX = `#version 300 es
@@ -29,6 +39,7 @@ precision highp float;
 in vec3 colour;
 in float illuminance;
 uniform bool lines;
+uniform vec4 lineColour;
 uniform bool falseColour;
 uniform vec2 range;
 uniform float stopAt[6];
@@ -49,7 +60,7 @@ vec3 srgb(vec3 c) {
 }
 void main() {
   if (lines) {
-    result = vec4(0.0, 0.0, 0.0, 1.0);
+    result = lineColour;
   } else if (falseColour) {
     result = vec4(scaleColour((illuminance - range.x) / (range.y - range.x)), 1.0);
   } else {
@@ -83,7 +94,7 @@ const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
 const normalize = (a) => mul(a, 1 / Math.hypot(a[0], a[1], a[2]));
 
-// The mesh as `strahl view` sends it (see cli/src/view/server.rs, mesh_bytes).
+// The mesh as `strahl view` sends it (see cli/src/view/snapshot.rs, mesh_bytes).
 function parseMesh(buffer) {
   const header = new Uint32Array(buffer, 0, 2);
   const [vertices, triangles] = header;
@@ -104,6 +115,21 @@ function autoScale(mesh) {
     if (y > 0) { sum += y; count++; }
   }
   return count > 0 ? 0.18 / (sum / count) : 1;
+}
+
+// The links as `strahl view` sends them (cli/src/view/snapshot.rs, link_bytes): end points
+// (receiver, emitter) and the objects at their ends (−1: a cluster).
+function parseLinks(buffer) {
+  const count = new Uint32Array(buffer, 0, 1)[0];
+  const positions = new Float32Array(count * 6);
+  const objects = new Int32Array(count * 2);
+  const data = new DataView(buffer, 4);
+  for (let k = 0; k < count; k++) {
+    for (let j = 0; j < 6; j++) positions[6 * k + j] = data.getFloat32(32 * k + 4 * j, true);
+    objects[2 * k] = data.getInt32(32 * k + 24, true);
+    objects[2 * k + 1] = data.getInt32(32 * k + 28, true);
+  }
+  return { count, positions, objects };
 }
 
 function edges(indices) {
@@ -171,22 +197,42 @@ function rayThrough(x, y) {
   return { origin: e, direction: normalize(add(forward, add(mul(right, nx * t * aspect), mul(up, ny * t)))) };
 }
 
-async function main() {
-  if (!gl) {
-    status.textContent = "this browser has no WebGL2";
-    return;
-  }
-  const [scene, buffer] = await Promise.all([
-    fetch("/api/scene").then((r) => r.json()),
-    fetch("/api/mesh").then((r) => r.arrayBuffer()),
-  ]);
-  const mesh = parseMesh(buffer);
-  document.getElementById("title").textContent = `strahl view — ${scene.name}`;
-  status.textContent = `${scene.report.solver}: ${mesh.triangles} triangles; ${scene.summary}`;
-  startFrom(scene.camera);
+const fetchOk = async (url, options) => {
+  const r = await fetch(url, options);
+  if (!r.ok) throw new Error(`${url}: ${r.status} ${await r.text()}`);
+  return r;
+};
 
-  const prog = program();
-  const vao = gl.createVertexArray();
+// What is drawn: the latest solution loaded, its GPU buffers and the links.
+const shown = { scene: null, mesh: null, links: null, picked: -1, baseScale: 1, version: 0 };
+let prog, vao, linkVao, triangleBuffer, lineBuffer, lineCount = 0, linkIndexBuffer, linkCount = 0;
+const control = (id) => document.getElementById(id);
+
+// Loads the latest solution and draws it; resolves to its scene description.
+async function load() {
+  const scene = await fetchOk("/api/scene").then((r) => r.json());
+  const mesh = parseMesh(await fetchOk("/api/mesh").then((r) => r.arrayBuffer()));
+  const links = control("links").checked || params.has("links")
+    ? parseLinks(await fetchOk("/api/links").then((r) => r.arrayBuffer()))
+    : null;
+  const first = shown.scene === null;
+  Object.assign(shown, { scene, mesh, links, version: scene.version });
+  upload();
+  if (first) {
+    document.getElementById("title").textContent = `strahl view — ${scene.name}`;
+    startFrom(scene.camera);
+    fillMovable(scene.movable);
+    shown.baseScale = autoScale(mesh);
+  }
+  drawLegend(control("legend"), scene.false_color);
+  describeSolution();
+  draw();
+  return scene;
+}
+
+// The solution's GPU buffers.
+function upload() {
+  const { mesh } = shown;
   gl.bindVertexArray(vao);
   const attribute = (name, data, size) => {
     const b = gl.createBuffer();
@@ -199,63 +245,207 @@ async function main() {
   attribute("position", mesh.positions, 3);
   attribute("radiance", mesh.radiance, 3);
   attribute("lux", mesh.lux, 1);
-  const triangles = gl.createBuffer();
-  gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triangles);
+  gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triangleBuffer);
   gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, mesh.indices, gl.STATIC_DRAW);
   const lineIndices = edges(mesh.indices);
-  const lines = gl.createBuffer();
-  gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, lines);
+  gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, lineBuffer);
   gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, lineIndices, gl.STATIC_DRAW);
+  lineCount = lineIndices.length;
+  uploadLinks();
+}
 
-  const uniform = (name) => gl.getUniformLocation(prog, name);
-  const baseScale = autoScale(mesh);
-  const wireframe = document.getElementById("wireframe");
-  const exposure = document.getElementById("exposure");
-  const falseColour = document.getElementById("false-colour");
-  const legend = document.getElementById("legend");
-  const scale = scene.false_color;
-  falseColour.checked = new URLSearchParams(location.search).has("false-color");
-  drawLegend(legend, scale);
+// The links to draw: all, or those of the object picked last.
+function uploadLinks() {
+  const { links } = shown;
+  linkCount = 0;
+  if (!links) return;
+  gl.bindVertexArray(linkVao);
+  const b = gl.createBuffer();
+  gl.bindBuffer(gl.ARRAY_BUFFER, b);
+  gl.bufferData(gl.ARRAY_BUFFER, links.positions, gl.STATIC_DRAW);
+  const at = gl.getAttribLocation(prog, "position");
+  gl.enableVertexAttribArray(at);
+  gl.vertexAttribPointer(at, 3, gl.FLOAT, false, 0, 0);
+  const onlyPicked = control("links-picked").checked;
+  const chosen = [];
+  for (let k = 0; k < links.count; k++) {
+    const [r, e] = [links.objects[2 * k], links.objects[2 * k + 1]];
+    if (!onlyPicked || r === shown.picked || e === shown.picked) chosen.push(2 * k, 2 * k + 1);
+  }
+  gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, linkIndexBuffer);
+  gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, new Uint32Array(chosen), gl.STATIC_DRAW);
+  linkCount = chosen.length;
+}
 
-  function draw() {
-    const dpr = window.devicePixelRatio || 1;
-    const [w, h] = [Math.round(canvas.clientWidth * dpr), Math.round(canvas.clientHeight * dpr)];
-    if (canvas.width !== w || canvas.height !== h) [canvas.width, canvas.height] = [w, h];
-    gl.viewport(0, 0, canvas.width, canvas.height);
-    gl.clearColor(0.13, 0.13, 0.13, 1);
-    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
-    gl.enable(gl.DEPTH_TEST);
-    // Each side of a patch is its own triangle, counter-clockwise from where its light
-    // leaves: the side facing away is not drawn (it would fight the near side for depth).
-    gl.enable(gl.CULL_FACE);
-    gl.useProgram(prog);
-    const near = view.distance * 0.01, far = view.distance * 100;
-    const matrix = multiply(perspective(view.fov, canvas.width / canvas.height, near, far),
-                            lookAt(eye(), view.target, [0, 1, 0]));
-    gl.uniformMatrix4fv(uniform("viewProjection"), false, matrix);
-    gl.uniform1f(uniform("scale"), baseScale * Math.pow(2, Number(exposure.value)));
-    gl.uniform1i(uniform("falseColour"), falseColour.checked ? 1 : 0);
-    gl.uniform2f(uniform("range"), scale.range[0], scale.range[1]);
-    gl.uniform1fv(uniform("stopAt"), scale.stops.map((s) => s[0]));
-    gl.uniform3fv(uniform("stopColour"), scale.stops.flatMap((s) => s[1].map((c) => c / 255)));
-    legend.hidden = !falseColour.checked;
-    gl.bindVertexArray(vao);
-    gl.uniform1i(uniform("lines"), 0);
-    gl.enable(gl.POLYGON_OFFSET_FILL);
-    gl.polygonOffset(1, 1);
-    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triangles);
-    gl.drawElements(gl.TRIANGLES, mesh.indices.length, gl.UNSIGNED_INT, 0);
-    if (wireframe.checked) {
-      gl.uniform1i(uniform("lines"), 1);
-      gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, lines);
-      gl.drawElements(gl.LINES, lineIndices.length, gl.UNSIGNED_INT, 0);
+function describeSolution() {
+  const { scene, mesh, links } = shown;
+  const linkText = links ? `; ${linkCount / 2} of ${scene.links[1]} links shown` : "";
+  status.textContent = `${scene.report.solver}, ${scene.stage} solution: ${mesh.triangles} triangles${linkText}; ${scene.summary}`;
+  status.dataset.version = scene.version;
+  status.dataset.stage = scene.stage;
+  status.dataset.moves = scene.moves;
+}
+
+function uniform(name) { return gl.getUniformLocation(prog, name); }
+
+function draw() {
+  if (!shown.mesh) return;
+  const scale = shown.scene.false_color;
+  const dpr = window.devicePixelRatio || 1;
+  const [w, h] = [Math.round(canvas.clientWidth * dpr), Math.round(canvas.clientHeight * dpr)];
+  if (canvas.width !== w || canvas.height !== h) [canvas.width, canvas.height] = [w, h];
+  gl.viewport(0, 0, canvas.width, canvas.height);
+  gl.clearColor(0.13, 0.13, 0.13, 1);
+  gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
+  gl.enable(gl.DEPTH_TEST);
+  // Each side of a patch is its own triangle, counter-clockwise from where its light
+  // leaves: the side facing away is not drawn (it would fight the near side for depth).
+  gl.enable(gl.CULL_FACE);
+  gl.useProgram(prog);
+  const near = view.distance * 0.01, far = view.distance * 100;
+  const matrix = multiply(perspective(view.fov, canvas.width / canvas.height, near, far),
+                          lookAt(eye(), view.target, [0, 1, 0]));
+  gl.uniformMatrix4fv(uniform("viewProjection"), false, matrix);
+  gl.uniform1f(uniform("scale"), shown.baseScale * Math.pow(2, Number(control("exposure").value)));
+  const falseColour = control("false-colour").checked;
+  gl.uniform1i(uniform("falseColour"), falseColour ? 1 : 0);
+  gl.uniform2f(uniform("range"), scale.range[0], scale.range[1]);
+  gl.uniform1fv(uniform("stopAt"), scale.stops.map((s) => s[0]));
+  gl.uniform3fv(uniform("stopColour"), scale.stops.flatMap((s) => s[1].map((c) => c / 255)));
+  control("legend").hidden = !falseColour;
+  gl.bindVertexArray(vao);
+  gl.uniform1i(uniform("lines"), 0);
+  gl.enable(gl.POLYGON_OFFSET_FILL);
+  gl.polygonOffset(1, 1);
+  gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triangleBuffer);
+  gl.drawElements(gl.TRIANGLES, shown.mesh.indices.length, gl.UNSIGNED_INT, 0);
+  gl.uniform1i(uniform("lines"), 1);
+  if (control("wireframe").checked) {
+    gl.uniform4f(uniform("lineColour"), 0, 0, 0, 1);
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, lineBuffer);
+    gl.drawElements(gl.LINES, lineCount, gl.UNSIGNED_INT, 0);
+  }
+  if (control("links").checked && linkCount > 0) {
+    // Faint lines, so that where many links run the picture shows how many.
+    const alpha = Math.min(1, Math.max(0.05, 300 / (linkCount / 2)));
+    gl.uniform4f(uniform("lineColour"), 1, 0.85, 0.1, alpha);
+    gl.enable(gl.BLEND);
+    gl.blendFunc(gl.SRC_ALPHA, gl.ONE_MINUS_SRC_ALPHA);
+    gl.depthMask(false);
+    gl.bindVertexArray(linkVao);
+    gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, linkIndexBuffer);
+    gl.drawElements(gl.LINES, linkCount, gl.UNSIGNED_INT, 0);
+    gl.depthMask(true);
+    gl.disable(gl.BLEND);
+  }
+}
+const redraw = () => requestAnimationFrame(draw);
+
+// Waits for solutions newer than the one shown, loads each; shows the solver's progress
+// meanwhile. Each request waits at the server for news (at most two seconds). Stops when
+// `onSolution` says it is done.
+async function watch(onSolution) {
+  for (;;) {
+    let st;
+    try {
+      st = await fetchOk(`/api/status?version=${shown.version}`).then((r) => r.json());
+    } catch (e) {
+      status.textContent = `the server is gone (${e.message})`;
+      return;
+    }
+    if (st.error) status.textContent = `error: ${st.error}`;
+    if (st.version !== shown.version && st.version > 0) {
+      const scene = await load();
+      if (await onSolution(scene, st)) return;
+    } else if (st.solving) {
+      const share = st.total > 0 ? ` ${st.done}/${st.total}` : "";
+      status.textContent = `solving (${st.phase}${share})…`;
     }
   }
-  const redraw = () => requestAnimationFrame(draw);
+}
+
+function fillMovable(names) {
+  const select = control("move-what");
+  select.replaceChildren(...names.map((n) => new Option(n, n)));
+}
+
+// Sends a move; resolves when the server took it.
+let movedAt = null;
+async function moveBy(name, by) {
+  movedAt = performance.now();
+  timing.textContent = `moving ${name}…`;
+  await fetchOk(`/api/move?name=${encodeURIComponent(name)}&by=${by.join(",")}`, { method: "POST" });
+}
+
+// A pick at canvas pixel (x, y) in CSS pixels, shown in the reading.
+async function pickAt(x, y) {
+  const dpr = canvas.width / canvas.getBoundingClientRect().width;
+  const ray = rayThrough(x * dpr, y * dpr);
+  const query = `o=${ray.origin.join(",")}&d=${ray.direction.join(",")}`;
+  const pick = await fetchOk(`/api/pick?${query}`).then((r) => r.json());
+  reading.textContent = describe(pick, shown.scene.report);
+  reading.dataset.lux = pick.hit ? pick.illuminance_lux : "";
+  reading.dataset.object = pick.hit ? pick.object : "";
+  reading.dataset.point = pick.hit ? pick.point.join(",") : "";
+  reading.dataset.version = shown.version;
+  shown.picked = pick.hit ? shown.scene.objects.indexOf(pick.object) : -1;
+  if (control("links-picked").checked) { uploadLinks(); describeSolution(); redraw(); }
+}
+
+// Draws `frames` frames turning round the target; shows the mean and slowest frame time.
+function orbit(frames) {
+  const times = [];
+  let last = performance.now();
+  const step = () => {
+    view.yaw += (2 * Math.PI) / frames;
+    draw();
+    gl.finish();
+    const now = performance.now();
+    times.push(now - last);
+    last = now;
+    if (times.length < frames) requestAnimationFrame(step);
+    else {
+      const mean = times.reduce((a, b) => a + b, 0) / times.length;
+      const el = control("frames");
+      el.textContent = `${frames} frames: mean ${mean.toFixed(1)} ms, slowest ${Math.max(...times).toFixed(1)} ms`;
+      el.dataset.meanMs = mean;
+    }
+  };
+  requestAnimationFrame(step);
+}
+
+async function main() {
+  if (!gl) {
+    status.textContent = "this browser has no WebGL2";
+    return;
+  }
+  prog = program();
+  vao = gl.createVertexArray();
+  linkVao = gl.createVertexArray();
+  [triangleBuffer, lineBuffer, linkIndexBuffer] = [gl.createBuffer(), gl.createBuffer(), gl.createBuffer()];
+  control("false-colour").checked = params.has("false-color");
+  control("wireframe").checked = params.has("wireframe");
+  control("links").checked = params.has("links");
+  control("links-picked").checked = params.get("links") === "picked";
+
+  for (const id of ["wireframe", "exposure", "false-colour"]) {
+    control(id).addEventListener(id === "exposure" ? "input" : "change", redraw);
+  }
+  for (const id of ["links", "links-picked"]) {
+    control(id).addEventListener("change", async () => {
+      if (control("links").checked && !shown.links) {
+        shown.links = parseLinks(await fetchOk("/api/links").then((r) => r.arrayBuffer()));
+      }
+      uploadLinks();
+      describeSolution();
+      redraw();
+    });
+  }
   window.addEventListener("resize", redraw);
-  wireframe.addEventListener("change", redraw);
-  exposure.addEventListener("input", redraw);
-  falseColour.addEventListener("change", redraw);
+  control("move").addEventListener("click", () => {
+    const by = ["move-x", "move-y", "move-z"].map((id) => Number(control(id).value) || 0);
+    moveBy(control("move-what").value, by).catch((e) => { timing.textContent = `error: ${e.message}`; });
+  });
 
   let drag = null;
   canvas.addEventListener("contextmenu", (e) => e.preventDefault());
@@ -283,13 +473,9 @@ async function main() {
   canvas.addEventListener("pointerup", async (e) => {
     const clicked = drag && drag.moved < 4;
     drag = null;
-    if (!clicked) return;
+    if (!clicked || !shown.scene) return;
     const rect = canvas.getBoundingClientRect();
-    const dpr = canvas.width / rect.width;
-    const ray = rayThrough((e.clientX - rect.left) * dpr, (e.clientY - rect.top) * dpr);
-    const query = `o=${ray.origin.join(",")}&d=${ray.direction.join(",")}`;
-    const pick = await fetch(`/api/pick?${query}`).then((r) => r.json());
-    reading.textContent = describe(pick, scene.report);
+    await pickAt(e.clientX - rect.left, e.clientY - rect.top);
   });
   canvas.addEventListener("wheel", (e) => {
     e.preventDefault();
@@ -297,6 +483,7 @@ async function main() {
     redraw();
   }, { passive: false });
   window.addEventListener("keydown", (e) => {
+    if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
     const forward = normalize(sub(view.target, eye()));
     const flat = normalize([forward[0], 0, forward[2]]);
     const step = view.distance * 0.05;
@@ -313,7 +500,35 @@ async function main() {
     e.preventDefault();
     redraw();
   });
-  redraw();
+
+  // The address's actions, once the first final solution is drawn: the move (if any), then
+  // — on the final solution of the moved scene — the pick and the orbit.
+  const asked = params.get("move");
+  let movesWanted = null;
+  const [pickX, pickY] = (params.get("pick") || "").split(",").map(Number);
+  await watch(async (scene, st) => {
+    if (movedAt !== null && scene.moves === st.moves) {
+      const ms = (performance.now() - movedAt).toFixed(0);
+      const key = scene.stage === "final" ? "final" : "preview";
+      timing.dataset[key] = ms;
+      timing.textContent = `after the move: preview drawn in ${timing.dataset.preview ?? "–"} ms, final in ${timing.dataset.final ?? "–"} ms (server ${st.preview_seconds?.toFixed(3) ?? "–"} / ${st.final_seconds?.toFixed(3) ?? "–"} s)`;
+    }
+    if (scene.stage !== "final" || st.moves !== scene.moves) return false;
+    if (asked && movesWanted === null) {
+      const [name, by] = asked.split(":");
+      movesWanted = scene.moves + 1;
+      await moveBy(name, (by || "").split(",").map(Number));
+      return false;
+    }
+    if (movesWanted !== null && scene.moves < movesWanted) return false;
+    if (Number.isFinite(pickX) && Number.isFinite(pickY) && reading.dataset.version === undefined) {
+      await pickAt(pickX * canvas.clientWidth, pickY * canvas.clientHeight);
+    }
+    if (params.has("orbit") && control("frames").dataset.meanMs === undefined) {
+      orbit(Number(params.get("orbit")) || 100);
+    }
+    return params.has("still");
+  });
 }
 
 // The legend of the false-colour scale: the unit, a bar from the scale's stops (high end up)
@@ -333,7 +548,7 @@ function drawLegend(legend, scale) {
   }
   const unit = document.createElement("div");
   unit.textContent = "lux";
-  legend.append(unit, bar, labels);
+  legend.replaceChildren(unit, bar, labels);
 }
 
 // One pick in words, with the report's row for the object hit.

@@ -1,0 +1,252 @@
+//! One solution as the viewer serves it: the scene's camera and report (JSON), the lit mesh
+//! and the links (binary), and readings along rays. Made once per solution, read by every
+//! request until the next solution replaces it.
+
+use anyhow::Result;
+use serde::Serialize;
+use strahl::method::{LUMINOUS_EFFICACY, Ray, Shading, SolvedRadiosity};
+use strahl::report::Report;
+
+/// The share of the surface area whose illuminance the false-colour range holds.
+const TOP_QUANTILE: f64 = 0.99;
+
+/// Most links served for display (a larger solution's links are served by an even stride
+/// through them: a browser draws a few hundred thousand lines at interactive rates).
+pub const MAX_LINKS: usize = 200_000;
+
+/// Which solution of a solve a snapshot is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Stage {
+    /// A quick, coarser solve shown first after the scene changed.
+    Preview,
+    /// The solve at the settings asked for.
+    Final,
+}
+
+/// One solution, ready to serve.
+pub struct Snapshot {
+    /// `/api/scene`: the camera, the report and what can be moved, JSON.
+    pub scene: Vec<u8>,
+    /// `/api/mesh`: the lit mesh, binary ([`mesh_bytes`]).
+    pub mesh: Vec<u8>,
+    /// `/api/links`: the links, binary ([`link_bytes`]).
+    pub links: Vec<u8>,
+    solved: SolvedRadiosity,
+    shading: Shading,
+    objects: Vec<String>,
+}
+
+/// The camera and report the page starts from.
+#[derive(Serialize)]
+struct SceneInfo<'a> {
+    name: &'a str,
+    /// Counts the solutions served, from 1.
+    version: u64,
+    /// The moves it was solved with, counted from the start.
+    moves: u64,
+    /// Preview or final.
+    stage: Stage,
+    camera: CameraInfo,
+    summary: String,
+    report: &'a Report,
+    false_color: FalseColorInfo,
+    /// What `/api/move` can move: objects, then placed lights.
+    movable: Vec<String>,
+    /// Object names by index (the links' ends name objects by index).
+    objects: &'a [String],
+    /// Links served for display and links in the solution.
+    links: (usize, usize),
+}
+
+/// The false-colour scale of the page, as `strahl render --false-color` draws it.
+#[derive(Serialize)]
+struct FalseColorInfo {
+    /// Position on the scale (0–1) and sRGB colour (0–255) of each stop.
+    stops: Vec<(f32, [u8; 3])>,
+    /// The illuminance at the scale's ends, lux: 0 to what 99 % of the area stays at or
+    /// below, rounded up (brighter places take the top colour).
+    range: (f32, f32),
+}
+
+/// The scene camera, scene units and degrees.
+#[derive(Serialize)]
+struct CameraInfo {
+    position: [f32; 3],
+    look_at: [f32; 3],
+    up: [f32; 3],
+    fov_degrees: f32,
+}
+
+/// What a pick answers.
+#[derive(Serialize)]
+pub struct PickInfo {
+    /// Whether the ray met a surface (the rest is absent when it did not).
+    hit: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    object: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    point: Option<[f64; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    illuminance_lux: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    luminance_cd_m2: Option<f64>,
+}
+
+impl Snapshot {
+    /// Solution `version` of the `stage`, after `moves` moves: `solved` with its `report`,
+    /// read by `shading`.
+    pub fn new(
+        version: u64,
+        moves: u64,
+        stage: Stage,
+        solved: SolvedRadiosity,
+        report: &Report,
+        shading: Shading,
+    ) -> Result<Self> {
+        let scene = &solved.world().scene;
+        let objects: Vec<String> = (0..scene.objects.len())
+            .map(|k| scene.object_name(k))
+            .collect();
+        let c = &scene.camera;
+        let (mesh, brightest) = mesh_bytes(&solved);
+        let links = link_bytes(&solved);
+        let info = SceneInfo {
+            name: &report.scene,
+            version,
+            moves,
+            stage,
+            camera: CameraInfo {
+                position: c.position.to_array(),
+                look_at: c.look_at.to_array(),
+                up: c.up.to_array(),
+                fov_degrees: c.fov_degrees,
+            },
+            summary: solved.summary(),
+            report,
+            false_color: FalseColorInfo {
+                stops: strahl::image::STOPS.to_vec(),
+                range: (0.0, strahl::image::nice_ceiling(brightest)),
+            },
+            movable: scene.movable_names(),
+            objects: &objects,
+            links: (
+                solved.solution.link_segments.len().min(MAX_LINKS),
+                solved.solution.link_segments.len(),
+            ),
+        };
+        let scene = serde_json::to_vec(&info)?;
+        Ok(Snapshot {
+            scene,
+            mesh,
+            links,
+            solved,
+            shading,
+            objects,
+        })
+    }
+
+    /// What the ray from `origin` along the unit `direction` meets.
+    pub fn pick(&self, ray: &Ray) -> PickInfo {
+        match self.solved.probe(self.shading).at(ray) {
+            None => PickInfo {
+                hit: false,
+                object: None,
+                point: None,
+                illuminance_lux: None,
+                luminance_cd_m2: None,
+            },
+            Some(hit) => PickInfo {
+                hit: true,
+                object: self.objects.get(hit.object as usize).cloned(),
+                point: Some(hit.point.to_array()),
+                illuminance_lux: Some(hit.illuminance),
+                luminance_cd_m2: Some(hit.luminance),
+            },
+        }
+    }
+}
+
+/// The lit mesh as the page reads it, little-endian: the vertex count `V` and triangle count
+/// `T` (u32 each), `V` positions (3 × f32, scene units), `V` radiances (3 × f32, the
+/// radiosity leaving the vertex over π, W·sr⁻¹·m⁻²), `V` illuminances (f32, lux on the
+/// vertex's side), `T` triangles (3 × u32 vertex indices, counter-clockwise from the side
+/// the light leaves). Each side of a patch is its own polygon, so both sides show their
+/// own light. Also returns the illuminance that 99 % of the surface area stays at or below,
+/// lux (the top of the false-colour range: the small, bright patches beside a lamp would
+/// squeeze the rest into the scale's lowest colours).
+fn mesh_bytes(solved: &SolvedRadiosity) -> (Vec<u8>, f32) {
+    let lit = solved.lit_mesh(false);
+    let triangles: Vec<[u32; 3]> = lit
+        .polygons
+        .iter()
+        .flat_map(|p| (1..p.len() - 1).map(move |k| [p[0], p[k], p[k + 1]]))
+        .collect();
+    let lux: Vec<f32> = lit
+        .irradiance
+        .iter()
+        .map(|e| (LUMINOUS_EFFICACY * e.luminance()).max(0.0) as f32)
+        .collect();
+    let mut out = Vec::with_capacity(8 + lit.positions.len() * 28 + triangles.len() * 12);
+    out.extend((lit.positions.len() as u32).to_le_bytes());
+    out.extend((triangles.len() as u32).to_le_bytes());
+    for p in &lit.positions {
+        p.to_array()
+            .iter()
+            .for_each(|v| out.extend(v.to_le_bytes()));
+    }
+    for b in &lit.radiosity {
+        b.to_f32()
+            .to_array()
+            .iter()
+            .for_each(|v| out.extend((v / std::f32::consts::PI).to_le_bytes()));
+    }
+    lux.iter().for_each(|v| out.extend(v.to_le_bytes()));
+    for t in &triangles {
+        t.iter().for_each(|i| out.extend(i.to_le_bytes()));
+    }
+    // Each vertex stands for a third of its triangles' area (every polygon has its own).
+    let mut weight = vec![0.0f64; lux.len()];
+    for t in &triangles {
+        let [a, b, c] = t.map(|i| lit.positions[i as usize]);
+        let third = f64::from((b - a).cross(c - a).length()) / 6.0;
+        t.iter().for_each(|&i| weight[i as usize] += third);
+    }
+    let mut order: Vec<usize> = (0..lux.len()).collect();
+    order.sort_by(|&i, &j| lux[i].total_cmp(&lux[j]));
+    let total: f64 = weight.iter().sum();
+    let mut below = 0.0;
+    let top = order
+        .iter()
+        .find(|&&i| {
+            below += weight[i];
+            below >= TOP_QUANTILE * total
+        })
+        .or(order.last())
+        .map_or(0.0, |&i| lux[i]);
+    (out, top)
+}
+
+/// The links of a hierarchical solution as the page draws them, little-endian: the count
+/// `N` (u32), then per link the receiver's and the emitter's centre (3 × f32 each, scene
+/// units) and the receiver's and the emitter's object index (i32 each; −1 for a cluster of
+/// patches). At most [`MAX_LINKS`], taken at an even stride; none for the other solvers.
+fn link_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
+    let all = &solved.solution.link_segments;
+    let stride = all.len().div_ceil(MAX_LINKS).max(1);
+    let shown: Vec<_> = all.iter().step_by(stride).collect();
+    let mut out = Vec::with_capacity(4 + 32 * shown.len());
+    out.extend((shown.len() as u32).to_le_bytes());
+    let object = |o: Option<u32>| o.map_or(-1, |o| o as i32);
+    for link in shown {
+        for p in [link.receiver, link.emitter] {
+            p.as_vec3()
+                .to_array()
+                .iter()
+                .for_each(|v| out.extend(v.to_le_bytes()));
+        }
+        out.extend(object(link.receiver_object).to_le_bytes());
+        out.extend(object(link.emitter_object).to_le_bytes());
+    }
+    out
+}

@@ -1,0 +1,304 @@
+//! The viewer's solver, on a thread of its own: solves the scene as it is now (with every
+//! move asked for so far) — a quick, coarser preview first where the solver has one, then
+//! the solve asked for — and publishes each solution as a [`Snapshot`]. A move during a solve
+//! stops it within a work unit and starts over from the moved scene; the progress of the
+//! running solve is readable at any time.
+
+use super::snapshot::{Snapshot, Stage};
+use crate::{progress, radiosity, with_threads};
+use anyhow::{Context, Result};
+use glam::Vec3;
+use serde::Serialize;
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::time::{Duration, Instant};
+use strahl::method::{
+    AccelKind, Cancel, Method, ProgressListener, Shading, SolverKind, SurfaceGather, World,
+};
+use strahl::report::Report;
+use strahl::scene::{MoveError, Scene};
+
+/// How much larger the preview's error threshold is than the final solve's.
+const PREVIEW_COARSER: f64 = 8.0;
+
+/// What the solver is doing, for `/api/status`.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Status {
+    /// The latest solution's version (0: none yet).
+    pub version: u64,
+    /// Its stage.
+    pub stage: Option<Stage>,
+    /// Moves asked for so far.
+    pub moves: u64,
+    /// Moves the latest solution was solved with.
+    pub solved_moves: u64,
+    /// Whether a solve runs.
+    pub solving: bool,
+    /// Its phase, work units done and in all (0: not known).
+    pub phase: String,
+    pub done: u64,
+    pub total: u64,
+    /// Why the last solve failed, if it did.
+    pub error: Option<String>,
+    /// Seconds from the last move to its preview and to its final solution being served
+    /// (absent until served).
+    pub preview_seconds: Option<f64>,
+    pub final_seconds: Option<f64>,
+}
+
+/// The solver's state, shared with the requests.
+struct State {
+    /// The scene with every move so far.
+    scene: Scene,
+    /// The latest solution.
+    snapshot: Option<Arc<Snapshot>>,
+    /// Stops the running solve.
+    cancel: Arc<Cancel>,
+    /// When the last move came.
+    moved_at: Option<Instant>,
+    /// The moves the running (or last) solve started from.
+    started_moves: Option<u64>,
+    shutdown: bool,
+    status: Status,
+}
+
+/// The solver and its latest solution.
+pub struct Solving {
+    /// The final solve.
+    method: Method,
+    threads: usize,
+    shading: Shading,
+    quiet: bool,
+    /// Where to export the first final solution.
+    export: Option<PathBuf>,
+    state: Mutex<State>,
+    /// Wakes the solver thread: a move, or the end.
+    work: Condvar,
+    /// Wakes the requests waiting for news: a solution, a failure, the end.
+    news: Condvar,
+    /// Work units of the running phase done and in all (atomic: every worker thread adds).
+    done: AtomicU64,
+    total: AtomicU64,
+}
+
+impl Solving {
+    /// A solver of `scene` by `method` (radiosity) on `threads` threads (0: one per core),
+    /// its solutions read by `shading`; the first final solution is exported to `export`.
+    pub fn new(
+        scene: Scene,
+        method: Method,
+        threads: usize,
+        shading: Shading,
+        quiet: bool,
+        export: Option<PathBuf>,
+    ) -> Self {
+        Solving {
+            method,
+            threads,
+            shading,
+            quiet,
+            export,
+            state: Mutex::new(State {
+                scene,
+                snapshot: None,
+                cancel: Arc::new(Cancel::new()),
+                moved_at: None,
+                started_moves: None,
+                shutdown: false,
+                status: Status::default(),
+            }),
+            work: Condvar::new(),
+            news: Condvar::new(),
+            done: AtomicU64::new(0),
+            total: AtomicU64::new(0),
+        }
+    }
+
+    fn lock(&self) -> MutexGuard<'_, State> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// The latest solution, if any.
+    pub fn snapshot(&self) -> Option<Arc<Snapshot>> {
+        self.lock().snapshot.clone()
+    }
+
+    /// The status now, or — when the latest solution is `version` and nothing changes —
+    /// after at most `wait`.
+    pub fn status_after(&self, version: Option<u64>, wait: Duration) -> Status {
+        let until = Instant::now() + wait;
+        let mut state = self.lock();
+        while version == Some(state.status.version) && !state.shutdown {
+            let left = until.saturating_duration_since(Instant::now());
+            if left.is_zero() || progress::cancel_flag().is_requested() {
+                break;
+            }
+            // Short waits: Ctrl-C is seen within one.
+            let slice = left.min(Duration::from_millis(200));
+            state = self
+                .news
+                .wait_timeout(state, slice)
+                .unwrap_or_else(|e| e.into_inner())
+                .0;
+        }
+        let mut status = state.status.clone();
+        status.done = self.done.load(Ordering::Relaxed);
+        status.total = self.total.load(Ordering::Relaxed);
+        status
+    }
+
+    /// Moves the object or light `name` by `by` and starts solving the moved scene (stopping
+    /// a solve under way). Returns the moves asked for so far.
+    pub fn move_named(&self, name: &str, by: Vec3) -> Result<u64, MoveError> {
+        let mut state = self.lock();
+        state.scene.move_named(name, by)?;
+        state.status.moves += 1;
+        state.moved_at = Some(Instant::now());
+        state.status.preview_seconds = None;
+        state.status.final_seconds = None;
+        state.cancel.request();
+        self.work.notify_all();
+        Ok(state.status.moves)
+    }
+
+    /// Stops the running solve and the solver thread.
+    pub fn shut_down(&self) {
+        let mut state = self.lock();
+        state.shutdown = true;
+        state.cancel.request();
+        self.work.notify_all();
+        self.news.notify_all();
+    }
+
+    /// The solver thread: solves whenever the scene has moves not yet solved (the first time
+    /// at once), until [`Solving::shut_down`].
+    pub fn run(&self) {
+        let mut first = true;
+        loop {
+            let (scene, moves, cancel) = {
+                let mut state = self.lock();
+                while !state.shutdown && state.started_moves == Some(state.status.moves) {
+                    state = self.work.wait(state).unwrap_or_else(|e| e.into_inner());
+                }
+                if state.shutdown {
+                    return;
+                }
+                state.cancel = Arc::new(Cancel::new());
+                state.started_moves = Some(state.status.moves);
+                state.status.solving = true;
+                (
+                    state.scene.clone(),
+                    state.status.moves,
+                    state.cancel.clone(),
+                )
+            };
+            let solved = self.solve(scene, moves, &cancel, first);
+            let mut state = self.lock();
+            state.status.solving = false;
+            match solved {
+                Ok(()) => first = false,
+                Err(e) => state.status.error = Some(format!("{e:#}")),
+            }
+            self.news.notify_all();
+        }
+    }
+
+    /// The stages of a solve: a preview where the solver refines by an error threshold, then
+    /// the solve asked for.
+    fn stages(&self) -> Vec<(Stage, Method)> {
+        let mut stages = Vec::new();
+        if let Method::Radiosity(settings) = &self.method
+            && settings.solver == SolverKind::Hierarchical
+        {
+            let mut preview = *settings;
+            preview.hierarchical.error *= PREVIEW_COARSER;
+            preview.surface_gather = SurfaceGather::OFF;
+            stages.push((Stage::Preview, Method::Radiosity(preview)));
+        }
+        stages.push((Stage::Final, self.method.clone()));
+        stages
+    }
+
+    /// Solves `scene` (after `moves` moves) stage by stage, publishing each solution, until
+    /// done or `cancel`led. The first solve shows a bar on the terminal and exports.
+    fn solve(&self, scene: Scene, moves: u64, cancel: &Cancel, first: bool) -> Result<()> {
+        let name = scene.name.clone();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).context("the moved scene")?);
+        let bar = progress::Bar::new("solving", self.quiet || !first);
+        for (stage, method) in self.stages() {
+            let observer = Observer {
+                solving: self,
+                bar: &bar,
+            };
+            let outcome = with_threads(self.threads, || {
+                strahl::method::run(&world, &method, &observer, cancel)
+            })?
+            .map_err(radiosity::method_error)?;
+            if cancel.is_requested() {
+                return Ok(());
+            }
+            let solved = outcome.radiosity.context("the solver made no solution")?;
+            let measured = outcome
+                .measurement
+                .as_ref()
+                .context("the solver measured no surfaces")?;
+            if first && stage == Stage::Final {
+                radiosity::finish_solve(
+                    &solved,
+                    self.export.as_deref(),
+                    &Default::default(),
+                    self.quiet,
+                )?;
+            }
+            let report = Report::new(&name, measured);
+            let version = self.lock().status.version + 1;
+            let snapshot = Snapshot::new(version, moves, stage, solved, &report, self.shading)?;
+            let mut state = self.lock();
+            let since_move = state.moved_at.map(|t| t.elapsed().as_secs_f64());
+            let status = &mut state.status;
+            status.version = version;
+            status.stage = Some(stage);
+            status.solved_moves = moves;
+            status.error = None;
+            match stage {
+                Stage::Preview => status.preview_seconds = since_move,
+                Stage::Final => status.final_seconds = since_move,
+            }
+            state.snapshot = Some(Arc::new(snapshot));
+            self.news.notify_all();
+        }
+        Ok(())
+    }
+}
+
+/// Hands a solve's progress to the status (and the terminal's bar).
+struct Observer<'a> {
+    solving: &'a Solving,
+    bar: &'a progress::Bar,
+}
+
+impl ProgressListener for Observer<'_> {
+    fn phase(&self, name: &str) {
+        self.bar.phase(name);
+        self.solving.lock().status.phase = name.to_string();
+        self.solving.done.store(0, Ordering::Relaxed);
+        self.solving.total.store(0, Ordering::Relaxed);
+    }
+    fn start(&self, total: u64) {
+        self.bar.start(total);
+        self.solving.done.store(0, Ordering::Relaxed);
+        self.solving.total.store(total, Ordering::Relaxed);
+    }
+    fn estimate(&self, total: u64) {
+        self.bar.estimate(total);
+        self.solving.total.store(total, Ordering::Relaxed);
+    }
+    fn advance(&self, units: u64) {
+        self.bar.advance(units);
+        self.solving.done.fetch_add(units, Ordering::Relaxed);
+    }
+    fn finish(&self) {
+        self.bar.finish();
+    }
+}

@@ -1,0 +1,159 @@
+//! Moving parts of a scene by a translation (the viewer's "move a light or an object"): an
+//! object through its transform, a point, Lambertian or spot light by its position.
+
+use super::{LightKind, Scene};
+use crate::geometry::Transform;
+use glam::Vec3;
+
+/// What was moved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Moved {
+    /// The object of this index.
+    Object(usize),
+    /// The light of this index.
+    Light(usize),
+}
+
+/// What a move refused.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MoveError {
+    /// Neither an object nor a light has that name.
+    #[error("no object or light is named '{0}'")]
+    NoSuchName(String),
+    /// A directional light or the sky: they have no position.
+    #[error("light '{0}' is directional or a sky: it has no position to move")]
+    NotPlaced(String),
+    /// The offset is not three finite numbers.
+    #[error("the offset must be three finite numbers")]
+    NotFinite,
+}
+
+impl Scene {
+    /// The name of light `index`: its own, or `light-<index>`.
+    pub fn light_name(&self, index: usize) -> String {
+        self.lights[index]
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("light-{index}"))
+    }
+
+    /// The names of what [`Scene::move_named`] can move: every object, then every point,
+    /// Lambertian and spot light.
+    pub fn movable_names(&self) -> Vec<String> {
+        let objects = (0..self.objects.len()).map(|k| self.object_name(k));
+        let lights = (0..self.lights.len())
+            .filter(|&k| placed(&self.lights[k].kind))
+            .map(|k| self.light_name(k));
+        objects.chain(lights).collect()
+    }
+
+    /// Moves the first object named `name` (after its own transform), or else the first
+    /// light of that name, by `by` (scene units).
+    pub fn move_named(&mut self, name: &str, by: Vec3) -> Result<Moved, MoveError> {
+        if !by.is_finite() {
+            return Err(MoveError::NotFinite);
+        }
+        if let Some(k) = (0..self.objects.len()).find(|&k| self.object_name(k) == name) {
+            let object = &mut self.objects[k];
+            object.transform = object.transform.then(&Transform::translate(by));
+            return Ok(Moved::Object(k));
+        }
+        let k = (0..self.lights.len())
+            .find(|&k| self.light_name(k) == name)
+            .ok_or_else(|| MoveError::NoSuchName(name.to_string()))?;
+        match &mut self.lights[k].kind {
+            LightKind::Point { position, .. }
+            | LightKind::Lambertian { position, .. }
+            | LightKind::Spot { position, .. } => {
+                *position += by;
+                Ok(Moved::Light(k))
+            }
+            LightKind::Directional { .. } | LightKind::Sky { .. } => {
+                Err(MoveError::NotPlaced(name.to_string()))
+            }
+        }
+    }
+}
+
+/// Whether a light of this kind has a position.
+fn placed(kind: &LightKind) -> bool {
+    !matches!(kind, LightKind::Directional { .. } | LightKind::Sky { .. })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::color::Rgb;
+    use crate::scene::{Light, open};
+
+    #[test]
+    fn a_moved_object_keeps_its_shape_and_moves_by_the_offset() {
+        let mut scene = open("cornell", &Default::default()).unwrap();
+        let before = scene.clone();
+        let by = Vec3::new(0.1, -0.05, 0.2);
+        let Ok(Moved::Object(k)) = scene.move_named("light", by) else {
+            panic!("the light is an object");
+        };
+        assert_eq!(scene.object_name(k), "light");
+        let (old, new) = (&before.objects[k], &scene.objects[k]);
+        assert_eq!(old.shape, new.shape);
+        let p = Vec3::new(0.3, 0.7, -0.2);
+        let moved = new.transform.point(p) - old.transform.point(p);
+        assert!((moved - by).length() < 1e-6, "{moved}");
+        assert_eq!(new.transform.normal(Vec3::Y), old.transform.normal(Vec3::Y));
+        assert!(
+            (0..scene.objects.len())
+                .filter(|&j| j != k)
+                .all(|j| scene.objects[j] == before.objects[j])
+        );
+        assert!(scene.movable_names().contains(&"light".to_string()));
+    }
+
+    #[test]
+    fn moves_that_cannot_be_made_are_refused_by_name() {
+        let mut scene = open("cornell", &Default::default()).unwrap();
+        let before = scene.clone();
+        assert_eq!(
+            scene.move_named("no such thing", Vec3::X),
+            Err(MoveError::NoSuchName("no such thing".into()))
+        );
+        assert_eq!(
+            scene.move_named("light", Vec3::new(f32::NAN, 0.0, 0.0)),
+            Err(MoveError::NotFinite)
+        );
+        assert_eq!(scene, before);
+    }
+
+    #[test]
+    fn placed_lights_move_and_lights_without_a_place_are_refused() {
+        let mut scene = open("canopy:10", &Default::default()).unwrap();
+        let sky = scene
+            .lights
+            .iter()
+            .position(|l| matches!(l.kind, LightKind::Sky { .. }))
+            .expect("the canopy has a sky");
+        let sky_name = scene.light_name(sky);
+        assert_eq!(
+            scene.move_named(&sky_name, Vec3::X),
+            Err(MoveError::NotPlaced(sky_name.clone()))
+        );
+        assert!(!scene.movable_names().contains(&sky_name));
+        scene.lights.push(Light {
+            name: Some("bulb".into()),
+            kind: LightKind::Point {
+                position: Vec3::ONE,
+                intensity: Rgb::splat(1.0),
+            },
+        });
+        let point = scene.lights.len() - 1;
+        assert_eq!(
+            scene.move_named("bulb", Vec3::new(0.0, 2.0, 0.0)),
+            Ok(Moved::Light(point))
+        );
+        assert!(matches!(
+            scene.lights[point].kind,
+            LightKind::Point { position, .. } if position == Vec3::new(1.0, 3.0, 1.0)
+        ));
+        assert!(scene.movable_names().contains(&"bulb".to_string()));
+    }
+}
