@@ -2,6 +2,7 @@
 //! computation reports units of work done to a [`ProgressListener`] and looks at a [`Cancel`]
 //! between units, stopping within one unit and keeping what it has.
 
+use crate::measure::RoundSolution;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Receives progress of long work. Calls may come from several threads at once.
@@ -18,6 +19,15 @@ pub trait ProgressListener: Sync {
     fn advance(&self, units: u64);
     /// The work ended (completed or cancelled).
     fn finish(&self);
+    /// Whether this listener shows solutions while they refine: solvers that refine in
+    /// rounds then hand each round's solution to [`ProgressListener::round`] (making it
+    /// costs time, so only when asked). False by default.
+    fn wants_rounds(&self) -> bool {
+        false
+    }
+    /// The solution after a round (hierarchical radiosity: after each round's gathers,
+    /// before the next refinement); ignored by default.
+    fn round(&self, _solution: &RoundSolution) {}
 }
 
 /// A listener that ignores everything.

@@ -14,7 +14,6 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("color", &[]),
     ("lanes", &[]),
     ("choice", &[]),
-    ("progress", &[]),
     ("atomic_file", &[]),
     ("geometry", &["lanes"]),
     ("sampling", &["color", "geometry", "lanes"]),
@@ -33,6 +32,8 @@ const ALLOWED: &[(&str, &[&str])] = &[
         "measure",
         &["choice", "color", "geometry", "scene", "world"],
     ),
+    // Progress, cancellation and the solutions between rounds, handed to whoever listens.
+    ("progress", &["measure"]),
     // The algorithms, side by side.
     ("trace", ALGORITHM_BASE),
     ("light_model", ALGORITHM_BASE),

@@ -8,9 +8,8 @@ use strahl::accel::AccelKind;
 use strahl::color::{Rgb, Rgb64};
 use strahl::image::{ToneMap, ToneMapping};
 use strahl::light_model::{LightTraceSettings, trace_light};
-use strahl::measure::Photometric;
-use strahl::progress::Cancel;
-use strahl::progress::NoProgress;
+use strahl::measure::{Photometric, RoundSolution};
+use strahl::progress::{Cancel, NoProgress, ProgressListener};
 use strahl::radiosity::solid_angle;
 use strahl::radiosity::solve::hierarchical::{
     HierarchicalSettings, Oracle, solve_hierarchical, solve_hierarchical_shooting,
@@ -641,6 +640,63 @@ fn hierarchical_furnace_gives_e_over_one_minus_rho() {
                 let (e, a) = (t.emitted_power.luminance(), t.absorbed_power.luminance());
                 assert!((a / e - 1.0).abs() < 0.01, "absorbed {a} of {e}");
             }
+        }
+    }
+}
+
+/// Keeps every round's solution a solver hands on.
+#[derive(Default)]
+struct Observer(std::sync::Mutex<Vec<RoundSolution>>);
+
+impl ProgressListener for Observer {
+    fn start(&self, _total: u64) {}
+    fn advance(&self, _units: u64) {}
+    fn finish(&self) {}
+    fn wants_rounds(&self) -> bool {
+        true
+    }
+    fn round(&self, solution: &RoundSolution) {
+        self.0.lock().unwrap().push(solution.clone());
+    }
+}
+
+#[test]
+fn an_observer_sees_every_round_and_the_last_is_the_solution() {
+    let world = furnace();
+    let settings = HierarchicalSettings {
+        tolerance: 1e-9,
+        fine_gather: false,
+        ..HierarchicalSettings::default()
+    };
+    let observer = Observer::default();
+    let (system, solution) =
+        solve_hierarchical(&world, options(0), &settings, &observer, &Cancel::new()).unwrap();
+    let rounds = observer.0.into_inner().unwrap();
+    assert_eq!(rounds.len(), solution.rounds.len());
+    for (k, (seen, stats)) in rounds.iter().zip(&solution.rounds).enumerate() {
+        assert_eq!(seen.round, k + 1);
+        assert_eq!((seen.links, seen.leaves), (stats.links, stats.leaves));
+        assert_eq!(seen.change, stats.residual);
+        // Both sides of every leaf, each a polygon of its own.
+        assert_eq!(seen.mesh.polygons.len() as u64, 2 * seen.leaves);
+    }
+    // The last round is the solution: inside the furnace every side reflects and emits
+    // B = E/(1 − ρ) = 4π and receives 4π; outside nothing arrives.
+    let last = &rounds.last().unwrap().mesh;
+    assert_eq!(last.polygons.len(), system.len());
+    let b = std::f64::consts::PI * L as f64 / (1.0 - RHO as f64);
+    for (k, polygon) in last.polygons.iter().enumerate() {
+        let v = polygon[0] as usize;
+        let (radiosity, irradiance) = (
+            last.radiosity[v].luminance(),
+            last.irradiance[v].luminance(),
+        );
+        let inside = last.normals[v].dot(last.positions[v] - Vec3::splat(0.5)) < 0.0;
+        if inside {
+            assert!((radiosity / b - 1.0).abs() < 0.01, "{k}: {radiosity}");
+            assert!((irradiance / b - 1.0).abs() < 0.01, "{k}: {irradiance}");
+        } else {
+            assert_eq!(irradiance, 0.0, "{k}");
         }
     }
 }

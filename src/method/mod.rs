@@ -49,11 +49,11 @@ pub use settings::{
 // only.
 pub use crate::accel::AccelKind;
 pub use crate::choice::{Choice, UnknownName};
-pub use crate::color::LUMINOUS_EFFICACY;
+pub use crate::color::{LUMINOUS_EFFICACY, Rgb64};
 pub use crate::geometry::Ray;
 pub use crate::measure::{
-    Film, LitMesh, Measurement, Photometric, SensorReading, ValueImage, peak_resident_bytes,
-    resident_bytes, usable_memory_bytes,
+    Film, LitMesh, Measurement, Photometric, RoundSolution, SensorReading, ValueImage,
+    peak_resident_bytes, resident_bytes, usable_memory_bytes,
 };
 pub use crate::progress::{Cancel, NoProgress, ProgressListener};
 pub use crate::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, RefinePass};

@@ -87,7 +87,7 @@ fn get(solving: &Solving, path: &str, params: &[(String, String)]) -> Answer {
         "/api/scene" => solution(|s| (200, "application/json", s.scene.clone())),
         "/api/mesh" => solution(|s| (200, "application/octet-stream", s.mesh.clone())),
         "/api/links" => solution(|s| (200, "application/octet-stream", s.links.clone())),
-        "/api/pick" => match (pick_ray(params), solving.snapshot()) {
+        "/api/pick" => match (pick_ray(params), solving.readable()) {
             (Err(problem), _) => text(400, &format!("{problem}\n")),
             (Ok(_), None) => text(503, "no solution yet\n"),
             (Ok(ray), Some(snapshot)) => json(&snapshot.pick(&ray)),

@@ -4,8 +4,9 @@
 
 use anyhow::Result;
 use serde::Serialize;
-use strahl::method::{LUMINOUS_EFFICACY, Ray, Shading, SolvedRadiosity};
+use strahl::method::{LUMINOUS_EFFICACY, LitMesh, Ray, RoundSolution, Shading, SolvedRadiosity};
 use strahl::report::Report;
+use strahl::scene::Scene;
 
 /// The share of the surface area whose illuminance the false-colour range holds.
 const TOP_QUANTILE: f64 = 0.99;
@@ -18,6 +19,9 @@ pub const MAX_LINKS: usize = 200_000;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Stage {
+    /// The solution between two rounds of a solve under way, each leaf lit flat (no report,
+    /// no readings: picks read the latest whole solution).
+    Round,
     /// A quick, coarser solve shown first after the scene changed.
     Preview,
     /// The solve at the settings asked for.
@@ -30,11 +34,22 @@ pub struct Snapshot {
     pub scene: Vec<u8>,
     /// `/api/mesh`: the lit mesh, binary ([`mesh_bytes`]).
     pub mesh: Vec<u8>,
-    /// `/api/links`: the links, binary ([`link_bytes`]).
+    /// `/api/links`: the links, binary ([`link_bytes`]; none between rounds).
     pub links: Vec<u8>,
-    solved: SolvedRadiosity,
+    /// The solution read by picks (none between rounds).
+    solved: Option<SolvedRadiosity>,
     shading: Shading,
     objects: Vec<String>,
+}
+
+/// What a snapshot says of itself besides the scene.
+struct About<'a> {
+    version: u64,
+    moves: u64,
+    stage: Stage,
+    summary: String,
+    report: Option<&'a Report>,
+    links: (usize, usize),
 }
 
 /// The camera and report the page starts from.
@@ -49,7 +64,8 @@ struct SceneInfo<'a> {
     stage: Stage,
     camera: CameraInfo,
     summary: String,
-    report: &'a Report,
+    /// The report (none between rounds).
+    report: Option<&'a Report>,
     false_color: FalseColorInfo,
     /// What `/api/move` can move: objects, then placed lights.
     movable: Vec<String>,
@@ -104,51 +120,71 @@ impl Snapshot {
         report: &Report,
         shading: Shading,
     ) -> Result<Self> {
-        let scene = &solved.world().scene;
-        let objects: Vec<String> = (0..scene.objects.len())
-            .map(|k| scene.object_name(k))
-            .collect();
-        let c = &scene.camera;
-        let (mesh, brightest) = mesh_bytes(&solved);
+        let lit = solved.lit_mesh(false);
         let links = link_bytes(&solved);
-        let info = SceneInfo {
-            name: &report.scene,
+        let counted = solved.solution.link_segments.len();
+        let about = About {
             version,
             moves,
             stage,
-            camera: CameraInfo {
-                position: c.position.to_array(),
-                look_at: c.look_at.to_array(),
-                up: c.up.to_array(),
-                fov_degrees: c.fov_degrees,
-            },
             summary: solved.summary(),
-            report,
-            false_color: FalseColorInfo {
-                stops: strahl::image::STOPS.to_vec(),
-                range: (0.0, strahl::image::nice_ceiling(brightest)),
-            },
-            movable: scene.movable_names(),
-            objects: &objects,
-            links: (
-                solved.solution.link_segments.len().min(MAX_LINKS),
-                solved.solution.link_segments.len(),
-            ),
+            report: Some(report),
+            links: (counted.min(MAX_LINKS), counted),
         };
-        let scene = serde_json::to_vec(&info)?;
+        let (scene, mesh, objects) = described(&solved.world().scene, &lit, about)?;
         Ok(Snapshot {
             scene,
             mesh,
             links,
-            solved,
+            solved: Some(solved),
             shading,
             objects,
         })
     }
 
+    /// The solution between rounds `round` of a solve of `scene` (after `moves` moves), as
+    /// version `version`.
+    pub fn round(
+        version: u64,
+        moves: u64,
+        scene: &Scene,
+        round: &RoundSolution,
+        shading: Shading,
+    ) -> Result<Self> {
+        let about = About {
+            version,
+            moves,
+            stage: Stage::Round,
+            summary: format!(
+                "round {}: {} links, {} leaves, change {:.3e}",
+                round.round, round.links, round.leaves, round.change
+            ),
+            report: None,
+            links: (0, 0),
+        };
+        let (scene, mesh, objects) = described(scene, &round.mesh, about)?;
+        Ok(Snapshot {
+            scene,
+            mesh,
+            links: 0u32.to_le_bytes().to_vec(),
+            solved: None,
+            shading,
+            objects,
+        })
+    }
+
+    /// Whether picks can read it (false between rounds).
+    pub fn readable(&self) -> bool {
+        self.solved.is_some()
+    }
+
     /// What the ray from `origin` along the unit `direction` meets.
     pub fn pick(&self, ray: &Ray) -> PickInfo {
-        match self.solved.probe(self.shading).at(ray) {
+        let hit = self
+            .solved
+            .as_ref()
+            .and_then(|solved| solved.probe(self.shading).at(ray));
+        match hit {
             None => PickInfo {
                 hit: false,
                 object: None,
@@ -167,6 +203,42 @@ impl Snapshot {
     }
 }
 
+/// `/api/scene` and `/api/mesh` of `scene` lit as `lit`, described by `about`, and the
+/// object names by index.
+fn described(
+    scene: &Scene,
+    lit: &LitMesh,
+    about: About,
+) -> Result<(Vec<u8>, Vec<u8>, Vec<String>)> {
+    let objects: Vec<String> = (0..scene.objects.len())
+        .map(|k| scene.object_name(k))
+        .collect();
+    let c = &scene.camera;
+    let (mesh, brightest) = mesh_bytes(lit);
+    let info = SceneInfo {
+        name: &scene.name,
+        version: about.version,
+        moves: about.moves,
+        stage: about.stage,
+        camera: CameraInfo {
+            position: c.position.to_array(),
+            look_at: c.look_at.to_array(),
+            up: c.up.to_array(),
+            fov_degrees: c.fov_degrees,
+        },
+        summary: about.summary,
+        report: about.report,
+        false_color: FalseColorInfo {
+            stops: strahl::image::STOPS.to_vec(),
+            range: (0.0, strahl::image::nice_ceiling(brightest)),
+        },
+        movable: scene.movable_names(),
+        objects: &objects,
+        links: about.links,
+    };
+    Ok((serde_json::to_vec(&info)?, mesh, objects))
+}
+
 /// The lit mesh as the page reads it, little-endian: the vertex count `V` and triangle count
 /// `T` (u32 each), `V` positions (3 × f32, scene units), `V` radiances (3 × f32, the
 /// radiosity leaving the vertex over π, W·sr⁻¹·m⁻²), `V` illuminances (f32, lux on the
@@ -175,8 +247,7 @@ impl Snapshot {
 /// own light. Also returns the illuminance that 99 % of the surface area stays at or below,
 /// lux (the top of the false-colour range: the small, bright patches beside a lamp would
 /// squeeze the rest into the scale's lowest colours).
-fn mesh_bytes(solved: &SolvedRadiosity) -> (Vec<u8>, f32) {
-    let lit = solved.lit_mesh(false);
+fn mesh_bytes(lit: &LitMesh) -> (Vec<u8>, f32) {
     let triangles: Vec<[u32; 3]> = lit
         .polygons
         .iter()
@@ -249,4 +320,53 @@ fn link_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
         out.extend(object(link.emitter_object).to_le_bytes());
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+    use strahl::method::Rgb64;
+
+    #[test]
+    fn a_round_is_served_flat_without_report_links_or_readings() {
+        let scene = strahl::scene::open("cornell", &Default::default()).unwrap();
+        let mut mesh = LitMesh::default();
+        let square = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 0.0, 1.0), Vec3::Z];
+        let b = [Rgb64::splat(std::f64::consts::PI); 4];
+        mesh.push_polygon(0, &square, Vec3::Y, (&b, &b));
+        let round = RoundSolution {
+            round: 3,
+            links: 10,
+            leaves: 1,
+            change: 1e-3,
+            mesh,
+        };
+        let snapshot = Snapshot::round(7, 2, &scene, &round, Shading::Smooth).unwrap();
+        let info: serde_json::Value = serde_json::from_slice(&snapshot.scene).unwrap();
+        assert_eq!(info["stage"], "round");
+        assert_eq!(
+            (info["version"].as_u64(), info["moves"].as_u64()),
+            (Some(7), Some(2))
+        );
+        assert!(info["report"].is_null());
+        assert_eq!(
+            info["summary"],
+            "round 3: 10 links, 1 leaves, change 1.000e-3"
+        );
+        assert_eq!(
+            info["movable"].as_array().unwrap().len(),
+            scene.objects.len()
+        );
+        // One square: four vertices, two triangles, each vertex showing B/π = 1.
+        let word =
+            |k: usize| u32::from_le_bytes(snapshot.mesh[4 * k..4 * k + 4].try_into().unwrap());
+        assert_eq!((word(0), word(1)), (4, 2));
+        let radiance = f32::from_le_bytes(snapshot.mesh[8 + 48..8 + 52].try_into().unwrap());
+        assert!((radiance - 1.0).abs() < 1e-6, "{radiance}");
+        assert_eq!(snapshot.links, 0u32.to_le_bytes());
+        assert!(!snapshot.readable());
+        let ray = Ray::new(Vec3::new(0.5, 1.0, 0.5), Vec3::NEG_Y);
+        assert!(!snapshot.pick(&ray).hit);
+    }
 }

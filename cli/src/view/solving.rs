@@ -4,8 +4,8 @@
 //! stops it within a work unit and starts over from the moved scene; the progress of the
 //! running solve is readable at any time.
 
+use super::super::{progress, radiosity, with_threads};
 use super::snapshot::{Snapshot, Stage};
-use crate::{progress, radiosity, with_threads};
 use anyhow::{Context, Result};
 use glam::Vec3;
 use serde::Serialize;
@@ -14,13 +14,19 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 use strahl::method::{
-    AccelKind, Cancel, Method, ProgressListener, Shading, SolverKind, SurfaceGather, World,
+    AccelKind, Cancel, Method, ProgressListener, RoundSolution, Shading, SolverKind, SurfaceGather,
+    World,
 };
 use strahl::report::Report;
 use strahl::scene::{MoveError, Scene};
 
 /// How much larger the preview's error threshold is than the final solve's.
-const PREVIEW_COARSER: f64 = 8.0;
+const PREVIEW_COARSER: f64 = 16.0;
+
+/// The least time between two solutions shown from rounds of a solve under way: a round
+/// sooner after the last one shown is not shown (each costs the page a download and a
+/// redraw, on the cores the solve runs on).
+const ROUND_INTERVAL: Duration = Duration::from_millis(250);
 
 /// What the solver is doing, for `/api/status`.
 #[derive(Clone, Debug, Default, Serialize)]
@@ -51,8 +57,12 @@ pub struct Status {
 struct State {
     /// The scene with every move so far.
     scene: Scene,
-    /// The latest solution.
+    /// The latest solution, or solution between rounds.
     snapshot: Option<Arc<Snapshot>>,
+    /// The latest whole solution (what picks read).
+    readable: Option<Arc<Snapshot>>,
+    /// When a solution was last shown.
+    shown_at: Instant,
     /// Stops the running solve.
     cancel: Arc<Cancel>,
     /// When the last move came.
@@ -102,6 +112,8 @@ impl Solving {
             state: Mutex::new(State {
                 scene,
                 snapshot: None,
+                readable: None,
+                shown_at: Instant::now(),
                 cancel: Arc::new(Cancel::new()),
                 moved_at: None,
                 started_moves: None,
@@ -119,9 +131,46 @@ impl Solving {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// The latest solution, if any.
+    /// The latest solution (or solution between rounds), if any.
     pub fn snapshot(&self) -> Option<Arc<Snapshot>> {
         self.lock().snapshot.clone()
+    }
+
+    /// The latest whole solution, if any.
+    pub fn readable(&self) -> Option<Arc<Snapshot>> {
+        self.lock().readable.clone()
+    }
+
+    /// Shows `snapshot` (made as version `version` of `stage` after `moves` moves), unless
+    /// a move came since.
+    fn publish(&self, snapshot: Snapshot, version: u64, stage: Stage, moves: u64) {
+        let mut state = self.lock();
+        if state.status.moves != moves {
+            return;
+        }
+        let since_move = state.moved_at.map(|t| t.elapsed().as_secs_f64());
+        let status = &mut state.status;
+        status.version = version;
+        status.stage = Some(stage);
+        status.solved_moves = moves;
+        status.error = None;
+        match stage {
+            Stage::Round => {}
+            Stage::Preview => status.preview_seconds = since_move,
+            Stage::Final => status.final_seconds = since_move,
+        }
+        let snapshot = Arc::new(snapshot);
+        if snapshot.readable() {
+            state.readable = Some(Arc::clone(&snapshot));
+        }
+        state.snapshot = Some(snapshot);
+        state.shown_at = Instant::now();
+        self.news.notify_all();
+    }
+
+    /// The next version to show.
+    fn next_version(&self) -> u64 {
+        self.lock().status.version + 1
     }
 
     /// The status now, or — when the latest solution is `version` and nothing changes —
@@ -187,6 +236,9 @@ impl Solving {
                 state.cancel = Arc::new(Cancel::new());
                 state.started_moves = Some(state.status.moves);
                 state.status.solving = true;
+                // The first round shown comes an interval after the solve starts: a quick
+                // solve shows its preview first.
+                state.shown_at = Instant::now();
                 (
                     state.scene.clone(),
                     state.status.moves,
@@ -230,6 +282,8 @@ impl Solving {
             let observer = Observer {
                 solving: self,
                 bar: &bar,
+                scene: &world.scene,
+                moves,
             };
             let outcome = with_threads(self.threads, || {
                 strahl::method::run(&world, &method, &observer, cancel)
@@ -252,30 +306,22 @@ impl Solving {
                 )?;
             }
             let report = Report::new(&name, measured);
-            let version = self.lock().status.version + 1;
+            let version = self.next_version();
             let snapshot = Snapshot::new(version, moves, stage, solved, &report, self.shading)?;
-            let mut state = self.lock();
-            let since_move = state.moved_at.map(|t| t.elapsed().as_secs_f64());
-            let status = &mut state.status;
-            status.version = version;
-            status.stage = Some(stage);
-            status.solved_moves = moves;
-            status.error = None;
-            match stage {
-                Stage::Preview => status.preview_seconds = since_move,
-                Stage::Final => status.final_seconds = since_move,
-            }
-            state.snapshot = Some(Arc::new(snapshot));
-            self.news.notify_all();
+            self.publish(snapshot, version, stage, moves);
         }
         Ok(())
     }
 }
 
-/// Hands a solve's progress to the status (and the terminal's bar).
+/// Hands a solve's progress to the status (and the terminal's bar), and its solutions
+/// between rounds to the page.
 struct Observer<'a> {
     solving: &'a Solving,
     bar: &'a progress::Bar,
+    /// The scene solved, after `moves` moves.
+    scene: &'a Scene,
+    moves: u64,
 }
 
 impl ProgressListener for Observer<'_> {
@@ -300,5 +346,27 @@ impl ProgressListener for Observer<'_> {
     }
     fn finish(&self) {
         self.bar.finish();
+    }
+    fn wants_rounds(&self) -> bool {
+        true
+    }
+    fn round(&self, solution: &RoundSolution) {
+        if self.solving.lock().shown_at.elapsed() < ROUND_INTERVAL {
+            return;
+        }
+        let version = self.solving.next_version();
+        let made = Snapshot::round(
+            version,
+            self.moves,
+            self.scene,
+            solution,
+            self.solving.shading,
+        );
+        match made {
+            Ok(snapshot) => self
+                .solving
+                .publish(snapshot, version, Stage::Round, self.moves),
+            Err(e) => self.solving.lock().status.error = Some(format!("{e:#}")),
+        }
     }
 }

@@ -204,19 +204,24 @@ const fetchOk = async (url, options) => {
 };
 
 // What is drawn: the latest solution loaded, its GPU buffers and the links.
-const shown = { scene: null, mesh: null, links: null, picked: -1, baseScale: 1, version: 0 };
+const shown = { scene: null, report: null, mesh: null, links: null, picked: -1, baseScale: 1, version: 0 };
 let prog, vao, linkVao, triangleBuffer, lineBuffer, lineCount = 0, linkIndexBuffer, linkCount = 0;
 const control = (id) => document.getElementById(id);
 
 // Loads the latest solution and draws it; resolves to its scene description.
 async function load() {
-  const scene = await fetchOk("/api/scene").then((r) => r.json());
-  const mesh = parseMesh(await fetchOk("/api/mesh").then((r) => r.arrayBuffer()));
-  const links = control("links").checked || params.has("links")
-    ? parseLinks(await fetchOk("/api/links").then((r) => r.arrayBuffer()))
-    : null;
+  const wantLinks = control("links").checked || params.has("links");
+  const [scene, meshBytes, linkBytes] = await Promise.all([
+    fetchOk("/api/scene").then((r) => r.json()),
+    fetchOk("/api/mesh").then((r) => r.arrayBuffer()),
+    wantLinks ? fetchOk("/api/links").then((r) => r.arrayBuffer()) : null,
+  ]);
+  const mesh = parseMesh(meshBytes);
+  const links = linkBytes && parseLinks(linkBytes);
   const first = shown.scene === null;
   Object.assign(shown, { scene, mesh, links, version: scene.version });
+  // Between rounds there is no report: picks read the latest whole solution and its report.
+  if (scene.report) shown.report = scene.report;
   upload();
   if (first) {
     document.getElementById("title").textContent = `strahl view — ${scene.name}`;
@@ -280,7 +285,8 @@ function uploadLinks() {
 function describeSolution() {
   const { scene, mesh, links } = shown;
   const linkText = links ? `; ${linkCount / 2} of ${scene.links[1]} links shown` : "";
-  status.textContent = `${scene.report.solver}, ${scene.stage} solution: ${mesh.triangles} triangles${linkText}; ${scene.summary}`;
+  const what = scene.stage === "round" ? "solving, flat between rounds" : `${scene.report.solver}, ${scene.stage} solution`;
+  status.textContent = `${what}: ${mesh.triangles} triangles${linkText}; ${scene.summary}`;
   status.dataset.version = scene.version;
   status.dataset.stage = scene.stage;
   status.dataset.moves = scene.moves;
@@ -373,6 +379,7 @@ function fillMovable(names) {
 let movedAt = null;
 async function moveBy(name, by) {
   movedAt = performance.now();
+  for (const key of ["first", "round", "preview", "final"]) delete timing.dataset[key];
   timing.textContent = `moving ${name}…`;
   await fetchOk(`/api/move?name=${encodeURIComponent(name)}&by=${by.join(",")}`, { method: "POST" });
 }
@@ -383,7 +390,7 @@ async function pickAt(x, y) {
   const ray = rayThrough(x * dpr, y * dpr);
   const query = `o=${ray.origin.join(",")}&d=${ray.direction.join(",")}`;
   const pick = await fetchOk(`/api/pick?${query}`).then((r) => r.json());
-  reading.textContent = describe(pick, shown.scene.report);
+  reading.textContent = describe(pick, shown.report);
   reading.dataset.lux = pick.hit ? pick.illuminance_lux : "";
   reading.dataset.object = pick.hit ? pick.object : "";
   reading.dataset.point = pick.hit ? pick.point.join(",") : "";
@@ -509,9 +516,10 @@ async function main() {
   await watch(async (scene, st) => {
     if (movedAt !== null && scene.moves === st.moves) {
       const ms = (performance.now() - movedAt).toFixed(0);
-      const key = scene.stage === "final" ? "final" : "preview";
-      timing.dataset[key] = ms;
-      timing.textContent = `after the move: preview drawn in ${timing.dataset.preview ?? "–"} ms, final in ${timing.dataset.final ?? "–"} ms (server ${st.preview_seconds?.toFixed(3) ?? "–"} / ${st.final_seconds?.toFixed(3) ?? "–"} s)`;
+      timing.dataset.first ??= ms;
+      timing.dataset[scene.stage] ??= ms;
+      const at = (key) => timing.dataset[key] ?? "–";
+      timing.textContent = `after the move: first drawn in ${at("first")} ms, preview in ${at("preview")} ms, final in ${at("final")} ms (server ${st.preview_seconds?.toFixed(3) ?? "–"} / ${st.final_seconds?.toFixed(3) ?? "–"} s)`;
     }
     if (scene.stage !== "final" || st.moves !== scene.moves) return false;
     if (asked && movesWanted === null) {
@@ -554,7 +562,7 @@ function drawLegend(legend, scale) {
 // One pick in words, with the report's row for the object hit.
 function describe(pick, report) {
   if (!pick.hit) return "nothing there";
-  const row = report.objects.find((o) => o.name === pick.object);
+  const row = report && report.objects.find((o) => o.name === pick.object);
   const lines = [
     `${pick.object}`,
     `here: ${pick.illuminance_lux.toPrecision(4)} lux, ${pick.luminance_cd_m2.toPrecision(4)} cd/m²`,

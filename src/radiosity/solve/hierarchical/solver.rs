@@ -11,7 +11,7 @@ use super::oracle::{Decision, Limits, decide, decide_light};
 use super::{HierarchicalSettings, RefinePass};
 use crate::choice::Choice;
 use crate::color::Rgb64;
-use crate::measure::peak_resident_bytes;
+use crate::measure::{LitMesh, RoundSolution, peak_resident_bytes};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
@@ -24,6 +24,7 @@ use crate::radiosity::solve::{
 use crate::radiosity::surface::is_textured;
 use crate::radiosity::visibility::Visibility;
 use crate::world::World;
+use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -156,6 +157,9 @@ pub fn solve_hierarchical(
         round.leaves = solver.mesh.leaves().len() as u64;
         round.rays = solver.linker.rays.load(Ordering::Relaxed);
         round.peak_memory_bytes = peak_resident_bytes();
+        if progress.wants_rounds() {
+            progress.round(&solver.round_solution(rounds.len() + 1, &round));
+        }
         rounds.push(round);
         progress.advance(1);
         if cancel.is_requested() {
@@ -262,6 +266,37 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         };
         solver.limits = solver.limits();
         solver
+    }
+
+    /// The solution after round `number` (its statistics `round`): every side of every leaf
+    /// lit flat by its radiosity and irradiance, for an observer.
+    fn round_solution(&self, number: usize, round: &RoundStats) -> RoundSolution {
+        let mut mesh = LitMesh::default();
+        for leaf in self.mesh.leaves() {
+            let patch = self.mesh.patch(leaf);
+            for side in Side::BOTH {
+                let mut corners: Vec<Vec3> = patch.corners().iter().map(|c| c.as_vec3()).collect();
+                if side == Side::Back {
+                    corners.reverse();
+                }
+                let n = node(leaf, side);
+                let radiosity = vec![self.nodes.radiosity[n]; corners.len()];
+                let irradiance = vec![self.nodes.irradiance[n]; corners.len()];
+                mesh.push_polygon(
+                    patch.object,
+                    &corners,
+                    side.normal(patch).as_vec3(),
+                    (&radiosity, &irradiance),
+                );
+            }
+        }
+        RoundSolution {
+            round: number,
+            links: round.links,
+            leaves: round.leaves,
+            change: round.residual,
+            mesh,
+        }
     }
 
     /// Both sides of every root patch, as nodes.
