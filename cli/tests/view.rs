@@ -550,3 +550,48 @@ fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
         "moving the light away: {before} → {after}"
     );
 }
+
+#[test]
+fn the_page_lists_the_sensors_and_draws_the_chosen_range_with_isolines() {
+    // The furnace of the first test (683·4π ≈ 8,583 lux everywhere inside) with a sensor
+    // at its centre, facing down.
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-view-sensors-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("furnace.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0.5, 0.5, 0.5]\nlook_at = [0.5, 0.4, 0.0]\nfov = 90\n\n\
+         [materials.glow]\ndiffuse = 0.5\nemission = 2.0\ntwo_sided = true\n\n\
+         [[objects]]\nname = \"box\"\ntype = \"box\"\nmaterial = \"glow\"\n\
+         min = [0, 0, 0]\nmax = [1, 1, 1]\n\n\
+         [[sensors]]\nname = \"middle\"\nposition = [0.5, 0.5, 0.5]\nnormal = [0, -1, 0]\n",
+    )
+    .unwrap();
+    let viewer = start(&[
+        scene.to_str().unwrap(),
+        "--solver",
+        "matrix",
+        "--mesh-size",
+        "levels:2",
+    ]);
+    solved(&viewer.address);
+    let url = format!(
+        "http://{}/?still&false-color&range=0,10000&isolines=4",
+        viewer.address
+    );
+    let dom = headless(&url, &dir.join("profile-dom"), &["--dump-dom"]);
+    let dom = String::from_utf8_lossy(&dom.stdout);
+    // The legend runs over the range asked for, one label per level.
+    let legend = dom.split("id=\"legend\"").nth(1).expect("a legend");
+    let labels: Vec<&str> = legend
+        .split("<div>")
+        .filter_map(|part| part.split("</div>").next())
+        .filter(|text| text.parse::<f64>().is_ok())
+        .collect();
+    assert_eq!(labels, ["10000", "7500", "5000", "2500", "0"], "{dom}");
+    // The sensor's reading: 683·4π lux.
+    let sensors = dom.split("id=\"sensors\"").nth(1).expect("the sensors");
+    assert!(sensors.contains("data-count=\"1\""), "{dom}");
+    assert!(sensors.contains("middle: 8583 lux"), "{dom}");
+}

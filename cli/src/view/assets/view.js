@@ -5,7 +5,8 @@
 // the illuminance on the scale `strahl render --false-color` uses.
 //
 // The address may ask for a view and for actions once the first final solution is drawn:
-// `?false-color`, `?wireframe`, `?links` (all links) or `?links=picked` start with those on;
+// `?false-color` (with `&range=MIN,MAX` in lux and `&isolines=N`), `?wireframe`, `?links`
+// (all links) or `?links=picked` start with those on;
 // `?move=NAME:X,Y,Z` moves an object or light by the offset; `?pick=X,Y` then reads the
 // surface at that point of the final solution (X, Y: fractions of the view's width and
 // height from its top left corner); `?orbit=N` draws N frames
@@ -32,6 +33,7 @@ void main() {
   colour = radiance * scale;
   illuminance = lux;
   gl_Position = viewProjection * vec4(position, 1.0);
+  gl_PointSize = 9.0;
 }`;
 
 const FRAGMENT = `#version 300 es
@@ -42,6 +44,7 @@ uniform bool lines;
 uniform vec4 lineColour;
 uniform bool falseColour;
 uniform vec2 range;
+uniform int isolines;
 uniform float stopAt[6];
 uniform vec3 stopColour[6];
 out vec4 result;
@@ -62,7 +65,15 @@ void main() {
   if (lines) {
     result = lineColour;
   } else if (falseColour) {
-    result = vec4(scaleColour((illuminance - range.x) / (range.y - range.x)), 1.0);
+    float t = (illuminance - range.x) / (range.y - range.x);
+    vec3 c = scaleColour(t);
+    if (isolines > 0) {
+      // A dark line where the illuminance crosses one of the levels, a pixel or so wide.
+      float level = t * float(isolines);
+      float near = abs(fract(level + 0.5) - 0.5) / max(fwidth(level), 1e-6);
+      if (level > 0.5 && level < float(isolines) + 0.5) c *= mix(0.15, 1.0, smoothstep(0.5, 1.5, near));
+    }
+    result = vec4(c, 1.0);
   } else {
     // Reinhard per channel, then the sRGB curve.
     result = vec4(srgb(colour / (1.0 + colour)), 1.0);
@@ -206,6 +217,7 @@ const fetchOk = async (url, options) => {
 // What is drawn: the latest solution loaded, its GPU buffers and the links.
 const shown = { scene: null, report: null, mesh: null, links: null, picked: -1, baseScale: 1, version: 0 };
 let prog, vao, linkVao, triangleBuffer, lineBuffer, lineCount = 0, linkIndexBuffer, linkCount = 0;
+let sensorVao, sensorCount = 0;
 const control = (id) => document.getElementById(id);
 
 // Loads the latest solution and draws it; resolves to its scene description.
@@ -229,7 +241,8 @@ async function load() {
     fillMovable(scene.movable);
     shown.baseScale = autoScale(mesh);
   }
-  drawLegend(control("legend"), scene.false_color);
+  drawLegend(control("legend"), scene.false_color.stops, falseRange(), isolineCount());
+  listSensors(shown.report);
   describeSolution();
   draw();
   return scene;
@@ -257,6 +270,21 @@ function upload() {
   gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, lineIndices, gl.STATIC_DRAW);
   lineCount = lineIndices.length;
   uploadLinks();
+  uploadSensors();
+}
+
+// The sensors of the latest report, as points.
+function uploadSensors() {
+  const sensors = (shown.report && shown.report.sensors) || [];
+  sensorCount = sensors.length;
+  if (sensorCount === 0) return;
+  gl.bindVertexArray(sensorVao);
+  const b = gl.createBuffer();
+  gl.bindBuffer(gl.ARRAY_BUFFER, b);
+  gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(sensors.flatMap((r) => r.position)), gl.STATIC_DRAW);
+  const at = gl.getAttribLocation(prog, "position");
+  gl.enableVertexAttribArray(at);
+  gl.vertexAttribPointer(at, 3, gl.FLOAT, false, 0, 0);
 }
 
 // The links to draw: all, or those of the object picked last.
@@ -294,6 +322,22 @@ function describeSolution() {
 
 function uniform(name) { return gl.getUniformLocation(prog, name); }
 
+// The false-colour range (lux): what the two fields say, else the solution's own.
+function falseRange() {
+  const [low, high] = shown.scene.false_color.range;
+  const typed = (id, fallback) => {
+    const v = control(id).value.trim();
+    return v === "" || !Number.isFinite(Number(v)) ? fallback : Number(v);
+  };
+  const range = [typed("range-min", low), typed("range-max", high)];
+  return range[1] > range[0] ? range : [low, high];
+}
+
+// Isolines asked for (0–20).
+function isolineCount() {
+  return Math.max(0, Math.min(20, Math.round(Number(control("isolines").value) || 0)));
+}
+
 function draw() {
   if (!shown.mesh) return;
   const scale = shown.scene.false_color;
@@ -315,7 +359,9 @@ function draw() {
   gl.uniform1f(uniform("scale"), shown.baseScale * Math.pow(2, Number(control("exposure").value)));
   const falseColour = control("false-colour").checked;
   gl.uniform1i(uniform("falseColour"), falseColour ? 1 : 0);
-  gl.uniform2f(uniform("range"), scale.range[0], scale.range[1]);
+  const range = falseRange();
+  gl.uniform2f(uniform("range"), range[0], range[1]);
+  gl.uniform1i(uniform("isolines"), isolineCount());
   gl.uniform1fv(uniform("stopAt"), scale.stops.map((s) => s[0]));
   gl.uniform3fv(uniform("stopColour"), scale.stops.flatMap((s) => s[1].map((c) => c / 255)));
   control("legend").hidden = !falseColour;
@@ -330,6 +376,13 @@ function draw() {
     gl.uniform4f(uniform("lineColour"), 0, 0, 0, 1);
     gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, lineBuffer);
     gl.drawElements(gl.LINES, lineCount, gl.UNSIGNED_INT, 0);
+  }
+  if (sensorCount > 0) {
+    gl.uniform4f(uniform("lineColour"), 0.1, 0.9, 1, 1);
+    gl.disable(gl.DEPTH_TEST);
+    gl.bindVertexArray(sensorVao);
+    gl.drawArrays(gl.POINTS, 0, sensorCount);
+    gl.enable(gl.DEPTH_TEST);
   }
   if (control("links").checked && linkCount > 0) {
     // Faint lines, so that where many links run the picture shows how many.
@@ -429,6 +482,7 @@ async function main() {
   prog = program();
   vao = gl.createVertexArray();
   linkVao = gl.createVertexArray();
+  sensorVao = gl.createVertexArray();
   [triangleBuffer, lineBuffer, linkIndexBuffer] = [gl.createBuffer(), gl.createBuffer(), gl.createBuffer()];
   control("false-colour").checked = params.has("false-color");
   control("wireframe").checked = params.has("wireframe");
@@ -437,6 +491,17 @@ async function main() {
 
   for (const id of ["wireframe", "exposure", "false-colour"]) {
     control(id).addEventListener(id === "exposure" ? "input" : "change", redraw);
+  }
+  const [rangeMin, rangeMax] = (params.get("range") || "").split(",");
+  control("range-min").value = rangeMin ?? "";
+  control("range-max").value = rangeMax ?? "";
+  control("isolines").value = params.get("isolines") ?? "0";
+  for (const id of ["range-min", "range-max", "isolines"]) {
+    control(id).addEventListener("input", () => {
+      if (!shown.scene) return;
+      drawLegend(control("legend"), shown.scene.false_color.stops, falseRange(), isolineCount());
+      redraw();
+    });
   }
   for (const id of ["links", "links-picked"]) {
     control(id).addEventListener("change", async () => {
@@ -540,23 +605,34 @@ async function main() {
 }
 
 // The legend of the false-colour scale: the unit, a bar from the scale's stops (high end up)
-// and the values at five levels.
-function drawLegend(legend, scale) {
+// and the values at its levels (the isolines', or five).
+function drawLegend(legend, stops, range, isolines) {
   const css = (c) => `rgb(${c[0]}, ${c[1]}, ${c[2]})`;
   const bar = document.createElement("div");
   bar.className = "bar";
-  bar.style.background = `linear-gradient(to top, ${scale.stops.map((s) => `${css(s[1])} ${100 * s[0]}%`).join(", ")})`;
+  bar.style.background = `linear-gradient(to top, ${stops.map((s) => `${css(s[1])} ${100 * s[0]}%`).join(", ")})`;
   const labels = document.createElement("div");
   labels.className = "labels";
-  const [low, high] = scale.range;
-  for (let k = 4; k >= 0; k--) {
+  const [low, high] = range;
+  const steps = isolines > 0 ? isolines : 4;
+  for (let k = steps; k >= 0; k--) {
     const label = document.createElement("div");
-    label.textContent = String(+(low + ((high - low) * k) / 4).toPrecision(4));
+    label.textContent = String(+(low + ((high - low) * k) / steps).toPrecision(4));
     labels.appendChild(label);
   }
   const unit = document.createElement("div");
   unit.textContent = "lux";
   legend.replaceChildren(unit, bar, labels);
+}
+
+// The sensors' readings from the report, one line each.
+function listSensors(report) {
+  const list = control("sensors");
+  const sensors = (report && report.sensors) || [];
+  list.textContent = sensors
+    .map((r) => `${r.name}: ${r.illuminance_lux.toPrecision(4)} lux (direct ${r.direct_illuminance_lux.toPrecision(4)}, indirect ${r.indirect_illuminance_lux.toPrecision(4)})`)
+    .join("\n");
+  list.dataset.count = sensors.length;
 }
 
 // One pick in words, with the report's row for the object hit.
