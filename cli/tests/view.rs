@@ -368,6 +368,65 @@ fn the_links_are_served_with_the_objects_at_their_ends() {
 }
 
 #[test]
+fn a_view_is_rendered_by_path_tracing_pass_after_pass_and_a_move_stops_it() {
+    let viewer = start(&["cornell"]);
+    let address = viewer.address.as_str();
+    solved(address);
+    assert_eq!(get(address, "/api/render.png").0, 404);
+    for query in [
+        "o=0.278,0.273,-0.8&t=0.278,0.273,-0.8&fov=40&size=64,48",
+        "o=0.278,0.273,-0.8&t=0.278,0.273,0.2&fov=0&size=64,48",
+        "o=0.278,0.273,-0.8&t=0.278,0.273,0.2&fov=40&size=0,48",
+        "o=0.278,0.273,-0.8&t=0.278,0.273,0.2&fov=40&size=100000,100000",
+        "o=0.278,0.273,-0.8&t=0.278,0.273,0.2&fov=40",
+        "o=0.278,0.273,-0.8&t=0.278,0.273,0.2&fov=40&size=64,48&spp=3",
+    ] {
+        let (status, _, body) = request(address, "POST", &format!("/api/render?{query}"));
+        assert_eq!(status, 400, "{query}: {}", String::from_utf8_lossy(&body));
+    }
+    // The scene camera's view, 64 × 48 pixels.
+    let query = "o=0.278,0.273,-0.8&t=0.278,0.273,0.2&fov=39.3&size=64,48";
+    let (status, _, body) = request(address, "POST", &format!("/api/render?{query}"));
+    assert_eq!(status, 202, "{}", String::from_utf8_lossy(&body));
+    assert_eq!(json(&body)["render"], 1);
+    let started = Instant::now();
+    let status = loop {
+        let (_, _, body) = get(address, "/api/render");
+        let status = json(&body);
+        assert!(status["error"].is_null(), "{status}");
+        if status["passes"].as_u64().unwrap() >= 2 {
+            break status;
+        }
+        assert!(started.elapsed() < Duration::from_secs(60), "{status}");
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    assert_eq!(
+        status["samples_per_pixel"].as_u64(),
+        status["passes"].as_u64().map(|p| 4 * p)
+    );
+    let (code, head, png) = get(address, "/api/render.png");
+    assert_eq!(code, 200);
+    assert!(head.contains("image/png"));
+    let file = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-view-render-{}.png", std::process::id()));
+    std::fs::write(&file, &png).unwrap();
+    let film = strahl::image::load(&file).unwrap();
+    assert_eq!((film.width(), film.height()), (64, 48));
+    // The red wall on the left, the green one on the right.
+    let (left, right) = (film.get(13, 24), film.get(51, 24));
+    assert!(left.r > 2.0 * left.g, "left {left:?}");
+    assert!(right.g > 2.0 * right.r, "right {right:?}");
+    // A move makes the view stale: the render stops.
+    let (status, _, _) = request(address, "POST", "/api/move?name=light&by=0,0,0.05");
+    assert_eq!(status, 202);
+    let started = Instant::now();
+    while json(&get(address, "/api/render").2)["running"] == true {
+        assert!(started.elapsed() < Duration::from_secs(30));
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+#[test]
 fn ctrl_c_stops_the_server_within_a_second() {
     let mut viewer = start(&["cornell"]);
     assert_eq!(get(&viewer.address, "/").0, 200);

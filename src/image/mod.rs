@@ -16,5 +16,5 @@ pub use false_color::{
     FalseColor, MAX_ISOLINES, STOPS, false_color, nice_ceiling, save_false_color, scale_colour,
 };
 pub use glyphs::Canvas;
-pub use output::{FileFormat, load, save};
+pub use output::{FileFormat, encode_png, load, save};
 pub use tonemap::{REINHARD_KEY, ToneMap, ToneMapping};

@@ -67,13 +67,42 @@ pub fn load(path: &Path) -> Result<Film, ImageError> {
 }
 
 fn save_png(film: &Film, path: &Path, tone_mapping: &ToneMapping) -> Result<(), ImageError> {
-    let bytes: Vec<u8> = tone_mapping
+    write_png(
+        &srgb_bytes(film, tone_mapping),
+        film.width(),
+        film.height(),
+        path,
+    )
+}
+
+/// `film` tone-mapped by `tone_mapping` as 8-bit sRGB, three bytes per pixel, rows from the
+/// top.
+fn srgb_bytes(film: &Film, tone_mapping: &ToneMapping) -> Vec<u8> {
+    tone_mapping
         .apply(film)
         .into_iter()
         .flat_map(Rgb::to_array)
         .map(|v| (linear_to_srgb(v) * 255.0).round() as u8)
-        .collect();
-    write_png(&bytes, film.width(), film.height(), path)
+        .collect()
+}
+
+/// `film` as the bytes of a PNG file, tone-mapped by `tone_mapping` (what [`save`] writes
+/// to a `.png`), for a program that sends it rather than stores it.
+pub fn encode_png(film: &Film, tone_mapping: &ToneMapping) -> Result<Vec<u8>, ImageError> {
+    let mut out = Vec::new();
+    ::image::write_buffer_with_format(
+        &mut std::io::Cursor::new(&mut out),
+        &srgb_bytes(film, tone_mapping),
+        film.width(),
+        film.height(),
+        ::image::ExtendedColorType::Rgb8,
+        ::image::ImageFormat::Png,
+    )
+    .map_err(|source| ImageError::Png {
+        path: "(in memory)".into(),
+        source,
+    })?;
+    Ok(out)
 }
 
 /// Writes `bytes` (8-bit sRGB, three per pixel, rows from the top) as a PNG of `width ×
@@ -267,6 +296,15 @@ mod tests {
                 assert!(error <= 0.5 / 255.0 + 1e-6, "{a:?} came back as {b:?}");
             }
         }
+    }
+
+    #[test]
+    fn a_png_in_memory_is_the_file_save_writes() {
+        let file = TempFile::new("png");
+        let film = test_film();
+        save(&film, &file.0, &linear(-5.0)).expect("write PNG");
+        let bytes = encode_png(&film, &linear(-5.0)).expect("encode PNG");
+        assert_eq!(bytes, std::fs::read(&file.0).unwrap());
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! machine — the mesh lit by the solution (orbit, pan, zoom, wireframe, exposure) and the
 //! illuminance anywhere on it, with the object's report row, by a click.
 
+mod rendering;
 mod server;
 mod snapshot;
 mod solving;
@@ -12,6 +13,7 @@ use super::progress;
 use super::radiosity::{self, RadiosityArgs, SurfaceGatherArgs, method_error};
 use anyhow::{Context, Result};
 use clap::Args;
+use rendering::Rendering;
 use solving::Solving;
 use std::io::Write;
 use std::net::IpAddr;
@@ -76,6 +78,12 @@ impl ViewArgs {
     }
 }
 
+/// The viewer's two workers: the solver and the renderer of views.
+pub struct Viewer {
+    solving: Solving,
+    rendering: Rendering,
+}
+
 /// Requests served at once (a page holds one while it waits for the next solution).
 const WORKERS: usize = 8;
 
@@ -101,25 +109,29 @@ pub fn run(args: &ViewArgs) -> Result<()> {
         .server_addr()
         .to_ip()
         .context("the server has no IP address")?;
-    let solving = Solving::new(
-        scene,
-        method,
-        args.threads,
-        args.shading,
-        args.quiet,
-        args.radiosity.export.clone(),
-    );
+    let viewer = Viewer {
+        solving: Solving::new(
+            scene,
+            method,
+            args.threads,
+            args.shading,
+            args.quiet,
+            args.radiosity.export.clone(),
+        ),
+        rendering: Rendering::new(args.threads),
+    };
     println!("strahl view: http://{address}/ (Ctrl-C stops)");
     std::io::stdout().flush()?;
     let cancel = progress::cancel_flag();
     std::thread::scope(|scope| {
-        scope.spawn(|| solving.run());
+        scope.spawn(|| viewer.solving.run());
+        scope.spawn(|| viewer.rendering.run());
         let workers: Vec<_> = (0..WORKERS)
             .map(|_| {
                 scope.spawn(|| {
                     while !cancel.is_requested() {
                         match server.recv_timeout(POLL) {
-                            Ok(Some(request)) => server::answer(request, &solving),
+                            Ok(Some(request)) => server::answer(request, &viewer),
                             Ok(None) => {}
                             Err(e) => {
                                 eprintln!("warning: a request could not be read: {e}");
@@ -132,7 +144,8 @@ pub fn run(args: &ViewArgs) -> Result<()> {
         for worker in workers {
             let _ = worker.join();
         }
-        solving.shut_down();
+        viewer.solving.shut_down();
+        viewer.rendering.shut_down();
     });
     Ok(())
 }

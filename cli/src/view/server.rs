@@ -1,12 +1,13 @@
 //! What `strahl view` answers: its page and script, the solver's status, the latest
-//! solution (scene, lit mesh, links), readings along rays, and moves. Only these paths
-//! exist; nothing is read from disk on a request.
+//! solution (scene, lit mesh, links), readings along rays, moves, and renders of a view.
+//! Only these paths exist; nothing is read from disk on a request.
 
+use super::Viewer;
 use super::snapshot::Snapshot;
-use super::solving::Solving;
 use std::io::Cursor;
 use std::time::Duration;
 use strahl::method::Ray;
+use strahl::scene::Camera;
 
 /// The page.
 const INDEX: &str = include_str!("assets/index.html");
@@ -40,7 +41,7 @@ fn json(value: &impl serde::Serialize) -> Answer {
 }
 
 /// The answer to `method` on `url`.
-pub fn respond(solving: &Solving, method: &tiny_http::Method, url: &str) -> Answer {
+pub fn respond(viewer: &Viewer, method: &tiny_http::Method, url: &str) -> Answer {
     if url.len() > MAX_URL {
         return text(414, "request too long\n");
     }
@@ -50,15 +51,20 @@ pub fn respond(solving: &Solving, method: &tiny_http::Method, url: &str) -> Answ
         Err(problem) => return text(400, &format!("{problem}\n")),
     };
     match (method, path) {
-        (tiny_http::Method::Post, "/api/move") => move_named(solving, &params),
+        (tiny_http::Method::Post, "/api/move") => move_named(viewer, &params),
         (_, "/api/move") => text(405, "a move is a POST\n"),
-        (tiny_http::Method::Get | tiny_http::Method::Head, _) => get(solving, path, &params),
-        _ => text(405, "only GET is served (and POST to /api/move)\n"),
+        (tiny_http::Method::Post, "/api/render") => render(viewer, &params),
+        (tiny_http::Method::Get | tiny_http::Method::Head, _) => get(viewer, path, &params),
+        _ => text(
+            405,
+            "only GET is served (and POST to /api/move and /api/render)\n",
+        ),
     }
 }
 
 /// The answer to a GET of `path` with `params`.
-fn get(solving: &Solving, path: &str, params: &[(String, String)]) -> Answer {
+fn get(viewer: &Viewer, path: &str, params: &[(String, String)]) -> Answer {
+    let solving = &viewer.solving;
     let solution = |serve: fn(&Snapshot) -> Answer| match solving.snapshot() {
         Some(snapshot) => serve(&snapshot),
         None => text(
@@ -87,6 +93,11 @@ fn get(solving: &Solving, path: &str, params: &[(String, String)]) -> Answer {
         "/api/scene" => solution(|s| (200, "application/json", s.scene.clone())),
         "/api/mesh" => solution(|s| (200, "application/octet-stream", s.mesh.clone())),
         "/api/links" => solution(|s| (200, "application/octet-stream", s.links.clone())),
+        "/api/render" => json(&viewer.rendering.status()),
+        "/api/render.png" => match viewer.rendering.png() {
+            Some(png) => (200, "image/png", png.to_vec()),
+            None => text(404, "no image yet: POST /api/render starts one\n"),
+        },
         "/api/pick" => match (pick_ray(params), solving.readable()) {
             (Err(problem), _) => text(400, &format!("{problem}\n")),
             (Ok(_), None) => text(503, "no solution yet\n"),
@@ -98,7 +109,7 @@ fn get(solving: &Solving, path: &str, params: &[(String, String)]) -> Answer {
 
 /// `POST /api/move?name=NAME&by=X,Y,Z`: moves the object or light `NAME` by the offset
 /// (scene units) and starts solving anew.
-fn move_named(solving: &Solving, params: &[(String, String)]) -> Answer {
+fn move_named(viewer: &Viewer, params: &[(String, String)]) -> Answer {
     let asked = known(params, &["name", "by"]).and_then(|()| {
         let name = value(params, "name").ok_or("a move needs name=NAME (an object or light)")?;
         let by = value(params, "by").ok_or("a move needs by=X,Y,Z (scene units)")?;
@@ -107,13 +118,63 @@ fn move_named(solving: &Solving, params: &[(String, String)]) -> Answer {
     });
     match asked {
         Err(problem) => text(400, &format!("{problem}\n")),
-        Ok((name, by)) => match solving.move_named(name, by) {
+        Ok((name, by)) => match viewer.solving.move_named(name, by) {
             Ok(moves) => {
+                // The view rendered before the move is no longer the scene.
+                viewer.rendering.stop();
                 let (status, kind, body) = json(&serde_json::json!({ "moves": moves }));
                 (if status == 200 { 202 } else { status }, kind, body)
             }
             Err(e) => text(400, &format!("{e}\n")),
         },
+    }
+}
+
+/// `POST /api/render?o=X,Y,Z&t=X,Y,Z&fov=DEGREES&size=W,H`: renders the scene as it is now
+/// by path tracing, seen from `o` looking at `t` (y up) with a vertical field of view of
+/// `fov` degrees, `W × H` pixels; the image refines pass after pass (`GET /api/render`,
+/// `GET /api/render.png`).
+fn render(viewer: &Viewer, params: &[(String, String)]) -> Answer {
+    let asked = known(params, &["o", "t", "fov", "size"]).and_then(|()| {
+        let get = |key: &str| value(params, key).ok_or_else(|| format!("a render needs {key}="));
+        let point = |key: &str| {
+            let v = get(key)?;
+            vector(v).ok_or_else(|| format!("{key}: '{v}' is not X,Y,Z"))
+        };
+        let (position, look_at) = (point("o")?, point("t")?);
+        let fov = get("fov")?;
+        let fov_degrees = fov
+            .parse::<f32>()
+            .ok()
+            .filter(|f| (1.0..=170.0).contains(f))
+            .ok_or_else(|| format!("fov: '{fov}' is not 1 to 170 degrees"))?;
+        let size = get("size")?;
+        let (width, height) = size
+            .split_once(',')
+            .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)))
+            .ok_or_else(|| format!("size: '{size}' is not W,H (pixels)"))?;
+        if (look_at - position).length() < 1e-6 {
+            return Err("o and t must differ".to_string());
+        }
+        Ok(Camera {
+            position,
+            look_at,
+            up: glam::Vec3::Y,
+            fov_degrees,
+            width,
+            height,
+        })
+    });
+    let started = asked.and_then(|camera| {
+        let scene = viewer.solving.scene();
+        viewer.rendering.start(scene, camera)
+    });
+    match started {
+        Ok(render) => {
+            let (status, kind, body) = json(&serde_json::json!({ "render": render }));
+            (if status == 200 { 202 } else { status }, kind, body)
+        }
+        Err(problem) => text(400, &format!("{problem}\n")),
     }
 }
 
@@ -181,8 +242,8 @@ fn vector(text: &str) -> Option<glam::Vec3> {
 }
 
 /// Answers one request and sends the answer; a client gone before it is sent is no error.
-pub fn answer(request: tiny_http::Request, solving: &Solving) {
-    let (status, content_type, body) = respond(solving, request.method(), request.url());
+pub fn answer(request: tiny_http::Request, viewer: &Viewer) {
+    let (status, content_type, body) = respond(viewer, request.method(), request.url());
     let header = |name: &str, value: &str| {
         tiny_http::Header::from_bytes(name.as_bytes(), value.as_bytes()).expect("a valid header")
     };

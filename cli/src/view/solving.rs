@@ -136,6 +136,11 @@ impl Solving {
         self.lock().snapshot.clone()
     }
 
+    /// The scene as it is now, every move included.
+    pub fn scene(&self) -> Scene {
+        self.lock().scene.clone()
+    }
+
     /// The latest whole solution, if any.
     pub fn readable(&self) -> Option<Arc<Snapshot>> {
         self.lock().readable.clone()

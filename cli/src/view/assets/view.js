@@ -474,6 +474,41 @@ function orbit(frames) {
   requestAnimationFrame(step);
 }
 
+// Renders the current view by path tracing and shows the image over the solution as it
+// refines, until closed (or a move makes it stale).
+let rendering = 0;
+async function renderView() {
+  const image = control("rendered");
+  const e = eye();
+  const size = [canvas.width, canvas.height];
+  const fov = (view.fov * 180) / Math.PI;
+  const query = `o=${e.join(",")}&t=${view.target.join(",")}&fov=${fov}&size=${size.join(",")}`;
+  const { render } = await fetchOk(`/api/render?${query}`, { method: "POST" }).then((r) => r.json());
+  rendering = render;
+  image.hidden = false;
+  control("render-close").hidden = false;
+  let passesShown = 0;
+  while (rendering === render) {
+    const st = await fetchOk("/api/render").then((r) => r.json());
+    if (st.render !== render) return;
+    if (st.error) { timing.textContent = `render: ${st.error}`; return; }
+    if (st.passes > passesShown) {
+      passesShown = st.passes;
+      image.src = `/api/render.png?pass=${passesShown}`;
+      image.dataset.passes = passesShown;
+      timing.textContent = `path tracing: ${st.samples_per_pixel} paths per pixel${st.running ? "…" : ""}`;
+    }
+    if (!st.running) return;
+    await new Promise((done) => setTimeout(done, 300));
+  }
+}
+
+function closeRender() {
+  rendering = 0;
+  control("rendered").hidden = true;
+  control("render-close").hidden = true;
+}
+
 async function main() {
   if (!gl) {
     status.textContent = "this browser has no WebGL2";
@@ -514,7 +549,12 @@ async function main() {
     });
   }
   window.addEventListener("resize", redraw);
+  control("render").addEventListener("click", () => {
+    renderView().catch((e) => { timing.textContent = `render: ${e.message}`; });
+  });
+  control("render-close").addEventListener("click", closeRender);
   control("move").addEventListener("click", () => {
+    closeRender();
     const by = ["move-x", "move-y", "move-z"].map((id) => Number(control(id).value) || 0);
     moveBy(control("move-what").value, by).catch((e) => { timing.textContent = `error: ${e.message}`; });
   });

@@ -1,0 +1,202 @@
+//! Renders the viewer's current view by path tracing, on a thread of its own: pass after
+//! pass, each of [`SAMPLES_PER_PASS`] paths per pixel with a seed of its own, the running mean
+//! of the passes served as a PNG after each, so that the page shows the image as it refines.
+//! A new render (or a move) stops the one under way.
+
+use super::super::with_threads;
+use anyhow::{Context, Result};
+use serde::Serialize;
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use strahl::image::{ToneMap, ToneMapping, encode_png};
+use strahl::method::{
+    AccelKind, Cancel, Film, ImageSize, Method, NoProgress, PathTraceSettings, World,
+};
+use strahl::scene::{Camera, Scene};
+
+/// Paths per pixel of one pass.
+pub const SAMPLES_PER_PASS: u32 = 4;
+
+/// Passes of a render: it stops at `SAMPLES_PER_PASS × MAX_PASSES` paths per pixel.
+pub const MAX_PASSES: u32 = 256;
+
+/// Most pixels a render may have (a 4K view).
+pub const MAX_PIXELS: u32 = 3840 * 2160;
+
+/// What the renderer is doing, for `GET /api/render`.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct RenderStatus {
+    /// Counts the renders asked for (0: none yet).
+    pub render: u64,
+    /// Passes in the image served, and paths per pixel.
+    pub passes: u32,
+    pub samples_per_pixel: u32,
+    /// Whether passes are being added.
+    pub running: bool,
+    /// Why the render failed, if it did.
+    pub error: Option<String>,
+}
+
+/// A render asked for: the scene seen through `camera` at its size.
+struct Job {
+    scene: Scene,
+    camera: Camera,
+}
+
+struct State {
+    job: Option<Job>,
+    /// The mean of the passes so far, as a PNG.
+    png: Option<Arc<Vec<u8>>>,
+    cancel: Arc<Cancel>,
+    status: RenderStatus,
+    shutdown: bool,
+}
+
+/// The renderer and its latest image.
+pub struct Rendering {
+    threads: usize,
+    state: Mutex<State>,
+    work: Condvar,
+}
+
+impl Rendering {
+    /// A renderer on `threads` threads (0: one per core).
+    pub fn new(threads: usize) -> Self {
+        Rendering {
+            threads,
+            state: Mutex::new(State {
+                job: None,
+                png: None,
+                cancel: Arc::new(Cancel::new()),
+                status: RenderStatus::default(),
+                shutdown: false,
+            }),
+            work: Condvar::new(),
+        }
+    }
+
+    fn lock(&self) -> MutexGuard<'_, State> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Starts rendering `scene` through `camera` (`width × height` pixels), stopping the
+    /// render under way. Returns the render's number.
+    pub fn start(&self, mut scene: Scene, camera: Camera) -> Result<u64, String> {
+        let pixels = u64::from(camera.width) * u64::from(camera.height);
+        if camera.width == 0 || camera.height == 0 || pixels > u64::from(MAX_PIXELS) {
+            return Err(format!(
+                "a render is 1 to {MAX_PIXELS} pixels ({} × {} asked for)",
+                camera.width, camera.height
+            ));
+        }
+        scene.camera = camera.clone();
+        let mut state = self.lock();
+        state.cancel.request();
+        state.job = Some(Job { scene, camera });
+        state.png = None;
+        state.status = RenderStatus {
+            render: state.status.render + 1,
+            running: true,
+            ..RenderStatus::default()
+        };
+        self.work.notify_all();
+        Ok(state.status.render)
+    }
+
+    /// Stops the render under way (a move makes its image stale).
+    pub fn stop(&self) {
+        let mut state = self.lock();
+        state.cancel.request();
+        state.job = None;
+    }
+
+    /// The status now.
+    pub fn status(&self) -> RenderStatus {
+        self.lock().status.clone()
+    }
+
+    /// The latest image, a PNG.
+    pub fn png(&self) -> Option<Arc<Vec<u8>>> {
+        self.lock().png.clone()
+    }
+
+    /// Stops the render under way and the renderer's thread.
+    pub fn shut_down(&self) {
+        let mut state = self.lock();
+        state.shutdown = true;
+        state.cancel.request();
+        self.work.notify_all();
+    }
+
+    /// The renderer's thread: renders each job asked for until [`Rendering::shut_down`].
+    pub fn run(&self) {
+        loop {
+            let (job, cancel, render) = {
+                let mut state = self.lock();
+                while !state.shutdown && state.job.is_none() {
+                    state = self.work.wait(state).unwrap_or_else(|e| e.into_inner());
+                }
+                let Some(job) = state.job.take().filter(|_| !state.shutdown) else {
+                    return;
+                };
+                state.cancel = Arc::new(Cancel::new());
+                (job, Arc::clone(&state.cancel), state.status.render)
+            };
+            let rendered = self.render(job, &cancel, render);
+            let mut state = self.lock();
+            if state.status.render == render {
+                state.status.running = false;
+                if let Err(e) = rendered {
+                    state.status.error = Some(format!("{e:#}"));
+                }
+            }
+        }
+    }
+
+    /// Renders `job` (render number `render`) pass after pass until done or `cancel`led.
+    fn render(&self, job: Job, cancel: &Cancel, render: u64) -> Result<()> {
+        let world = Arc::new(World::new(job.scene, AccelKind::Bvh).context("the view")?);
+        let mut mean: Option<Film> = None;
+        for pass in 0..MAX_PASSES {
+            let method = Method::PathTrace(PathTraceSettings {
+                size: ImageSize {
+                    width: Some(job.camera.width),
+                    height: Some(job.camera.height),
+                },
+                seed: u64::from(pass),
+                samples_per_pixel: SAMPLES_PER_PASS,
+                ..PathTraceSettings::default()
+            });
+            let outcome = with_threads(self.threads, || {
+                strahl::method::run(&world, &method, &NoProgress, cancel)
+            })?
+            .map_err(|e| anyhow::anyhow!("{e}"))?;
+            if cancel.is_requested() || !outcome.complete {
+                return Ok(());
+            }
+            let film = outcome.image.context("the path tracer made no image")?;
+            let count = pass as f32 + 1.0;
+            let mean = match &mut mean {
+                Some(mean) => {
+                    for (m, p) in mean.pixels_mut().iter_mut().zip(film.pixels()) {
+                        *m += (*p - *m) / count;
+                    }
+                    mean
+                }
+                None => mean.insert(film),
+            };
+            let tone = ToneMapping {
+                operator: ToneMap::Auto,
+                exposure_ev: 0.0,
+            };
+            let png = Arc::new(encode_png(mean, &tone)?);
+            let mut state = self.lock();
+            if state.status.render != render {
+                return Ok(());
+            }
+            state.png = Some(png);
+            state.status.passes = pass + 1;
+            state.status.samples_per_pixel = (pass + 1) * SAMPLES_PER_PASS;
+        }
+        Ok(())
+    }
+}
