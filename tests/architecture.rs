@@ -81,8 +81,9 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("validate", &["color", "method", "scene"]),
 ];
 
-/// The library modules the command line (`cli/src`) may import: the method API and the
-/// scene, report, image, validation and output-file modules.
+/// The library modules the front ends (the command line, `cli/src`, and the Python
+/// package, `python/src`) may import: the method API and the scene, report, image,
+/// validation and output-file modules.
 const FRONT_END_MODULES: &[&str] = &[
     "atomic_file",
     "image",
@@ -259,11 +260,14 @@ fn library_modules(code: &str) -> BTreeSet<String> {
 }
 
 #[test]
-fn the_command_line_uses_only_the_method_api_and_the_file_modules() {
-    let cli = Path::new(env!("CARGO_MANIFEST_DIR")).join("cli/src");
+fn the_command_line_and_the_python_package_use_only_the_method_api_and_the_file_modules() {
     let mut files = Vec::new();
-    rust_files(&cli, &mut files);
-    assert!(!files.is_empty(), "no sources in {}", cli.display());
+    for front_end in ["cli/src", "python/src"] {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join(front_end);
+        let before = files.len();
+        rust_files(&dir, &mut files);
+        assert!(files.len() > before, "no sources in {}", dir.display());
+    }
     let mut violations = Vec::new();
     for file in &files {
         for used in library_modules(&code(file)) {

@@ -1,0 +1,140 @@
+"""strahl: global illumination by radiosity and ray tracing, with the light every surface
+receives and absorbs.
+
+    >>> import strahl
+    >>> scene = strahl.load("canopy:300")
+    >>> result = scene.solve("hierarchical")
+    >>> result.absorbed_w.shape            # one row per reported surface, R, G, B in watts
+    (301, 3)
+
+Units: lengths in scene units (metres for lux), powers in W, irradiance in W/m², illuminance
+in lux (683 lm/W times the luminance), radiance in W/(sr·m²), linear Rec.709 RGB.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Callable, Optional
+
+import numpy as np
+
+from . import _strahl
+
+__all__ = ["load", "Scene", "Result"]
+
+
+@dataclass(frozen=True)
+class Result:
+    """The light on every reported surface (one row per object, or per face of per-face
+    objects, in scene order), from one method's run."""
+
+    names: list
+    """The surfaces' names."""
+    area_m2: np.ndarray
+    """Area of each surface, scene units² (NaN where the method does not know it)."""
+    incident_w: np.ndarray
+    """Power arriving on each surface, W, shape (n, 3)."""
+    absorbed_w: np.ndarray
+    """Power absorbed by each surface, W, shape (n, 3)."""
+    irradiance_w_m2: np.ndarray
+    """Mean irradiance on each surface, W/m², shape (n, 3) (NaN where not known)."""
+    illuminance_lux: np.ndarray
+    """Mean illuminance on each surface, lux, shape (n,) (NaN where not known)."""
+    report: dict = field(repr=False)
+    """The whole report, as `strahl solve --report FILE.json` writes it."""
+
+    def report_json(self) -> str:
+        """The report as JSON text."""
+        return json.dumps(self.report, indent=2)
+
+
+def _result(report_json: str) -> Result:
+    report = json.loads(report_json)
+    rows = report["objects"]
+
+    def rgb(key):
+        return np.array([row.get(key) or [np.nan] * 3 for row in rows], dtype=float).reshape(-1, 3)
+
+    def scalar(key):
+        return np.array([np.nan if row.get(key) is None else row[key] for row in rows], dtype=float)
+
+    return Result(
+        names=[row["name"] for row in rows],
+        area_m2=scalar("area"),
+        incident_w=rgb("incident_power"),
+        absorbed_w=rgb("absorbed_power"),
+        irradiance_w_m2=rgb("irradiance"),
+        illuminance_lux=scalar("illuminance_lux"),
+        report=report,
+    )
+
+
+class Scene:
+    """A scene compiled for ray queries: open one with :func:`load`."""
+
+    def __init__(self, compiled: _strahl.Scene):
+        self._scene = compiled
+
+    @property
+    def name(self) -> str:
+        """The scene's name."""
+        return self._scene.name
+
+    @property
+    def objects(self) -> list:
+        """The objects' names, in scene order."""
+        return self._scene.objects
+
+    def solve(
+        self,
+        method: str = "hierarchical",
+        *,
+        seed: int = 0,
+        threads: int = 0,
+        photons: Optional[int] = None,
+        error: Optional[float] = None,
+        progress: Optional[Callable[[str, int, int], None]] = None,
+    ) -> Result:
+        """Runs a method that reports the light on every surface: ``light-trace`` (the light
+        model; ``photons``), ``matrix``, ``progressive``, ``hierarchical`` (``error``: the
+        refinement threshold, a share of the emitted power) or ``hierarchical-shooting``.
+        ``threads=0`` uses every core; the GIL is released meanwhile. ``progress(phase,
+        done, total)`` is called as the work goes. Ctrl-C raises KeyboardInterrupt within a
+        second. Bad settings raise ValueError with the command line's message."""
+        report = self._scene.solve(
+            method, seed=seed, threads=threads, photons=photons, error=error, progress=progress
+        )
+        return _result(report)
+
+    def render(
+        self,
+        method: str = "pathtrace",
+        *,
+        width: Optional[int] = None,
+        height: Optional[int] = None,
+        samples_per_pixel: Optional[int] = None,
+        seed: int = 0,
+        threads: int = 0,
+        progress: Optional[Callable[[str, int, int], None]] = None,
+    ) -> np.ndarray:
+        """Renders the scene's camera view: ``pathtrace`` (``samples_per_pixel``),
+        ``raytrace``, ``radiosity`` or ``final-gather``. Returns the linear radiance,
+        W/(sr·m²), as a float32 array of shape (height, width, 3), rows from the top."""
+        w, h, pixels = self._scene.render(
+            method,
+            width=width,
+            height=height,
+            samples_per_pixel=samples_per_pixel,
+            seed=seed,
+            threads=threads,
+            progress=progress,
+        )
+        return np.frombuffer(pixels, dtype="<f4").reshape(h, w, 3).copy()
+
+
+def load(name: str) -> Scene:
+    """Opens a built-in scene by name (``cornell``, ``canopy:300``, ``blocks:216``, …) or a
+    scene file (``.toml``, ``.obj``, ``.gltf``/``.glb``, ``.mgf``). A bad file raises
+    ValueError naming the file, line and field."""
+    return Scene(_strahl.load(name))

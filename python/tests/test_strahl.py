@@ -1,0 +1,123 @@
+"""The Python package end to end: arrays out of every kind of method, against the command
+line's report and an independent method; errors, threads, cancellation and progress."""
+
+import _thread
+import json
+import os
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import strahl
+
+ROOT = Path(__file__).resolve().parents[2]
+CLI = Path(os.environ.get("STRAHL_BIN", ROOT / "target" / "release" / "strahl"))
+
+
+def test_a_solve_gives_one_row_per_surface_in_watts_and_lux():
+    scene = strahl.load("cornell")
+    assert scene.name == "cornell"
+    assert "floor" in scene.objects
+    result = scene.solve("hierarchical")
+    assert result.names == scene.objects
+    n = len(result.names)
+    assert result.absorbed_w.shape == (n, 3)
+    assert result.incident_w.shape == (n, 3)
+    assert result.illuminance_lux.shape == (n,)
+    assert np.isfinite(result.absorbed_w).all() and (result.absorbed_w >= 0).all()
+    # The rows add up to the report's total, and lux is 683 × the luminance of E.
+    total = np.array(result.report["totals"]["absorbed_power"])
+    assert np.allclose(result.absorbed_w.sum(axis=0), total, rtol=1e-12)
+    y = result.irradiance_w_m2 @ np.array([0.2126, 0.7152, 0.0722])
+    assert np.allclose(result.illuminance_lux, 683.0 * y, rtol=1e-9)
+
+
+def test_python_gives_the_command_lines_report(tmp_path):
+    if not CLI.exists():
+        pytest.skip(f"no command line at {CLI} (cargo build --release)")
+    report = tmp_path / "r.json"
+    subprocess.run(
+        [CLI, "solve", "cornell", "--solver", "hierarchical", "-q", "--report", report],
+        check=True,
+    )
+    by_cli = json.loads(report.read_text())
+    by_python = strahl.load("cornell").solve("hierarchical").report
+    assert by_python["objects"] == by_cli["objects"]
+    assert by_python["totals"] == by_cli["totals"]
+
+
+def test_radiosity_and_the_light_model_agree_surface_by_surface():
+    scene = strahl.load("cornell")
+    radiosity = scene.solve("hierarchical")
+    photons = scene.solve("light-trace", photons=400_000, seed=3)
+    a, b = radiosity.absorbed_w.sum(axis=1), photons.absorbed_w.sum(axis=1)
+    # The lamp absorbs almost nothing; the rest within 3 % (the light model's 3σ at 4·10⁵
+    # photons is about 1–2 % on the dimmest of them).
+    big = a > 0.01 * a.sum()
+    assert np.all(np.abs(b[big] / a[big] - 1) < 0.03), (a, b)
+
+
+def test_a_render_is_a_height_by_width_by_3_radiance_array():
+    image = strahl.load("cornell").render("pathtrace", width=64, height=48, samples_per_pixel=4)
+    assert image.shape == (48, 64, 3) and image.dtype == np.float32
+    assert np.isfinite(image).all()
+    left, right = image[24, 13], image[24, 51]
+    assert left[0] > 2 * left[1], left  # the red wall
+    assert right[1] > 2 * right[0], right  # the green wall
+
+
+def test_bad_input_raises_with_the_located_message(tmp_path):
+    scene = tmp_path / "broken.toml"
+    scene.write_text("[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\nfov = 'wide'\n")
+    with pytest.raises(ValueError, match=r"broken\.toml:4:.*camera\.fov"):
+        strahl.load(str(scene))
+    with pytest.raises(ValueError, match="missing.toml. is neither a file nor a built-in scene"):
+        strahl.load(str(tmp_path / "missing.toml"))
+    cornell = strahl.load("cornell")
+    with pytest.raises(ValueError, match="unknown method 'nonsense'.*hierarchical"):
+        cornell.solve("nonsense")
+    with pytest.raises(ValueError, match="takes no photons"):
+        cornell.solve("hierarchical", photons=10)
+    with pytest.raises(ValueError, match="use render"):
+        cornell.solve("pathtrace")
+    with pytest.raises(ValueError):
+        cornell.solve("light-trace", photons=0)
+
+
+def test_two_threads_solve_at_once_and_get_what_one_gets():
+    scene = strahl.load("canopy:300")
+    alone = scene.solve("light-trace", photons=200_000, threads=1).absorbed_w
+    results = [None, None]
+
+    def solve(k):
+        results[k] = scene.solve("light-trace", photons=200_000, threads=1).absorbed_w
+
+    threads = [threading.Thread(target=solve, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for r in results:
+        assert np.array_equal(r, alone)
+
+
+def test_ctrl_c_raises_keyboard_interrupt_within_a_second():
+    scene = strahl.load("canopy:3000")
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    started = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        scene.solve("light-trace", photons=10**10)
+    assert time.monotonic() - started < 2.5
+
+
+def test_progress_is_reported_by_phase():
+    seen = []
+    strahl.load("cornell").solve("hierarchical", progress=lambda *p: seen.append(p))
+    phases = {phase for phase, _, _ in seen}
+    assert "solving" in phases or "linking" in phases, seen
+    assert all(done >= 0 and total >= 0 for _, done, total in seen)
