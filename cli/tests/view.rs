@@ -105,20 +105,22 @@ fn solved(address: &str) -> serde_json::Value {
     }
 }
 
-#[test]
-fn inside_the_furnace_a_click_reads_its_closed_form_and_the_mesh_is_whole() {
-    // A closed unit box emitting L = 2 on both sides, ρ = 0.5: inside, B = E = πL/(1 − ρ)
-    // = 4π W·m⁻², 683·4π lux and 683·4 cd/m².
+/// The viewer on a closed unit box emitting L = 2 on both sides with ρ = 0.5 (and `extra`
+/// scene-file text), solved by the matrix solver on 4 × 4 patches a face; returns it with
+/// the folder of its scene file, named by `label`.
+fn furnace(label: &str, extra: &str) -> (Viewer, std::path::PathBuf) {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("strahl-view-{}", std::process::id()));
+        .join(format!("strahl-view-{label}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("furnace.toml");
     std::fs::write(
         &scene,
-        "[camera]\nposition = [0.5, 0.5, 0.5]\nlook_at = [0.5, 0.4, 0.0]\nfov = 90\n\n\
-         [materials.glow]\ndiffuse = 0.5\nemission = 2.0\ntwo_sided = true\n\n\
-         [[objects]]\nname = \"box\"\ntype = \"box\"\nmaterial = \"glow\"\n\
-         min = [0, 0, 0]\nmax = [1, 1, 1]\n",
+        format!(
+            "[camera]\nposition = [0.5, 0.5, 0.5]\nlook_at = [0.5, 0.4, 0.0]\nfov = 90\n\n\
+             [materials.glow]\ndiffuse = 0.5\nemission = 2.0\ntwo_sided = true\n\n\
+             [[objects]]\nname = \"box\"\ntype = \"box\"\nmaterial = \"glow\"\n\
+             min = [0, 0, 0]\nmax = [1, 1, 1]\n\n{extra}"
+        ),
     )
     .unwrap();
     let viewer = start(&[
@@ -129,6 +131,14 @@ fn inside_the_furnace_a_click_reads_its_closed_form_and_the_mesh_is_whole() {
         "levels:2",
     ]);
     solved(&viewer.address);
+    (viewer, dir)
+}
+
+#[test]
+fn inside_the_furnace_a_click_reads_its_closed_form_and_the_mesh_is_whole() {
+    // A closed unit box emitting L = 2 on both sides, ρ = 0.5: inside, B = E = πL/(1 − ρ)
+    // = 4π W·m⁻², 683·4π lux and 683·4 cd/m².
+    let (viewer, _) = furnace("furnace", "");
     let b = 4.0 * std::f64::consts::PI;
     for direction in ["0.3,-1,0.2", "-1,0.1,0.4", "0.1,0.9,-0.2"] {
         let (status, _, body) = get(
@@ -614,27 +624,10 @@ fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
 fn the_page_lists_the_sensors_and_draws_the_chosen_range_with_isolines() {
     // The furnace of the first test (683·4π ≈ 8,583 lux everywhere inside) with a sensor
     // at its centre, facing down.
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("strahl-view-sensors-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let scene = dir.join("furnace.toml");
-    std::fs::write(
-        &scene,
-        "[camera]\nposition = [0.5, 0.5, 0.5]\nlook_at = [0.5, 0.4, 0.0]\nfov = 90\n\n\
-         [materials.glow]\ndiffuse = 0.5\nemission = 2.0\ntwo_sided = true\n\n\
-         [[objects]]\nname = \"box\"\ntype = \"box\"\nmaterial = \"glow\"\n\
-         min = [0, 0, 0]\nmax = [1, 1, 1]\n\n\
-         [[sensors]]\nname = \"middle\"\nposition = [0.5, 0.5, 0.5]\nnormal = [0, -1, 0]\n",
-    )
-    .unwrap();
-    let viewer = start(&[
-        scene.to_str().unwrap(),
-        "--solver",
-        "matrix",
-        "--mesh-size",
-        "levels:2",
-    ]);
-    solved(&viewer.address);
+    let (viewer, dir) = furnace(
+        "sensors",
+        "[[sensors]]\nname = \"middle\"\nposition = [0.5, 0.5, 0.5]\nnormal = [0, -1, 0]\n",
+    );
     let url = format!(
         "http://{}/?still&false-color&range=0,10000&isolines=4",
         viewer.address

@@ -1,0 +1,36 @@
+"""Type stub of the extension module (python/src/lib.rs); use it through `strahl`."""
+
+from typing import Callable, Optional, Tuple
+
+Progress = Optional[Callable[[str, int, int], None]]
+
+class Scene:
+    @property
+    def name(self) -> str: ...
+    @property
+    def objects(self) -> list[str]: ...
+    def solve(
+        self,
+        method: str,
+        *,
+        seed: int = 0,
+        threads: int = 0,
+        photons: Optional[int] = None,
+        error: Optional[float] = None,
+        progress: Progress = None,
+    ) -> str:
+        """The report as JSON (the `strahl solve --report` file)."""
+    def render(
+        self,
+        method: str,
+        *,
+        width: Optional[int] = None,
+        height: Optional[int] = None,
+        samples_per_pixel: Optional[int] = None,
+        seed: int = 0,
+        threads: int = 0,
+        progress: Progress = None,
+    ) -> Tuple[int, int, bytes]:
+        """Width, height and linear radiance as little-endian f32 RGB, rows from the top."""
+
+def load(name: str) -> Scene: ...
