@@ -4,6 +4,8 @@
 //! the report's JSON and images as raw `f32` bytes (the Python side turns both into numpy
 //! arrays: `python/strahl/__init__.py`).
 
+mod arrays;
+
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
@@ -30,6 +32,55 @@ struct Scene {
 fn load(py: Python<'_>, name: &str) -> PyResult<Scene> {
     let world = py.detach(|| -> Result<World, String> {
         let scene = strahl::scene::open(name, &Default::default()).map_err(|e| e.to_string())?;
+        World::new(scene, AccelKind::Bvh).map_err(|e| format!("scene '{name}': {e}"))
+    });
+    Ok(Scene {
+        world: Arc::new(world.map_err(PyValueError::new_err)?),
+    })
+}
+
+/// A scene of triangles grouped into named objects, from arrays as little-endian bytes:
+/// `vertices` (n × 3 `f32`, scene units), `triangles` (m × 3 `u32`), `object_ids` (m
+/// `u32`), `reflectance` and `translucency` (one RGB `f32` row per name); a sun (the
+/// direction its light travels, the irradiance facing it in W·m⁻²) and a uniform sky
+/// (radiance, W·sr⁻¹·m⁻²). With `per_face`, every triangle is reported on its own.
+#[pyfunction]
+#[pyo3(signature = (name, vertices, triangles, object_ids, names, reflectance, translucency, per_face, sun, sky))]
+#[allow(clippy::too_many_arguments)]
+fn scene_from_arrays(
+    py: Python<'_>,
+    name: &str,
+    vertices: &[u8],
+    triangles: &[u8],
+    object_ids: &[u8],
+    names: Vec<String>,
+    reflectance: &[u8],
+    translucency: &[u8],
+    per_face: bool,
+    sun: Option<([f32; 3], [f32; 3])>,
+    sky: Option<[f32; 3]>,
+) -> PyResult<Scene> {
+    let world = py.detach(|| -> Result<World, String> {
+        let float = f32::from_le_bytes;
+        let index = u32::from_le_bytes;
+        let given = arrays::Arrays {
+            vertices: arrays::rows::<3, f32>(vertices, "vertices", float)?
+                .into_iter()
+                .map(glam::Vec3::from)
+                .collect(),
+            triangles: arrays::rows::<3, u32>(triangles, "triangles", index)?,
+            object_ids: arrays::rows::<1, u32>(object_ids, "object_ids", index)?
+                .into_iter()
+                .map(|[o]| o)
+                .collect(),
+            names,
+            reflectance: arrays::rows::<3, f32>(reflectance, "reflectance", float)?,
+            translucency: arrays::rows::<3, f32>(translucency, "translucency", float)?,
+            per_face,
+            sun,
+            sky,
+        };
+        let scene = arrays::scene(name, given)?;
         World::new(scene, AccelKind::Bvh).map_err(|e| format!("scene '{name}': {e}"))
     });
     Ok(Scene {
@@ -296,5 +347,6 @@ impl Scene {
 fn _strahl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_from_arrays, m)?)?;
     Ok(())
 }

@@ -21,7 +21,7 @@ import numpy as np
 
 from . import _strahl
 
-__all__ = ["load", "Scene", "Result"]
+__all__ = ["load", "from_arrays", "Scene", "Result"]
 
 
 @dataclass(frozen=True)
@@ -138,3 +138,68 @@ def load(name: str) -> Scene:
     scene file (``.toml``, ``.obj``, ``.gltf``/``.glb``, ``.mgf``). A bad file raises
     ValueError naming the file, line and field."""
     return Scene(_strahl.load(name))
+
+
+def _rgb_rows(values, count: int, what: str) -> np.ndarray:
+    """`values` (a number, an RGB triple, or one of either per row) as `count` RGB rows."""
+    a = np.asarray(values, dtype=float)
+    if a.ndim == 0:
+        a = np.full((count, 3), float(a))
+    elif a.shape == (3,) and count != 3:
+        a = np.tile(a, (count, 1))
+    elif a.ndim == 1 and a.shape[0] == count:
+        a = np.repeat(a[:, None], 3, axis=1)
+    if a.shape != (count, 3):
+        raise ValueError(f"{what}: shape {a.shape}, expected ({count}, 3), ({count},), (3,) or a number")
+    return a
+
+
+def from_arrays(
+    vertices,
+    triangles,
+    object_ids,
+    names,
+    reflectance,
+    *,
+    translucency=0.0,
+    sun=None,
+    sky=None,
+    per_face: bool = False,
+    name: str = "arrays",
+) -> Scene:
+    """A scene of triangles from arrays, as a plant model hands over its organs:
+    ``vertices`` (n, 3) in scene units (metres for lux), ``triangles`` (m, 3) vertex
+    indices, ``object_ids`` (m,) the object of each triangle (an index into ``names``), and
+    per object a diffuse ``reflectance`` and ``translucency`` (light passing to the other
+    side, diffusely; ρ + τ ≤ 1 per channel) — each a number, an RGB triple, or one of
+    either per object. Lights: ``sun=(direction, irradiance)`` (the direction its light
+    travels; W/m² on a surface facing it, a number or RGB) and ``sky=radiance``
+    (W/(sr·m²); an open horizontal surface then receives π × radiance). With ``per_face``
+    every triangle is reported on its own. Surfaces reflect and transmit on both sides."""
+    vertices = np.ascontiguousarray(vertices, dtype="<f4")
+    triangles = np.ascontiguousarray(triangles, dtype="<u4")
+    object_ids = np.ascontiguousarray(object_ids, dtype="<u4")
+    if vertices.ndim != 2 or vertices.shape[1] != 3:
+        raise ValueError(f"vertices: shape {vertices.shape}, expected (n, 3)")
+    if triangles.ndim != 2 or triangles.shape[1] != 3:
+        raise ValueError(f"triangles: shape {triangles.shape}, expected (m, 3)")
+    names = [str(n) for n in names]
+    k = len(names)
+    rho = np.ascontiguousarray(_rgb_rows(reflectance, k, "reflectance"), dtype="<f4")
+    tau = np.ascontiguousarray(_rgb_rows(translucency, k, "translucency"), dtype="<f4")
+    rgb = lambda v: tuple(float(x) for x in np.broadcast_to(np.asarray(v, dtype=float), (3,)))
+    sun_light = None if sun is None else (rgb(sun[0]), rgb(sun[1]))
+    sky_light = None if sky is None else rgb(sky)
+    compiled = _strahl.scene_from_arrays(
+        name,
+        vertices.tobytes(),
+        triangles.tobytes(),
+        object_ids.tobytes(),
+        names,
+        rho.tobytes(),
+        tau.tobytes(),
+        per_face,
+        sun_light,
+        sky_light,
+    )
+    return Scene(compiled)

@@ -34,3 +34,15 @@ class Scene:
         """Width, height and linear radiance as little-endian f32 RGB, rows from the top."""
 
 def load(name: str) -> Scene: ...
+def scene_from_arrays(
+    name: str,
+    vertices: bytes,
+    triangles: bytes,
+    object_ids: bytes,
+    names: list[str],
+    reflectance: bytes,
+    translucency: bytes,
+    per_face: bool,
+    sun: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]],
+    sky: Optional[Tuple[float, float, float]],
+) -> Scene: ...

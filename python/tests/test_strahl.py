@@ -129,3 +129,59 @@ def test_progress_is_reported_by_phase():
     phases = {phase for phase, _, _ in seen}
     assert "solving" in phases or "linking" in phases, seen
     assert all(done >= 0 and total >= 0 for _, done, total in seen)
+
+
+def _sheet(y, size=1.0):
+    """A horizontal square of side `size` at height y, as two triangles."""
+    v = np.array([[0, y, 0], [size, y, 0], [size, y, size], [0, y, size]], dtype=float)
+    return v, np.array([[0, 2, 1], [0, 3, 2]])
+
+
+def test_a_scene_from_arrays_under_a_sky_receives_pi_times_the_radiance():
+    # One black square under a uniform sky of radiance L = 1/π: its top receives E = πL = 1
+    # W/m² from the whole sky, its bottom nothing (the sky is all around, but an open sheet's
+    # underside sees the sky below too: E = 1 there as well, 2 W on 1 m² in all).
+    v, t = _sheet(0.0)
+    scene = strahl.from_arrays(v, t, [0, 0], ["sheet"], 0.0, sky=1 / np.pi)
+    for method in ["hierarchical", "light-trace"]:
+        result = scene.solve(method, photons=200_000) if method == "light-trace" else scene.solve(method)
+        assert result.names == ["sheet"]
+        assert np.allclose(result.area_m2, [1.0])
+        assert np.allclose(result.absorbed_w, 2.0, rtol=0.02), (method, result.absorbed_w)
+
+
+def test_a_translucent_leaf_passes_light_to_the_one_below_it():
+    # A translucent sheet (ρ = 0.1, τ = 0.4) above a black one, lit by a vertical sun of
+    # 1 W/m² (no sky): the upper absorbs 1 − ρ − τ = 0.5 W; the lower receives the 0.4 W
+    # the upper sends down, diffusely, less what escapes at the sides (a share set by the
+    # gap: 1 m sheets 0.1 m apart keep most), and absorbs all it receives.
+    top_v, top_t = _sheet(0.1)
+    low_v, low_t = _sheet(0.0)
+    vertices = np.vstack([top_v, low_v])
+    triangles = np.vstack([top_t, low_t + 4])
+    scene = strahl.from_arrays(
+        vertices, triangles, [0, 0, 1, 1], ["upper", "lower"], [0.1, 0.0],
+        translucency=[0.4, 0.0], sun=([0, -1, 0], 1.0),
+    )
+    hierarchical = scene.solve("hierarchical").absorbed_w.mean(axis=1)
+    photons = scene.solve("light-trace", photons=400_000).absorbed_w.mean(axis=1)
+    assert abs(hierarchical[0] - 0.5) < 0.01, hierarchical
+    assert 0.3 < hierarchical[1] < 0.4, hierarchical
+    assert np.allclose(hierarchical, photons, rtol=0.02), (hierarchical, photons)
+
+
+def test_per_face_reports_every_triangle_and_bad_arrays_are_refused():
+    v, t = _sheet(0.0)
+    scene = strahl.from_arrays(v, t, [0, 0], ["leaf"], 0.2, sun=([0, -1, 0], 1.0), per_face=True)
+    result = scene.solve("hierarchical")
+    assert len(result.names) == 2
+    # Each triangle absorbs (1 − ρ) × 0.5 m² × 1 W/m².
+    assert np.allclose(result.absorbed_w, 0.4, rtol=1e-3), result.absorbed_w
+    with pytest.raises(ValueError, match="triangle 1 names vertex"):
+        strahl.from_arrays(v, [[0, 1, 2], [0, 1, 9]], [0, 0], ["x"], 0.5)
+    with pytest.raises(ValueError, match="object 3 of 1"):
+        strahl.from_arrays(v, t, [0, 3], ["x"], 0.5)
+    with pytest.raises(ValueError, match="add up to at most 1"):
+        strahl.from_arrays(v, t, [0, 0], ["x"], 0.7, translucency=0.5)
+    with pytest.raises(ValueError, match="vertices: shape"):
+        strahl.from_arrays(v[:, :2], t, [0, 0], ["x"], 0.5)

@@ -1,0 +1,195 @@
+//! Scenes built from arrays (a plant model's organs handed over without files): triangles
+//! grouped into named objects, a diffuse reflectance and translucency per object, and a sun
+//! and a uniform sky.
+
+use glam::Vec3;
+use strahl::scene::{ENERGY_TOLERANCE, Light, LightKind, Material, PolygonMesh, Scene, Shape};
+
+/// What Python hands over, decoded: little-endian `f32` / `u32` arrays.
+pub struct Arrays {
+    /// Vertex positions, scene units.
+    pub vertices: Vec<Vec3>,
+    /// Vertex indices of each triangle.
+    pub triangles: Vec<[u32; 3]>,
+    /// The object of each triangle (an index into `names`).
+    pub object_ids: Vec<u32>,
+    /// Object names.
+    pub names: Vec<String>,
+    /// Diffuse reflectance per object, RGB in [0, 1].
+    pub reflectance: Vec<[f32; 3]>,
+    /// Diffuse translucency per object (light leaving the other side), RGB, ρ + τ ≤ 1.
+    pub translucency: Vec<[f32; 3]>,
+    /// Whether each triangle of an object is reported on its own (as `per_face` objects).
+    pub per_face: bool,
+    /// A sun: the direction its light travels and the irradiance on a surface facing it,
+    /// W·m⁻².
+    pub sun: Option<([f32; 3], [f32; 3])>,
+    /// A uniform sky's radiance, W·sr⁻¹·m⁻².
+    pub sky: Option<[f32; 3]>,
+}
+
+/// `bytes` as little-endian 4-byte words, `width` to a row; an error names `what`.
+pub fn rows<const N: usize, T>(
+    bytes: &[u8],
+    what: &str,
+    word: fn([u8; 4]) -> T,
+) -> Result<Vec<[T; N]>, String>
+where
+    T: Copy + Default,
+{
+    if !bytes.len().is_multiple_of(4 * N) {
+        return Err(format!(
+            "{what}: {} bytes are not rows of {N} numbers",
+            bytes.len()
+        ));
+    }
+    Ok(bytes
+        .chunks_exact(4 * N)
+        .map(|row| {
+            let mut out = [T::default(); N];
+            for (k, w) in row.chunks_exact(4).enumerate() {
+                out[k] = word([w[0], w[1], w[2], w[3]]);
+            }
+            out
+        })
+        .collect())
+}
+
+/// The scene `name` the arrays describe, checked: indices in range, finite vertices,
+/// reflectance and translucency in [0, 1] with ρ + τ ≤ 1.
+pub fn scene(name: &str, a: Arrays) -> Result<Scene, String> {
+    let objects = a.names.len();
+    if a.reflectance.len() != objects || a.translucency.len() != objects {
+        return Err(format!(
+            "{objects} names but {} reflectances and {} translucencies (one of each per object)",
+            a.reflectance.len(),
+            a.translucency.len()
+        ));
+    }
+    if a.object_ids.len() != a.triangles.len() {
+        return Err(format!(
+            "{} triangles but {} object ids (one per triangle)",
+            a.triangles.len(),
+            a.object_ids.len()
+        ));
+    }
+    if let Some(k) = a.vertices.iter().position(|v| !v.is_finite()) {
+        return Err(format!("vertex {k} is not finite"));
+    }
+    let n = a.vertices.len() as u32;
+    if let Some(t) = a.triangles.iter().position(|t| t.iter().any(|&i| i >= n)) {
+        return Err(format!(
+            "triangle {t} names vertex {:?} of {n}",
+            a.triangles[t]
+        ));
+    }
+    if let Some(t) = a.object_ids.iter().position(|&o| o as usize >= objects) {
+        return Err(format!(
+            "triangle {t} is of object {} of {objects}",
+            a.object_ids[t]
+        ));
+    }
+    let mut scene = Scene::empty(name);
+    let mut per_object: Vec<Vec<[u32; 3]>> = vec![Vec::new(); objects];
+    for (t, &o) in a.triangles.iter().zip(&a.object_ids) {
+        per_object[o as usize].push(*t);
+    }
+    // Per object, the index of each shared vertex in the object's own list (u32::MAX: not
+    // in it yet).
+    let mut local = vec![u32::MAX; a.vertices.len()];
+    for (k, triangles) in per_object.iter().enumerate() {
+        let (rho, tau) = (a.reflectance[k], a.translucency[k]);
+        for c in 0..3 {
+            let fine = (0.0..=1.0).contains(&rho[c])
+                && (0.0..=1.0).contains(&tau[c])
+                && rho[c] + tau[c] <= 1.0 + ENERGY_TOLERANCE;
+            if !fine {
+                return Err(format!(
+                    "object '{}': reflectance {rho:?} and translucency {tau:?} must lie in \
+                     [0, 1] and add up to at most 1 per channel",
+                    a.names[k]
+                ));
+            }
+        }
+        if triangles.is_empty() {
+            continue;
+        }
+        let mut material = Material::diffuse(&a.names[k], rho.into());
+        material.translucency = tau.into();
+        let material = scene.add_material(material);
+        let mesh = own_vertices(&a.vertices, triangles, &mut local);
+        mesh.validate()
+            .map_err(|e| format!("object '{}': {e}", a.names[k]))?;
+        scene.add_object(
+            &a.names[k],
+            Shape::Mesh(std::sync::Arc::new(mesh)),
+            material,
+        );
+        if a.per_face
+            && let Some(object) = scene.objects.last_mut()
+        {
+            object.per_face = true;
+        }
+    }
+    if let Some((direction, irradiance)) = a.sun {
+        let direction = Vec3::from(direction)
+            .try_normalize()
+            .ok_or("the sun's direction must not be zero")?;
+        scene.lights.push(Light {
+            name: Some("sun".into()),
+            kind: LightKind::Directional {
+                direction,
+                irradiance: irradiance.into(),
+            },
+        });
+    }
+    if let Some(radiance) = a.sky {
+        scene.lights.push(Light {
+            name: Some("sky".into()),
+            kind: LightKind::Sky {
+                radiance: radiance.into(),
+            },
+        });
+    }
+    aim_camera(&mut scene, &a.vertices);
+    Ok(scene)
+}
+
+/// A mesh of `triangles` (indices into the shared `vertices`) holding only the vertices they
+/// use; `local` is all `u32::MAX` before and after.
+fn own_vertices(vertices: &[Vec3], triangles: &[[u32; 3]], local: &mut [u32]) -> PolygonMesh {
+    let mut positions = Vec::new();
+    let mut used = Vec::new();
+    let own: Vec<[u32; 3]> = triangles
+        .iter()
+        .map(|t| {
+            t.map(|i| {
+                let slot = &mut local[i as usize];
+                if *slot == u32::MAX {
+                    *slot = positions.len() as u32;
+                    positions.push(vertices[i as usize]);
+                    used.push(i);
+                }
+                *slot
+            })
+        })
+        .collect();
+    for i in used {
+        local[i as usize] = u32::MAX;
+    }
+    PolygonMesh::from_triangles(positions, &own)
+}
+
+/// Points the camera at the vertices' bounding box from above and in front (for renders).
+fn aim_camera(scene: &mut Scene, vertices: &[Vec3]) {
+    let (lo, hi) = vertices.iter().fold(
+        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+        |(lo, hi), &v| (lo.min(v), hi.max(v)),
+    );
+    if lo.cmple(hi).all() {
+        let centre = 0.5 * (lo + hi);
+        let size = (hi - lo).length().max(1e-3);
+        scene.camera.look_at = centre;
+        scene.camera.position = centre + Vec3::new(0.0, 0.6, 1.2) * size;
+    }
+}
