@@ -41,6 +41,12 @@ class Result:
     """Mean irradiance on each surface, W/m², shape (n, 3) (NaN where not known)."""
     illuminance_lux: np.ndarray
     """Mean illuminance on each surface, lux, shape (n,) (NaN where not known)."""
+    sensor_names: list
+    """The sensors' names (``name[i,j]`` for a point of a grid), in scene order."""
+    sensor_lux: np.ndarray
+    """Illuminance at each sensor, lux, shape (s,)."""
+    sensor_irradiance_w_m2: np.ndarray
+    """Irradiance at each sensor, W/m², shape (s, 3)."""
     report: dict = field(repr=False)
     """The whole report, as `strahl solve --report FILE.json` writes it."""
 
@@ -59,7 +65,11 @@ def _result(report_json: str) -> Result:
     def scalar(key):
         return np.array([np.nan if row.get(key) is None else row[key] for row in rows], dtype=float)
 
+    sensors = report.get("sensors", [])
     return Result(
+        sensor_names=[r["name"] for r in sensors],
+        sensor_lux=np.array([r["illuminance_lux"] for r in sensors], dtype=float),
+        sensor_irradiance_w_m2=np.array([r["irradiance"] for r in sensors], dtype=float).reshape(-1, 3),
         names=[row["name"] for row in rows],
         area_m2=scalar("area"),
         incident_w=rgb("incident_power"),

@@ -185,3 +185,20 @@ def test_per_face_reports_every_triangle_and_bad_arrays_are_refused():
         strahl.from_arrays(v, t, [0, 0], ["x"], 0.7, translucency=0.5)
     with pytest.raises(ValueError, match="vertices: shape"):
         strahl.from_arrays(v[:, :2], t, [0, 0], ["x"], 0.5)
+
+
+def test_sensors_come_as_arrays(tmp_path):
+    # The furnace: a closed box emitting L = 2 on both sides with ρ = 0.5; at its centre a
+    # sensor reads E = πL/(1 − ρ) = 4π W/m², 683·4π lux.
+    scene = tmp_path / "furnace.toml"
+    scene.write_text(
+        "[materials.glow]\ndiffuse = 0.5\nemission = 2.0\ntwo_sided = true\n\n"
+        '[[objects]]\nname = "box"\ntype = "box"\nmaterial = "glow"\n'
+        "min = [0, 0, 0]\nmax = [1, 1, 1]\n\n"
+        '[[sensors]]\nname = "middle"\nposition = [0.5, 0.5, 0.5]\nnormal = [0, -1, 0]\n'
+    )
+    result = strahl.load(str(scene)).solve("matrix")
+    assert result.sensor_names == ["middle"]
+    assert np.allclose(result.sensor_irradiance_w_m2, 4 * np.pi, rtol=1e-3)
+    assert np.allclose(result.sensor_lux, 683 * 4 * np.pi, rtol=1e-3)
+    assert strahl.load("cornell").solve("hierarchical").sensor_lux.shape == (0,)
