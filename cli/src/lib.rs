@@ -6,6 +6,7 @@ mod bench;
 mod choice;
 mod info;
 mod limits;
+mod merge;
 mod outputs;
 mod progress;
 mod radiosity;
@@ -33,6 +34,9 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Compute the light on every object and write a per-object report.
     Solve(solve::SolveArgs),
+    /// Merge the partial results of a light-model run's batches (`solve --batch I/N
+    /// --partial FILE`) into its report.
+    Merge(merge::MergeArgs),
     /// Run the analytic validation suite (closed-form cases through every method).
     Validate(validate::ValidateArgs),
     /// List the built-in scenes.
@@ -57,6 +61,7 @@ pub fn main() -> std::process::ExitCode {
             progress::watch_memory(args.limits.memory_bytes());
             solve::run(&args)
         }
+        Command::Merge(args) => merge::run(&args),
         Command::Validate(args) => {
             progress::watch_memory(args.memory.bytes());
             validate::run(&args)

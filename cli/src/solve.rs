@@ -3,16 +3,19 @@
 
 use super::choice::{choice, choice_among};
 use super::limits::LimitArgs;
+use super::merge::PartialFile;
 use super::radiosity::{self, RadiosityArgs, SurfaceGatherArgs, method_error, print_convergence};
 use super::run_method;
 use super::tone::ToneArgs;
 use anyhow::{Context, Result, bail};
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use strahl::atomic_file::AtomicFile;
 use strahl::method::World;
-use strahl::method::{AccelKind, LightTraceSettings, Method, MethodKind};
+use strahl::method::{AccelKind, Batch, LightTraceSettings, Method, MethodKind};
 use strahl::report::{ExportFormat, ObjectReport, Report, ReportFormat, write_report};
+use strahl::scene::Scene;
 
 /// Options of the light-trace solver.
 #[derive(Debug, Args)]
@@ -61,6 +64,14 @@ pub struct SolveArgs {
     /// the scene radiosity solves, for checking a radiosity solution against the light model.
     #[arg(long)]
     pub diffuse_only: bool,
+    /// Trace only batch I of N of the photons (I from 0) and write its partial result to
+    /// --partial instead of a report; `strahl merge` makes the report of all N, the same as
+    /// one run gives (light model only; for job arrays and clusters).
+    #[arg(long, requires = "partial", value_parser = clap::value_parser!(Batch))]
+    pub batch: Option<Batch>,
+    /// Where --batch writes its partial result (JSON).
+    #[arg(long, requires = "batch", conflicts_with = "report")]
+    pub partial: Option<PathBuf>,
     /// Light-trace options.
     #[command(flatten)]
     pub light_trace: LightTraceArgs,
@@ -103,6 +114,10 @@ impl SolveArgs {
         if let Some(path) = &self.radiosity.export {
             ExportFormat::from_path(path).context("--export")?;
         }
+        if self.batch.is_some() && self.solver != MethodKind::LightTrace {
+            bail!("--batch splits the light model's photons: it needs --solver light-trace");
+        }
+        super::outputs::check(&self.scene, &[("--partial", self.partial.as_deref())])?;
         self.method()?;
         Ok(())
     }
@@ -145,15 +160,12 @@ impl SolveArgs {
 /// Runs `strahl solve`.
 pub fn run(args: &SolveArgs) -> Result<()> {
     args.check()?;
-    let mut scene = strahl::scene::open(&args.scene, &args.limits.load_options())?;
-    if args.per_face {
-        for object in &mut scene.objects {
-            object.per_face = true;
-        }
-    }
-    if args.diffuse_only {
-        scene.keep_diffuse_lobes();
-    }
+    let scene = open_scene_with(
+        &args.scene,
+        args.per_face,
+        args.diffuse_only,
+        &args.limits.load_options(),
+    )?;
     if scene.objects.is_empty() {
         bail!(
             "'{}' has no objects: there is nothing to take light",
@@ -176,6 +188,9 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         radiosity::warn_non_diffuse(&world.scene);
     }
     let world = Arc::new(world);
+    if let (Some(batch), Some(path)) = (args.batch, &args.partial) {
+        return solve_batch(args, &world, &method, batch, path);
+    }
     let outcome = run_method(&world, &method, "solving", args.quiet, args.threads)?;
     match &outcome.radiosity {
         Some(solved) => {
@@ -264,6 +279,69 @@ pub fn run(args: &SolveArgs) -> Result<()> {
             }
         }
         None => println!("{}", serde_json::to_string_pretty(&report)?),
+    }
+    Ok(())
+}
+
+/// The scene `name` (a built-in name or a file), every face reported on its own with
+/// `per_face`, without its non-diffuse lobes with `diffuse_only`.
+pub fn open_scene(name: &str, per_face: bool, diffuse_only: bool) -> Result<Scene> {
+    open_scene_with(name, per_face, diffuse_only, &Default::default())
+}
+
+/// [`open_scene`] within the bounds of `load`.
+fn open_scene_with(
+    name: &str,
+    per_face: bool,
+    diffuse_only: bool,
+    load: &strahl::scene::LoadOptions,
+) -> Result<Scene> {
+    let mut scene = strahl::scene::open(name, load)?;
+    if per_face {
+        for object in &mut scene.objects {
+            object.per_face = true;
+        }
+    }
+    if diffuse_only {
+        scene.keep_diffuse_lobes();
+    }
+    Ok(scene)
+}
+
+/// Traces batch `batch` of the light model's run and writes its partial result to `path`.
+fn solve_batch(
+    args: &SolveArgs,
+    world: &World,
+    method: &Method,
+    batch: Batch,
+    path: &Path,
+) -> Result<()> {
+    let bar = super::progress::Bar::new("photons", args.quiet);
+    let cancel = super::progress::cancel_flag();
+    let partial = super::with_threads(args.threads, || {
+        strahl::method::run_batch(world, method, batch, &bar, cancel)
+    })?
+    .map_err(method_error)?;
+    if super::progress::interrupted() {
+        bail!("interrupted: a batch cut short cannot be merged, so nothing is written");
+    }
+    let file = PartialFile {
+        scene: args.scene.clone(),
+        per_face: args.per_face,
+        diffuse_only: args.diffuse_only,
+        partial,
+    };
+    let io = |e| anyhow::anyhow!("{}: {e}", path.display());
+    let mut out = AtomicFile::create(path).map_err(io)?;
+    serde_json::to_writer(&mut out, &file)?;
+    out.commit().map_err(io)?;
+    if !args.quiet {
+        eprintln!(
+            "batch {batch}: {} photons in {:.2} s → {}",
+            file.partial.photons_traced,
+            file.partial.seconds,
+            path.display()
+        );
     }
     Ok(())
 }

@@ -13,7 +13,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 use strahl::method::{
-    AccelKind, Cancel, Choice, ImageSize, Method, MethodKind, Outcome, ProgressListener, World,
+    AccelKind, Cancel, Choice, ImageSize, Method, MethodKind, NoProgress, Outcome,
+    ProgressListener, World,
 };
 use strahl::report::Report;
 
@@ -30,10 +31,7 @@ struct Scene {
 /// `.obj`, `.gltf`/`.glb`, `.mgf`); errors name the file, line and field.
 #[pyfunction]
 fn load(py: Python<'_>, name: &str) -> PyResult<Scene> {
-    let world = py.detach(|| -> Result<World, String> {
-        let scene = strahl::scene::open(name, &Default::default()).map_err(|e| e.to_string())?;
-        World::new(scene, AccelKind::Bvh).map_err(|e| format!("scene '{name}': {e}"))
-    });
+    let world = py.detach(|| open_world(name));
     Ok(Scene {
         world: Arc::new(world.map_err(PyValueError::new_err)?),
     })
@@ -86,6 +84,66 @@ fn scene_from_arrays(
     Ok(Scene {
         world: Arc::new(world.map_err(PyValueError::new_err)?),
     })
+}
+
+/// The scene named `name` (built-in or a file), compiled.
+fn open_world(name: &str) -> Result<World, String> {
+    let scene = strahl::scene::open(name, &Default::default()).map_err(|e| e.to_string())?;
+    World::new(scene, AccelKind::Bvh).map_err(|e| format!("scene '{name}': {e}"))
+}
+
+/// Batch `index` of `count` of a light-model run of `photons` photons on the scene `name`
+/// (built-in or a file, opened here: this runs where the batch is sent), as JSON for
+/// [`merge_batches`]. The GIL is released while it traces.
+#[pyfunction]
+#[pyo3(signature = (name, photons, seed, index, count, threads=0))]
+fn light_trace_batch(
+    py: Python<'_>,
+    name: &str,
+    photons: u64,
+    seed: u64,
+    index: u32,
+    count: u32,
+    threads: usize,
+) -> PyResult<String> {
+    let pool = rayon_pool(threads)?;
+    py.detach(|| -> Result<String, String> {
+        let world = open_world(name)?;
+        let method = Method::LightTrace(strahl::method::LightTraceSettings {
+            photons,
+            seed,
+            ..Default::default()
+        });
+        let batch = strahl::method::Batch { index, count };
+        let partial = pool
+            .install(|| {
+                strahl::method::run_batch(&world, &method, batch, &NoProgress, &Cancel::new())
+            })
+            .map_err(|e| e.to_string())?;
+        serde_json::to_string(&partial).map_err(|e| e.to_string())
+    })
+    .map_err(PyValueError::new_err)
+}
+
+/// The report (JSON) of the whole run on the scene `name` from the JSON `partials` of all
+/// its batches: the one a single run with the same settings gives, but for the seconds.
+#[pyfunction]
+fn merge_batches(py: Python<'_>, name: &str, partials: Vec<String>) -> PyResult<String> {
+    py.detach(|| -> Result<String, String> {
+        let world = open_world(name)?;
+        let partials = partials
+            .iter()
+            .enumerate()
+            .map(|(k, p)| serde_json::from_str(p).map_err(|e| format!("partial {k}: {e}")))
+            .collect::<Result<Vec<strahl::method::LightTracePartial>, String>>()?;
+        let outcome =
+            strahl::method::merge_batches(&world, &partials).map_err(|e| e.to_string())?;
+        let measured = outcome
+            .measurement
+            .ok_or("the merge measured no surfaces")?;
+        serde_json::to_string(&Report::new(&world.scene.name, &measured)).map_err(|e| e.to_string())
+    })
+    .map_err(PyValueError::new_err)
 }
 
 /// What a run reports while it works, read by the waiting thread.
@@ -348,5 +406,7 @@ fn _strahl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(scene_from_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(light_trace_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(merge_batches, m)?)?;
     Ok(())
 }

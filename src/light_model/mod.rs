@@ -37,4 +37,7 @@ pub mod sources;
 mod tally;
 mod trace;
 
-pub use trace::{LightTraceError, LightTraceOutput, LightTraceSettings, trace_light};
+pub use trace::{
+    Batch, LightTraceError, LightTraceOutput, LightTracePartial, LightTraceSettings, MergeError,
+    merge_light_batches, trace_light, trace_light_batch,
+};

@@ -6,7 +6,7 @@ pub(super) type Fixed = [i128; 3];
 
 /// Per-entry quantities in a tally: incident (of it, direct), absorbed, emitted and
 /// reflected power, and the sum of the squares of each photon's incident power.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(super) struct FixedBalance {
     pub incident: Fixed,
     pub direct: Fixed,
@@ -18,7 +18,7 @@ pub(super) struct FixedBalance {
 
 /// Per sensor: direct and indirect irradiance, and the sum of the squares of each photon's
 /// irradiance.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub(super) struct FixedSensor {
     pub direct: Fixed,
     pub indirect: Fixed,
@@ -26,7 +26,7 @@ pub(super) struct FixedSensor {
 }
 
 /// What one worker has accumulated.
-#[derive(Clone)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub(super) struct Tally {
     /// Per report entry.
     pub entries: Vec<FixedBalance>,

@@ -31,7 +31,7 @@ const MAX_BATCH: u64 = 1 << 18;
 const TALLY_BUDGET: usize = 256 << 20;
 
 /// Settings of a light-tracing run.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LightTraceSettings {
     /// Photons to trace.
     pub photons: u64,
@@ -61,6 +61,94 @@ pub enum LightTraceError {
     /// Zero photons asked for.
     #[error("at least one photon is needed")]
     NoPhotons,
+    /// A batch that is not one of its count.
+    #[error("batch {0} does not exist (batches are 0/N to N-1/N, N at least 1)")]
+    NoSuchBatch(Batch),
+}
+
+/// One of `count` equal parts of a run's photons (`index` from 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Batch {
+    /// Which part, from 0.
+    pub index: u32,
+    /// Parts in all.
+    pub count: u32,
+}
+
+impl Batch {
+    /// The photons of this batch of a run of `photons`.
+    pub fn photons(self, photons: u64) -> std::ops::Range<u64> {
+        let at = |k: u32| (u128::from(photons) * u128::from(k) / u128::from(self.count)) as u64;
+        at(self.index)..at(self.index + 1)
+    }
+}
+
+impl std::str::FromStr for Batch {
+    type Err = String;
+
+    /// `I/N`: batch I (from 0) of N.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let parsed = text
+            .split_once('/')
+            .and_then(|(i, n)| Some((i.trim().parse().ok()?, n.trim().parse().ok()?)));
+        match parsed {
+            Some((index, count)) if index < count => Ok(Batch { index, count }),
+            _ => Err(format!(
+                "'{text}' is not a batch I/N (I from 0 to N-1, e.g. 0/4 … 3/4)"
+            )),
+        }
+    }
+}
+
+impl std::fmt::Display for Batch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}/{}", self.index, self.count)
+    }
+}
+
+/// What a batch of a run leaves for the merge ([`trace_light_batch`]): the scene's digest,
+/// the settings, which batch, and the fixed-point tallies of its photons. Serializable, so
+/// that batches run on other machines (a cluster's job array, Dask workers) come back as files
+/// or bytes.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub struct LightTracePartial {
+    /// [`crate::scene::Scene::digest`] of the scene traced, in hex.
+    pub scene_digest: String,
+    /// The run's settings (all its photons, not the batch's).
+    pub settings: LightTraceSettings,
+    /// Which batch.
+    pub batch: Batch,
+    /// Photons of the batch traced (fewer than its share when cancelled).
+    pub photons_traced: u64,
+    /// Seconds the batch took.
+    pub seconds: f64,
+    tally: Tally,
+}
+
+/// Why batches cannot be merged.
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+pub enum MergeError {
+    /// No batch given.
+    #[error("no batch to merge")]
+    Nothing,
+    /// A batch of another scene (or another version of its file).
+    #[error("batch {0} is of another scene (its digest differs)")]
+    OtherScene(Batch),
+    /// A batch of other settings (photons, seed, bounces).
+    #[error("batch {0} has other settings (photons, seed or bounces) than the first")]
+    OtherSettings(Batch),
+    /// A batch of another split.
+    #[error("batch {0} is not one of {1} batches like the first")]
+    OtherBatching(Batch, u32),
+    /// A batch given twice.
+    #[error("batch {0} is given twice")]
+    Twice(Batch),
+    /// A batch missing.
+    #[error("batch {0} is missing")]
+    Missing(Batch),
+    /// The run's settings cannot be traced.
+    #[error("{0}")]
+    Trace(LightTraceError),
 }
 
 /// The result of a light-tracing run.
@@ -142,6 +230,8 @@ struct Tracer<'a> {
     table: &'a SurfaceTable,
     /// Fixed-point units per watt.
     scale: f64,
+    /// The largest channel of the sources' total power, W.
+    largest_channel: f64,
     /// The reference irradiance of sensor tallies, W·m⁻²: the total power over the square
     /// of the bounding sphere's radius.
     sensor_reference: f64,
@@ -445,139 +535,243 @@ pub fn trace_light(
     cancel: &Cancel,
 ) -> Result<LightTraceOutput, LightTraceError> {
     let start = Instant::now();
-    if settings.photons == 0 {
-        return Err(LightTraceError::NoPhotons);
-    }
-    let sources = PhotonSources::new(world);
-    if sources.sources.is_empty() {
-        return Err(LightTraceError::NoLights);
-    }
-    let weights: Vec<f64> = sources
-        .sources
-        .iter()
-        .map(|s| s.power.to_f64().to_array().iter().sum())
-        .collect();
-    let total: f64 = weights.iter().sum();
-    let mut cdf: Vec<f64> = weights
-        .iter()
-        .scan(0.0, |acc, w| {
-            *acc += w / total;
-            Some(*acc)
-        })
-        .collect();
-    if let Some(last) = cdf.last_mut() {
-        *last = 1.0;
-    }
-    let counts = photons_per_source(&cdf, settings.photons);
-    let largest_channel = sources
-        .sources
-        .iter()
-        .map(|s| s.power)
-        .sum::<Rgb>()
-        .max_channel() as f64;
     let table = SurfaceTable::new(&world.scene, &world.geometry);
-    let radius = f64::from(world.entry_sphere().1);
-    let tracer = Tracer {
-        world,
-        cdf,
-        counts,
-        table: &table,
-        scale: FIXED_POINT_TOTAL / largest_channel,
-        sensor_reference: largest_channel / (radius * radius),
+    let tracer = Tracer::new(world, settings, &table)?;
+    let (tally, done) = tracer.trace(0..settings.photons, progress, cancel);
+    Ok(tracer.output(&tally, done, start.elapsed().as_secs_f64()))
+}
+
+/// Traces batch `batch.index` of `batch.count` of the photons of `settings` (the photons
+/// `index·N/count .. (index + 1)·N/count` of the N asked for, each exactly as a whole run
+/// traces it) and keeps their fixed-point tallies, for [`merge_light_batches`].
+pub fn trace_light_batch(
+    world: &World,
+    settings: &LightTraceSettings,
+    batch: Batch,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<LightTracePartial, LightTraceError> {
+    if batch.count == 0 || batch.index >= batch.count {
+        return Err(LightTraceError::NoSuchBatch(batch));
+    }
+    let start = Instant::now();
+    let table = SurfaceTable::new(&world.scene, &world.geometry);
+    let tracer = Tracer::new(world, settings, &table)?;
+    let (tally, traced) = tracer.trace(batch.photons(settings.photons), progress, cancel);
+    Ok(LightTracePartial {
+        scene_digest: format!("{:016x}", world.scene.digest()),
         settings: settings.clone(),
-        sources,
-    };
-    let workers = rayon::current_num_threads().max(1) * 4;
-    let sensors = world.scene.sensors.len();
-    let per_tally = table.len().max(1) * std::mem::size_of::<FixedBalance>()
-        + sensors * std::mem::size_of::<FixedSensor>();
-    let slots = workers.min(TALLY_BUDGET / per_tally).max(1);
-    let mut workers = vec![Worker::new(table.len(), sensors); slots];
-    let batch = settings
-        .photons
-        .div_ceil(BATCHES)
-        .clamp(MIN_BATCH, MAX_BATCH);
-    progress.start(settings.photons);
-    let mut done = 0u64;
-    while done < settings.photons && !cancel.is_requested() {
-        let end = (done + batch).min(settings.photons);
-        let span = end - done;
-        workers
-            .par_iter_mut()
-            .enumerate()
-            .for_each(|(slot, worker)| {
-                let from = done + span * slot as u64 / slots as u64;
-                let to = done + span * (slot as u64 + 1) / slots as u64;
-                for i in from..to {
-                    tracer.trace_photon(i, worker);
-                }
-            });
-        progress.advance(span);
-        done = end;
-    }
-    progress.finish();
-    let mut sum = Tally::new(table.len(), sensors);
-    for w in &workers {
-        sum.merge(&w.tally);
-    }
-    let mut power = SurfacePower::new(table.clone());
-    let mut errors = Vec::with_capacity(table.len());
-    for (e, b) in sum.entries.iter().enumerate() {
-        let out = power.balance_mut(e);
-        out.incident = tracer.watts(b.incident);
-        out.direct = Some(tracer.watts(b.direct));
-        out.absorbed = tracer.watts(b.absorbed);
-        out.emitted = tracer.watts(b.emitted);
-        out.reflected = tracer.watts(b.reflected);
-        let squares = Rgb64::from(
-            b.incident_squares
-                .map(|c| from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel),
-        );
-        errors.push(Some(standard_error(out.incident, squares, done)));
-    }
-    power.set_standard_errors(errors);
-    let totals = sum.entries.iter().fold([[0i128; 3]; 2], |mut t, b| {
-        add_fixed(&mut t[0], b.incident);
-        add_fixed(&mut t[1], [0, 1, 2].map(|c| b.incident[c] - b.direct[c]));
-        t
-    });
-    let [incident_error, indirect_error] = [0, 1].map(|k| {
-        let squares = Rgb64::from(
-            sum.total_squares[k]
-                .map(|c| from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel),
-        );
-        standard_error(tracer.watts(totals[k]), squares, done)
-    });
-    power.set_total_standard_errors(incident_error, indirect_error);
-    power.add_light_emission(tracer.watts(sum.light_emission));
-    power.add_escaped(tracer.watts(sum.escaped));
-    let factor = if done > 0 && done < settings.photons {
-        settings.photons as f64 / done as f64
-    } else {
-        1.0
-    };
-    power.scale(factor);
-    let delta = delta_light_direct(world);
-    let sensors = sum
-        .sensors
-        .iter()
-        .zip(delta)
-        .enumerate()
-        .map(|(k, (fixed, delta))| tracer.sensor_reading(k, fixed, delta, done, factor))
-        .collect();
-    Ok(LightTraceOutput {
-        power,
-        sensors,
-        photons: settings.photons,
-        photons_traced: done,
-        rays: sum.rays,
-        escaped_photons: sum.escaped_photons,
-        truncated_paths: sum.truncated_paths,
-        unsampled_sources: tracer.counts.iter().filter(|&&c| c == 0).count(),
-        sources: tracer.counts.len(),
+        batch,
+        photons_traced: traced,
         seconds: start.elapsed().as_secs_f64(),
-        settings: settings.clone(),
+        tally,
     })
+}
+
+/// The output of one run of all the photons, from the `partials` of its batches: their
+/// tallies added (integers: in any order the same sums), so the output is the one a single
+/// run with the same settings gives, bit for bit, but for the seconds (the batches' sum).
+/// Refuses batches of another scene, other settings, or not each batch exactly once.
+pub fn merge_light_batches(
+    world: &World,
+    partials: &[LightTracePartial],
+) -> Result<LightTraceOutput, MergeError> {
+    let first = partials.first().ok_or(MergeError::Nothing)?;
+    let digest = format!("{:016x}", world.scene.digest());
+    let count = first.batch.count;
+    let mut seen = vec![false; count as usize];
+    for p in partials {
+        if p.scene_digest != digest {
+            return Err(MergeError::OtherScene(p.batch));
+        }
+        if p.settings != first.settings {
+            return Err(MergeError::OtherSettings(p.batch));
+        }
+        if p.batch.count != count || p.batch.index >= count {
+            return Err(MergeError::OtherBatching(p.batch, count));
+        }
+        if std::mem::replace(&mut seen[p.batch.index as usize], true) {
+            return Err(MergeError::Twice(p.batch));
+        }
+    }
+    if let Some(missing) = seen.iter().position(|s| !s) {
+        return Err(MergeError::Missing(Batch {
+            index: missing as u32,
+            count,
+        }));
+    }
+    let table = SurfaceTable::new(&world.scene, &world.geometry);
+    let tracer = Tracer::new(world, &first.settings, &table).map_err(MergeError::Trace)?;
+    let mut sum = Tally::new(table.len(), world.scene.sensors.len());
+    for p in partials {
+        if p.tally.entries.len() != sum.entries.len() || p.tally.sensors.len() != sum.sensors.len()
+        {
+            return Err(MergeError::OtherScene(p.batch));
+        }
+        sum.merge(&p.tally);
+    }
+    let traced = partials.iter().map(|p| p.photons_traced).sum();
+    let seconds = partials.iter().map(|p| p.seconds).sum();
+    Ok(tracer.output(&sum, traced, seconds))
+}
+
+impl<'a> Tracer<'a> {
+    /// The tracer of `settings` on `world`, tallying into `table`'s entries.
+    fn new(
+        world: &'a World,
+        settings: &LightTraceSettings,
+        table: &'a SurfaceTable,
+    ) -> Result<Self, LightTraceError> {
+        if settings.photons == 0 {
+            return Err(LightTraceError::NoPhotons);
+        }
+        let sources = PhotonSources::new(world);
+        if sources.sources.is_empty() {
+            return Err(LightTraceError::NoLights);
+        }
+        let weights: Vec<f64> = sources
+            .sources
+            .iter()
+            .map(|s| s.power.to_f64().to_array().iter().sum())
+            .collect();
+        let total: f64 = weights.iter().sum();
+        let mut cdf: Vec<f64> = weights
+            .iter()
+            .scan(0.0, |acc, w| {
+                *acc += w / total;
+                Some(*acc)
+            })
+            .collect();
+        if let Some(last) = cdf.last_mut() {
+            *last = 1.0;
+        }
+        let counts = photons_per_source(&cdf, settings.photons);
+        let largest_channel = sources
+            .sources
+            .iter()
+            .map(|s| s.power)
+            .sum::<Rgb>()
+            .max_channel() as f64;
+        let radius = f64::from(world.entry_sphere().1);
+        Ok(Tracer {
+            world,
+            cdf,
+            counts,
+            table,
+            scale: FIXED_POINT_TOTAL / largest_channel,
+            largest_channel,
+            sensor_reference: largest_channel / (radius * radius),
+            settings: settings.clone(),
+            sources,
+        })
+    }
+
+    /// Traces the photons `photons` on the current rayon pool; returns their tally and how
+    /// many were traced (fewer when `cancel` stopped it).
+    fn trace(
+        &self,
+        photons: std::ops::Range<u64>,
+        progress: &dyn ProgressListener,
+        cancel: &Cancel,
+    ) -> (Tally, u64) {
+        let workers = rayon::current_num_threads().max(1) * 4;
+        let sensors = self.world.scene.sensors.len();
+        let per_tally = self.table.len().max(1) * std::mem::size_of::<FixedBalance>()
+            + sensors * std::mem::size_of::<FixedSensor>();
+        let slots = workers.min(TALLY_BUDGET / per_tally).max(1);
+        let mut workers = vec![Worker::new(self.table.len(), sensors); slots];
+        let asked = photons.end - photons.start;
+        let batch = asked.div_ceil(BATCHES).clamp(MIN_BATCH, MAX_BATCH);
+        progress.start(asked);
+        let mut done = photons.start;
+        while done < photons.end && !cancel.is_requested() {
+            let end = (done + batch).min(photons.end);
+            let span = end - done;
+            workers
+                .par_iter_mut()
+                .enumerate()
+                .for_each(|(slot, worker)| {
+                    let from = done + span * slot as u64 / slots as u64;
+                    let to = done + span * (slot as u64 + 1) / slots as u64;
+                    for i in from..to {
+                        self.trace_photon(i, worker);
+                    }
+                });
+            progress.advance(span);
+            done = end;
+        }
+        progress.finish();
+        let mut sum = Tally::new(self.table.len(), sensors);
+        for w in &workers {
+            sum.merge(&w.tally);
+        }
+        (sum, done - photons.start)
+    }
+
+    /// The output of the run whose photons, `done` of them, left `sum`, in `seconds`; scaled
+    /// to the photons asked for when fewer were traced.
+    fn output(&self, sum: &Tally, done: u64, seconds: f64) -> LightTraceOutput {
+        let settings = &self.settings;
+        let largest_channel = self.largest_channel;
+        let mut power = SurfacePower::new(self.table.clone());
+        let mut errors = Vec::with_capacity(self.table.len());
+        for (e, b) in sum.entries.iter().enumerate() {
+            let out = power.balance_mut(e);
+            out.incident = self.watts(b.incident);
+            out.direct = Some(self.watts(b.direct));
+            out.absorbed = self.watts(b.absorbed);
+            out.emitted = self.watts(b.emitted);
+            out.reflected = self.watts(b.reflected);
+            let squares =
+                Rgb64::from(b.incident_squares.map(|c| {
+                    from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel
+                }));
+            errors.push(Some(standard_error(out.incident, squares, done)));
+        }
+        power.set_standard_errors(errors);
+        let totals = sum.entries.iter().fold([[0i128; 3]; 2], |mut t, b| {
+            add_fixed(&mut t[0], b.incident);
+            add_fixed(&mut t[1], [0, 1, 2].map(|c| b.incident[c] - b.direct[c]));
+            t
+        });
+        let [incident_error, indirect_error] = [0, 1].map(|k| {
+            let squares =
+                Rgb64::from(sum.total_squares[k].map(|c| {
+                    from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel
+                }));
+            standard_error(self.watts(totals[k]), squares, done)
+        });
+        power.set_total_standard_errors(incident_error, indirect_error);
+        power.add_light_emission(self.watts(sum.light_emission));
+        power.add_escaped(self.watts(sum.escaped));
+        let factor = if done > 0 && done < settings.photons {
+            settings.photons as f64 / done as f64
+        } else {
+            1.0
+        };
+        power.scale(factor);
+        let delta = delta_light_direct(self.world);
+        let sensors = sum
+            .sensors
+            .iter()
+            .zip(delta)
+            .enumerate()
+            .map(|(k, (fixed, delta))| self.sensor_reading(k, fixed, delta, done, factor))
+            .collect();
+        LightTraceOutput {
+            power,
+            sensors,
+            photons: settings.photons,
+            photons_traced: done,
+            rays: sum.rays,
+            escaped_photons: sum.escaped_photons,
+            truncated_paths: sum.truncated_paths,
+            unsampled_sources: self.counts.iter().filter(|&&c| c == 0).count(),
+            sources: self.counts.len(),
+            seconds,
+            settings: settings.clone(),
+        }
+    }
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! Why a method could not run.
 
-use crate::light_model::LightTraceError;
+use crate::light_model::{LightTraceError, MergeError};
 use crate::radiosity::solve::SolveError;
 
 /// A setting outside its range, named as the command line names it (`min-area`,
@@ -45,6 +45,12 @@ pub enum MethodError {
     /// The light model refused the scene.
     #[error(transparent)]
     LightTrace(#[from] LightTraceError),
+    /// Only the light model's runs split into batches.
+    #[error("{0} does not run in batches: only the light model (light-trace) does")]
+    NotInBatches(super::MethodKind),
+    /// Batches that do not make one run.
+    #[error(transparent)]
+    Merge(#[from] MergeError),
     /// A radiosity solver refused the scene.
     #[error(transparent)]
     Radiosity(#[from] SolveError),

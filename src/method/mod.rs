@@ -27,12 +27,14 @@
 //! assert!((by_radiosity / by_photons - 1.0).abs() < 0.02, "{by_radiosity} {by_photons}");
 //! ```
 
+mod batches;
 mod error;
 mod kind;
 mod outcome;
 mod run;
 mod settings;
 
+pub use batches::{merge_batches, run_batch};
 pub use error::{MethodError, SettingError};
 pub use kind::MethodKind;
 pub use outcome::{Outcome, SolvedRadiosity};
@@ -69,7 +71,7 @@ pub use crate::trace::{AntialiasMode, ShadowMode};
 pub use crate::world::{GeometryError, QueryTiming, RayBench, RaySet, World, bench_rays};
 
 pub use crate::final_gather::SurfaceGather;
-pub use crate::light_model::LightTraceSettings;
+pub use crate::light_model::{Batch, LightTracePartial, LightTraceSettings, MergeError};
 use settings::{at_least_one, check_light_trace};
 
 /// A method of computing light with all its settings.

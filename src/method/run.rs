@@ -8,7 +8,7 @@ use super::settings::{
 use super::{Method, MethodError};
 use crate::choice::Choice;
 use crate::final_gather::gather_surfaces;
-use crate::light_model::{LightTraceSettings, trace_light};
+use crate::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::hierarchical::{solve_hierarchical, solve_hierarchical_shooting};
 use crate::radiosity::solve::{
@@ -359,8 +359,12 @@ fn light_trace(
     cancel: &Cancel,
 ) -> Result<Outcome, MethodError> {
     progress.phase("photons");
-    let out = trace_light(world, s, progress, cancel)?;
-    Ok(Outcome {
+    Ok(light_outcome(trace_light(world, s, progress, cancel)?))
+}
+
+/// The outcome of a run of the light model.
+pub(super) fn light_outcome(out: LightTraceOutput) -> Outcome {
+    Outcome {
         measurement: Some(out.measurement()),
         summary: format!(
             "{}, {} of {} photons, {} rays in {:.2} s",
@@ -372,5 +376,5 @@ fn light_trace(
         ),
         complete: out.complete(),
         ..empty()
-    })
+    }
 }

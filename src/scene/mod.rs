@@ -130,6 +130,16 @@ impl Scene {
         });
     }
 
+    /// A digest of everything in the scene (FNV-1a, 64 bits, of its full description): two
+    /// scenes with the same digest are the same scene to every method, so work done on one
+    /// may be merged with work done on the other (batches of a run on other machines).
+    pub fn digest(&self) -> u64 {
+        let text = format!("{self:?}");
+        text.bytes().fold(0xcbf2_9ce4_8422_2325, |hash, byte| {
+            (hash ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01b3)
+        })
+    }
+
     /// The report name of object `index`: its name, or `object-<index>`.
     pub fn object_name(&self, index: usize) -> String {
         self.objects[index]
