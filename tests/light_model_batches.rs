@@ -109,6 +109,12 @@ fn batches_that_do_not_belong_together_are_refused() {
         merge(&[a.clone(), third]),
         Err(MergeError::OtherBatching(Batch { index: 1, count: 3 }, 2))
     );
+    let mut cut = b.clone();
+    cut.photons_traced -= 1;
+    assert_eq!(
+        merge(&[a.clone(), cut]),
+        Err(MergeError::CutShort(Batch { index: 1, count: 2 }))
+    );
     // The same batches against a scene with its light moved.
     let mut moved = strahl::scene::open("cornell", &Default::default()).unwrap();
     moved

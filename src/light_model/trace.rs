@@ -146,6 +146,9 @@ pub enum MergeError {
     /// A batch missing.
     #[error("batch {0} is missing")]
     Missing(Batch),
+    /// A batch stopped before all its photons were traced.
+    #[error("batch {0} was stopped before all its photons were traced: run it again")]
+    CutShort(Batch),
     /// The run's settings cannot be traced.
     #[error("{0}")]
     Trace(LightTraceError),
@@ -592,6 +595,10 @@ pub fn merge_light_batches(
         }
         if std::mem::replace(&mut seen[p.batch.index as usize], true) {
             return Err(MergeError::Twice(p.batch));
+        }
+        let share = p.batch.photons(p.settings.photons);
+        if p.photons_traced != share.end - share.start {
+            return Err(MergeError::CutShort(p.batch));
         }
     }
     if let Some(missing) = seen.iter().position(|s| !s) {
