@@ -4,6 +4,7 @@
 
 use super::run::light_outcome;
 use super::{Method, MethodError, Outcome};
+use crate::choice::Choice;
 use crate::light_model::{Batch, LightTracePartial, merge_light_batches, trace_light_batch};
 use crate::progress::{Cancel, ProgressListener};
 use crate::world::World;
@@ -19,7 +20,7 @@ pub fn run_batch(
 ) -> Result<LightTracePartial, MethodError> {
     method.check()?;
     let Method::LightTrace(settings) = method else {
-        return Err(MethodError::NotInBatches(method.kind()));
+        return Err(MethodError::NotInBatches(method.kind().name()));
     };
     progress.phase("photons");
     Ok(trace_light_batch(world, settings, batch, progress, cancel)?)

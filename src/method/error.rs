@@ -45,9 +45,9 @@ pub enum MethodError {
     /// The light model refused the scene.
     #[error(transparent)]
     LightTrace(#[from] LightTraceError),
-    /// Only the light model's runs split into batches.
+    /// Only the light model's runs split into batches (the method named).
     #[error("{0} does not run in batches: only the light model (light-trace) does")]
-    NotInBatches(super::MethodKind),
+    NotInBatches(&'static str),
     /// Batches that do not make one run.
     #[error(transparent)]
     Merge(#[from] MergeError),
