@@ -9,7 +9,7 @@ use clap::Args;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use strahl::method::{AccelKind, LightTracePartial, World};
-use strahl::report::{Report, ReportFormat, write_report};
+use strahl::report::{Report, ReportFormat};
 
 /// Arguments of `strahl merge`.
 #[derive(Debug, Args)]
@@ -82,16 +82,7 @@ pub fn run(args: &MergeArgs) -> Result<()> {
         .measurement
         .context("the merge measured no surfaces")?;
     let report = Report::new(&name, &measured);
-    match &args.report {
-        Some(path) => {
-            write_report(&report, path)?;
-            if !args.quiet {
-                eprintln!("report: {}", path.display());
-            }
-        }
-        None => println!("{}", serde_json::to_string_pretty(&report)?),
-    }
-    Ok(())
+    super::solve::deliver(&report, args.report.as_deref(), args.quiet)
 }
 
 /// A partial result file; errors name it.

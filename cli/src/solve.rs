@@ -9,6 +9,7 @@ use super::run_method;
 use super::tone::ToneArgs;
 use anyhow::{Context, Result, bail};
 use clap::Args;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use strahl::atomic_file::AtomicFile;
@@ -271,14 +272,30 @@ pub fn run(args: &SolveArgs) -> Result<()> {
             );
         }
     }
-    match &args.report {
+    deliver(&report, args.report.as_deref(), args.quiet)
+}
+
+/// Writes `report` to `path` (JSON or CSV by its extension), or prints it as JSON to
+/// standard output without one (a reader that stops early is no error).
+pub fn deliver(report: &Report, path: Option<&Path>, quiet: bool) -> Result<()> {
+    match path {
         Some(path) => {
-            write_report(&report, path)?;
-            if !args.quiet {
+            write_report(report, path)?;
+            if !quiet {
                 eprintln!("report: {}", path.display());
             }
         }
-        None => println!("{}", serde_json::to_string_pretty(&report)?),
+        None => {
+            let mut out = std::io::stdout().lock();
+            let written = serde_json::to_writer_pretty(&mut out, report)
+                .map_err(std::io::Error::from)
+                .and_then(|()| writeln!(out));
+            match written {
+                // The reader stopped reading (`strahl solve … | head`): nothing is lost.
+                Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}
+                written => written?,
+            }
+        }
     }
     Ok(())
 }

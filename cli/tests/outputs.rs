@@ -139,3 +139,23 @@ fn an_output_that_cannot_be_written_is_refused_before_any_work() {
     std::fs::set_permissions(&folder, std::fs::Permissions::from_mode(0o755)).unwrap();
     std::fs::remove_dir_all(folder).unwrap();
 }
+
+#[test]
+fn a_reader_that_stops_early_is_no_error() {
+    // `strahl solve … | head -c 10`: the report goes to standard output and the reader
+    // closes it after ten bytes.
+    use std::io::Read;
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args(["solve", "canopy:300", "--photons", "20000", "-q"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut start = [0u8; 10];
+    child.stdout.take().unwrap().read_exact(&mut start).unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert_eq!(&start[..1], b"{");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{:?}: {stderr}", out.status);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}
