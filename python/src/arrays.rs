@@ -131,7 +131,17 @@ pub fn scene(name: &str, a: Arrays) -> Result<Scene, String> {
             object.per_face = true;
         }
     }
+    let light = |what: &str, rgb: [f32; 3]| {
+        if rgb.iter().all(|v| v.is_finite() && *v >= 0.0) {
+            Ok(rgb)
+        } else {
+            Err(format!(
+                "the {what} must be finite and not negative ({rgb:?})"
+            ))
+        }
+    };
     if let Some((direction, irradiance)) = a.sun {
+        let irradiance = light("sun's irradiance", irradiance)?;
         let direction = Vec3::from(direction)
             .try_normalize()
             .ok_or("the sun's direction must not be zero")?;
@@ -144,6 +154,7 @@ pub fn scene(name: &str, a: Arrays) -> Result<Scene, String> {
         });
     }
     if let Some(radiance) = a.sky {
+        let radiance = light("sky's radiance", radiance)?;
         scene.lights.push(Light {
             name: Some("sky".into()),
             kind: LightKind::Sky {

@@ -183,6 +183,12 @@ def test_per_face_reports_every_triangle_and_bad_arrays_are_refused():
         strahl.from_arrays(v, t, [0, 3], ["x"], 0.5)
     with pytest.raises(ValueError, match="add up to at most 1"):
         strahl.from_arrays(v, t, [0, 0], ["x"], 0.7, translucency=0.5)
+    with pytest.raises(ValueError, match="sky's radiance must be finite and not negative"):
+        strahl.from_arrays(v, t, [0, 0], ["x"], 0.5, sky=float("nan"))
+    with pytest.raises(ValueError, match="sun's irradiance must be finite and not negative"):
+        strahl.from_arrays(v, t, [0, 0], ["x"], 0.5, sun=([0, -1, 0], -1.0))
+    with pytest.raises(ValueError, match="direction must not be zero"):
+        strahl.from_arrays(v, t, [0, 0], ["x"], 0.5, sun=([0, 0, 0], 1.0))
     with pytest.raises(ValueError, match="vertices: shape"):
         strahl.from_arrays(v[:, :2], t, [0, 0], ["x"], 0.5)
 
