@@ -4,7 +4,9 @@
 
 use anyhow::Result;
 use serde::Serialize;
-use strahl::method::{LUMINOUS_EFFICACY, LitMesh, Ray, RoundSolution, Shading, SolvedRadiosity};
+use strahl::method::{
+    LUMINOUS_EFFICACY, LitMesh, Probe, Ray, RoundSolution, Shading, SolvedRadiosity,
+};
 use strahl::report::Report;
 use strahl::scene::Scene;
 
@@ -36,11 +38,20 @@ pub struct Snapshot {
     pub mesh: Vec<u8>,
     /// `/api/links`: the links, binary ([`link_bytes`]; none between rounds).
     pub links: Vec<u8>,
-    /// The solution read by picks (none between rounds).
-    solved: Option<SolvedRadiosity>,
-    shading: Shading,
+    /// The solution and its probe, made once, read by picks (none between rounds).
+    readings: Option<Readings>,
     objects: Vec<String>,
 }
+
+self_cell::self_cell!(
+    /// A solution and the probe that reads it along rays (which holds a lookup structure
+    /// over its leaves, built once rather than for every pick).
+    struct Readings {
+        owner: SolvedRadiosity,
+        #[covariant]
+        dependent: Probe,
+    }
+);
 
 /// What a snapshot says of itself besides the scene.
 struct About<'a> {
@@ -136,21 +147,14 @@ impl Snapshot {
             scene,
             mesh,
             links,
-            solved: Some(solved),
-            shading,
+            readings: Some(Readings::new(solved, |solved| solved.probe(shading))),
             objects,
         })
     }
 
     /// The solution between rounds `round` of a solve of `scene` (after `moves` moves), as
     /// version `version`.
-    pub fn round(
-        version: u64,
-        moves: u64,
-        scene: &Scene,
-        round: &RoundSolution,
-        shading: Shading,
-    ) -> Result<Self> {
+    pub fn round(version: u64, moves: u64, scene: &Scene, round: &RoundSolution) -> Result<Self> {
         let about = About {
             version,
             moves,
@@ -167,23 +171,22 @@ impl Snapshot {
             scene,
             mesh,
             links: 0u32.to_le_bytes().to_vec(),
-            solved: None,
-            shading,
+            readings: None,
             objects,
         })
     }
 
     /// Whether picks can read it (false between rounds).
     pub fn readable(&self) -> bool {
-        self.solved.is_some()
+        self.readings.is_some()
     }
 
     /// What the ray from `origin` along the unit `direction` meets.
     pub fn pick(&self, ray: &Ray) -> PickInfo {
         let hit = self
-            .solved
+            .readings
             .as_ref()
-            .and_then(|solved| solved.probe(self.shading).at(ray));
+            .and_then(|readings| readings.borrow_dependent().at(ray));
         match hit {
             None => PickInfo {
                 hit: false,
@@ -342,7 +345,7 @@ mod tests {
             change: 1e-3,
             mesh,
         };
-        let snapshot = Snapshot::round(7, 2, &scene, &round, Shading::Smooth).unwrap();
+        let snapshot = Snapshot::round(7, 2, &scene, &round).unwrap();
         let info: serde_json::Value = serde_json::from_slice(&snapshot.scene).unwrap();
         assert_eq!(info["stage"], "round");
         assert_eq!(

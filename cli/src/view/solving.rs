@@ -360,13 +360,7 @@ impl ProgressListener for Observer<'_> {
             return;
         }
         let version = self.solving.next_version();
-        let made = Snapshot::round(
-            version,
-            self.moves,
-            self.scene,
-            solution,
-            self.solving.shading,
-        );
+        let made = Snapshot::round(version, self.moves, self.scene, solution);
         match made {
             Ok(snapshot) => self
                 .solving
