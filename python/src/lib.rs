@@ -8,13 +8,13 @@ mod arrays;
 
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyBytes;
+use pyo3::types::{PyBool, PyBytes, PyFloat, PyString};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 use strahl::method::{
-    AccelKind, Cancel, Choice, ImageSize, Method, MethodKind, NoProgress, Outcome,
-    ProgressListener, World,
+    AccelKind, Cancel, Choice, Film, Method, MethodKind, Outcome, ProgressListener, SettingValue,
+    World,
 };
 use strahl::report::Report;
 
@@ -94,7 +94,7 @@ fn open_world(name: &str) -> Result<World, String> {
 
 /// Batch `index` of `count` of a light-model run of `photons` photons on the scene `name`
 /// (built-in or a file, opened here: this runs where the batch is sent), as JSON for
-/// [`merge_batches`]. The GIL is released while it traces.
+/// [`merge_batches`]. The GIL is released while it traces; Ctrl-C stops it.
 #[pyfunction]
 #[pyo3(signature = (name, photons, seed, index, count, threads=0))]
 fn light_trace_batch(
@@ -106,8 +106,7 @@ fn light_trace_batch(
     count: u32,
     threads: usize,
 ) -> PyResult<String> {
-    let pool = rayon_pool(threads)?;
-    py.detach(|| -> Result<String, String> {
+    run_with(py, threads, None, |listener, cancel| {
         let world = open_world(name)?;
         let method = Method::LightTrace(strahl::method::LightTraceSettings {
             photons,
@@ -115,14 +114,10 @@ fn light_trace_batch(
             ..Default::default()
         });
         let batch = strahl::method::Batch { index, count };
-        let partial = pool
-            .install(|| {
-                strahl::method::run_batch(&world, &method, batch, &NoProgress, &Cancel::new())
-            })
+        let partial = strahl::method::run_batch(&world, &method, batch, listener, cancel)
             .map_err(|e| e.to_string())?;
         serde_json::to_string(&partial).map_err(|e| e.to_string())
     })
-    .map_err(PyValueError::new_err)
 }
 
 /// The report (JSON) of the whole run on the scene `name` from the JSON `partials` of all
@@ -171,18 +166,10 @@ impl ProgressListener for Progress {
     fn finish(&self) {}
 }
 
-/// The settings a run takes from Python's keywords.
-struct Asked {
-    seed: u64,
-    photons: Option<u64>,
-    error: Option<f64>,
-    samples_per_pixel: Option<u32>,
-    size: Option<(u32, u32)>,
-}
-
-/// `kind` at its defaults with what `asked` sets; an error names a setting the method does
-/// not take.
-fn method(kind: &str, asked: &Asked) -> PyResult<Method> {
+/// `kind` at its defaults with `settings` set by name (the command line's options without
+/// dashes: `error`, `mesh-size`, `spp`; see `Method::set`), seeded by `seed`, checked. `None`
+/// values leave a setting at its default.
+fn method(kind: &str, seed: u64, settings: &[(String, Bound<'_, PyAny>)]) -> PyResult<Method> {
     let kind = MethodKind::from_name(kind).ok_or_else(|| {
         let known: Vec<&str> = MethodKind::VALUES
             .iter()
@@ -193,40 +180,15 @@ fn method(kind: &str, asked: &Asked) -> PyResult<Method> {
             known.join(", ")
         ))
     })?;
-    let mut method = kind.with_defaults().with_seed(asked.seed);
-    let refuse = |setting: &str| {
-        PyValueError::new_err(format!("method '{}' takes no {setting}", kind.name()))
-    };
-    if let Some(photons) = asked.photons {
-        match &mut method {
-            Method::LightTrace(s) => s.photons = photons,
-            _ => return Err(refuse("photons")),
+    let mut method = kind.with_defaults().with_seed(seed);
+    for (name, value) in settings {
+        if value.is_none() {
+            continue;
         }
-    }
-    if let Some(error) = asked.error {
-        match &mut method {
-            Method::Radiosity(s) => s.hierarchical.error = error,
-            _ => return Err(refuse("error")),
-        }
-    }
-    if let Some(spp) = asked.samples_per_pixel {
-        match &mut method {
-            Method::PathTrace(s) => s.samples_per_pixel = spp,
-            _ => return Err(refuse("samples_per_pixel")),
-        }
-    }
-    if let Some((width, height)) = asked.size {
-        let size = ImageSize {
-            width: Some(width),
-            height: Some(height),
-        };
-        match &mut method {
-            Method::PathTrace(s) => s.size = size,
-            Method::RayTrace(s) => s.size = size,
-            Method::RadiosityImage(s) => s.size = size,
-            Method::FinalGather(s) => s.size = size,
-            _ => return Err(refuse("image size")),
-        }
+        let value = setting_value(name, value)?;
+        method
+            .set(name, &value)
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
     }
     method
         .check()
@@ -234,62 +196,118 @@ fn method(kind: &str, asked: &Asked) -> PyResult<Method> {
     Ok(method)
 }
 
+/// A Python value (a bool, an int or anything with `__index__`, a float, a str) as a
+/// setting's value.
+fn setting_value(name: &str, value: &Bound<'_, PyAny>) -> PyResult<SettingValue> {
+    if let Ok(b) = value.cast::<PyBool>() {
+        return Ok(SettingValue::Bool(b.is_true()));
+    }
+    if value.is_instance_of::<PyString>() {
+        return Ok(SettingValue::Text(value.extract()?));
+    }
+    if !value.is_instance_of::<PyFloat>()
+        && let Ok(n) = value.extract::<i64>()
+    {
+        return Ok(SettingValue::Int(n));
+    }
+    if let Ok(x) = value.extract::<f64>() {
+        return Ok(SettingValue::Float(x));
+    }
+    Err(PyValueError::new_err(format!(
+        "{name}: expected a bool, a number or a str, not {}",
+        value.get_type().name()?
+    )))
+}
+
 impl Scene {
-    /// Runs `method` on `threads` threads (0: one per core) with the GIL released; looks at
-    /// Ctrl-C and calls `progress(phase, done, total)` every [`POLL`] meanwhile.
-    fn run(
-        &self,
-        py: Python<'_>,
-        method: &Method,
-        threads: usize,
-        progress: Option<&Bound<'_, PyAny>>,
-    ) -> PyResult<Outcome> {
-        let pool = rayon_pool(threads)?;
-        let (listener, cancel) = (Progress::default(), Cancel::new());
-        let (done, finished) = std::sync::mpsc::channel::<()>();
-        // Behind a lock: the wait runs with the GIL released, which asks for a shareable one.
-        let finished = Mutex::new(finished);
-        std::thread::scope(|scope| {
-            let work = scope.spawn(|| {
-                let outcome =
-                    pool.install(|| strahl::method::run(&self.world, method, &listener, &cancel));
-                let _ = done.send(());
-                outcome
-            });
-            let mut last = None;
-            // Wakes when the work is done, or every POLL to look at Ctrl-C and progress.
-            let wait = || {
-                let finished = finished.lock().unwrap_or_else(|e| e.into_inner());
-                finished.recv_timeout(POLL)
-            };
-            while py.detach(wait).is_err() {
-                if let Err(interrupt) = py.check_signals() {
-                    cancel.request();
-                    let _ = py.detach(|| work.join());
-                    return Err(interrupt);
-                }
-                if let Some(callback) = progress {
-                    let phase = listener
-                        .phase
-                        .lock()
-                        .unwrap_or_else(|e| e.into_inner())
-                        .clone();
-                    let now = (
-                        phase,
-                        listener.done.load(Ordering::Relaxed),
-                        listener.total.load(Ordering::Relaxed),
-                    );
-                    if last.as_ref() != Some(&now) {
-                        callback.call1(now.clone())?;
-                        last = Some(now);
-                    }
+    /// The scene compiled with every face reported on its own (`per_face`) and without its
+    /// non-diffuse lobes (`diffuse_only`); itself when neither is asked for.
+    fn variant(&self, py: Python<'_>, per_face: bool, diffuse_only: bool) -> PyResult<Arc<World>> {
+        if !per_face && !diffuse_only {
+            return Ok(Arc::clone(&self.world));
+        }
+        let mut scene = self.world.scene.clone();
+        if per_face {
+            for object in &mut scene.objects {
+                object.per_face = true;
+            }
+        }
+        if diffuse_only {
+            scene.keep_diffuse_lobes();
+        }
+        let world = py.detach(|| World::new(scene, AccelKind::Bvh));
+        Ok(Arc::new(
+            world.map_err(|e| PyValueError::new_err(e.to_string()))?,
+        ))
+    }
+}
+
+/// Runs `method` on `world`: [`run_with`] of the library's `run`.
+fn run(
+    world: &Arc<World>,
+    py: Python<'_>,
+    method: &Method,
+    threads: usize,
+    progress: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Outcome> {
+    run_with(py, threads, progress, |listener, cancel| {
+        strahl::method::run(world, method, listener, cancel).map_err(|e| e.to_string())
+    })
+}
+
+/// Runs `work` on `threads` threads (0: one per core) with the GIL released; looks at Ctrl-C
+/// (cancelling the work and raising `KeyboardInterrupt`) and calls `progress(phase, done,
+/// total)` every [`POLL`] meanwhile. An error of the work becomes a `ValueError`.
+fn run_with<T: Send>(
+    py: Python<'_>,
+    threads: usize,
+    progress: Option<&Bound<'_, PyAny>>,
+    work: impl FnOnce(&dyn ProgressListener, &Cancel) -> Result<T, String> + Send,
+) -> PyResult<T> {
+    let pool = rayon_pool(threads)?;
+    let (listener, cancel) = (Progress::default(), Cancel::new());
+    let (done, finished) = std::sync::mpsc::channel::<()>();
+    // Behind a lock: the wait runs with the GIL released, which asks for a shareable one.
+    let finished = Mutex::new(finished);
+    std::thread::scope(|scope| {
+        let work = scope.spawn(|| {
+            let outcome = pool.install(|| work(&listener, &cancel));
+            let _ = done.send(());
+            outcome
+        });
+        let mut last = None;
+        // Wakes when the work is done, or every POLL to look at Ctrl-C and progress.
+        let wait = || {
+            let finished = finished.lock().unwrap_or_else(|e| e.into_inner());
+            finished.recv_timeout(POLL)
+        };
+        while py.detach(wait).is_err() {
+            if let Err(interrupt) = py.check_signals() {
+                cancel.request();
+                let _ = py.detach(|| work.join());
+                return Err(interrupt);
+            }
+            if let Some(callback) = progress {
+                let phase = listener
+                    .phase
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .clone();
+                let now = (
+                    phase,
+                    listener.done.load(Ordering::Relaxed),
+                    listener.total.load(Ordering::Relaxed),
+                );
+                if last.as_ref() != Some(&now) {
+                    callback.call1(now.clone())?;
+                    last = Some(now);
                 }
             }
-            py.detach(|| work.join())
-                .map_err(|_| PyRuntimeError::new_err("the run panicked"))?
-                .map_err(|e| PyValueError::new_err(e.to_string()))
-        })
-    }
+        }
+        py.detach(|| work.join())
+            .map_err(|_| PyRuntimeError::new_err("the run panicked"))?
+            .map_err(PyValueError::new_err)
+    })
 }
 
 /// A pool of `threads` threads (0: one per core).
@@ -318,9 +336,11 @@ impl Scene {
     }
 
     /// Runs a method that reports the light on every surface (`light-trace`, `matrix`,
-    /// `progressive`, `hierarchical`, `hierarchical-shooting`) and returns its report as
-    /// JSON (the `strahl solve --report` file).
-    #[pyo3(signature = (method, *, seed=0, threads=0, photons=None, error=None, progress=None))]
+    /// `progressive`, `hierarchical`, `hierarchical-shooting`) with `settings` (name, value)
+    /// and returns its report as JSON (the `strahl solve --report` file). `per_face` reports
+    /// every face of every object on its own, `diffuse_only` drops the materials'
+    /// non-diffuse lobes (`strahl solve --per-face --diffuse-only`).
+    #[pyo3(signature = (method, *, seed=0, threads=0, settings=Vec::new(), per_face=false, diffuse_only=false, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
@@ -328,76 +348,68 @@ impl Scene {
         method: &str,
         seed: u64,
         threads: usize,
-        photons: Option<u64>,
-        error: Option<f64>,
+        settings: Vec<(String, Bound<'_, PyAny>)>,
+        per_face: bool,
+        diffuse_only: bool,
         progress: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<String> {
-        let asked = Asked {
-            seed,
-            photons,
-            error,
-            samples_per_pixel: None,
-            size: None,
-        };
-        let method = self::method(method, &asked)?;
+        let method = self::method(method, seed, &settings)?;
         if !method.kind().reports_surfaces() {
             return Err(PyValueError::new_err(format!(
                 "method '{}' makes an image: use render()",
                 method.kind().name()
             )));
         }
-        let outcome = self.run(py, &method, threads, progress)?;
+        let world = self.variant(py, per_face, diffuse_only)?;
+        let outcome = run(&world, py, &method, threads, progress)?;
         let measured = outcome
             .measurement
             .ok_or_else(|| PyRuntimeError::new_err("the method measured no surfaces"))?;
-        let report = Report::new(&self.world.scene.name, &measured);
+        let report = Report::new(&world.scene.name, &measured);
         serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
-    /// Renders an image (`pathtrace`, `raytrace`, `radiosity`, `final-gather`): returns its
-    /// width, height and linear radiance as little-endian `f32` RGB, rows from the top,
-    /// W·sr⁻¹·m⁻².
-    #[pyo3(signature = (method, *, width=None, height=None, samples_per_pixel=None, seed=0, threads=0, progress=None))]
-    #[allow(clippy::too_many_arguments)]
+    /// The names of the settings `method` takes (`seed` first), as `solve` and `render` take
+    /// them.
+    #[staticmethod]
+    fn setting_names(method: &str) -> PyResult<Vec<&'static str>> {
+        Ok(self::method(method, 0, &[])?.setting_names())
+    }
+
+    /// Renders an image (`pathtrace`, `raytrace`, `radiosity`, `final-gather`) with
+    /// `settings` (name, value): returns its width, height and linear radiance as
+    /// little-endian `f32` RGB, rows from the top, W·sr⁻¹·m⁻².
+    #[pyo3(signature = (method, *, seed=0, threads=0, settings=Vec::new(), progress=None))]
     fn render<'py>(
         &self,
         py: Python<'py>,
         method: &str,
-        width: Option<u32>,
-        height: Option<u32>,
-        samples_per_pixel: Option<u32>,
         seed: u64,
         threads: usize,
+        settings: Vec<(String, Bound<'py, PyAny>)>,
         progress: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<(u32, u32, Bound<'py, PyBytes>)> {
-        let camera = &self.world.scene.camera;
-        let size = match (width, height) {
-            (None, None) => None,
-            (w, h) => Some((w.unwrap_or(camera.width), h.unwrap_or(camera.height))),
-        };
-        let asked = Asked {
-            seed,
-            photons: None,
-            error: None,
-            samples_per_pixel,
-            size,
-        };
-        let method = self::method(method, &asked)?;
-        let outcome = self.run(py, &method, threads, progress)?;
+        let method = self::method(method, seed, &settings)?;
+        let outcome = run(&self.world, py, &method, threads, progress)?;
         let film = outcome.image.ok_or_else(|| {
             PyValueError::new_err(format!(
                 "method '{}' makes no image: use solve()",
                 method.kind().name()
             ))
         })?;
-        let bytes: Vec<u8> = film
-            .pixels()
-            .iter()
-            .flat_map(|p| p.to_array())
-            .flat_map(f32::to_le_bytes)
-            .collect();
-        Ok((film.width(), film.height(), PyBytes::new(py, &bytes)))
+        Ok(film_bytes(py, &film))
     }
+}
+
+/// A film's width, height and pixels as little-endian `f32` RGB, rows from the top.
+fn film_bytes<'py>(py: Python<'py>, film: &Film) -> (u32, u32, Bound<'py, PyBytes>) {
+    let bytes: Vec<u8> = film
+        .pixels()
+        .iter()
+        .flat_map(|p| p.to_array())
+        .flat_map(f32::to_le_bytes)
+        .collect();
+    (film.width(), film.height(), PyBytes::new(py, &bytes))
 }
 
 /// The extension module.

@@ -14,14 +14,14 @@ in lux (683 lm/W times the luminance), radiance in W/(sr·m²), linear Rec.709 R
 from __future__ import annotations
 
 import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Callable, Optional
 
 import numpy as np
 
 from . import _strahl
 
-__all__ = ["load", "from_arrays", "Scene", "Result"]
+__all__ = ["load", "from_arrays", "settings", "Scene", "Result"]
 
 
 @dataclass(frozen=True)
@@ -41,6 +41,23 @@ class Result:
     """Mean irradiance on each surface, W/m², shape (n, 3) (NaN where not known)."""
     illuminance_lux: np.ndarray
     """Mean illuminance on each surface, lux, shape (n,) (NaN where not known)."""
+    faces: np.ndarray
+    """The face of its object each row reports (per-face objects, or ``per_face=True``; for
+    a scene from arrays a face is a triangle, numbered as given), -1 for a whole object,
+    shape (n,)."""
+    direct_w: np.ndarray
+    """Of the incident power, what came straight from the lights and the sky, W, shape (n, 3)
+    (NaN where the method does not tell it apart)."""
+    direct_lux: np.ndarray
+    """Illuminance by direct light, lux, shape (n,) (NaN where not told apart)."""
+    indirect_lux: np.ndarray
+    """Illuminance by light reflected or sent on by other surfaces, lux, shape (n,) (NaN
+    where not told apart)."""
+    incident_w_sigma: np.ndarray
+    """Standard error of the incident power, W, shape (n, 3) (Monte Carlo figures; NaN
+    where the method has none)."""
+    lux_sigma: np.ndarray
+    """Standard error of the illuminance, lux, shape (n,) (NaN where none)."""
     sensor_names: list
     """The sensors' names (``name[i,j]`` for a point of a grid), in scene order."""
     sensor_lux: np.ndarray
@@ -53,6 +70,40 @@ class Result:
     def report_json(self) -> str:
         """The report as JSON text."""
         return json.dumps(self.report, indent=2)
+
+    def by_object(self) -> "Result":
+        """The rows of each object (its faces, when reported per face) summed into one row
+        per object name, in order of first appearance: powers add, irradiance and
+        illuminance are the area-weighted means. Standard errors are NaN (a sum of faces'
+        figures does not give the object's: the faces' errors are correlated); solve without
+        ``per_face`` for them. Sensors are kept."""
+        order = list(dict.fromkeys(self.names))
+        index = {n: k for k, n in enumerate(order)}
+        rows = np.array([index[n] for n in self.names], dtype=int)
+        k = len(order)
+
+        def total(values):
+            out = np.zeros((k,) + values.shape[1:])
+            np.add.at(out, rows, values)
+            return out
+
+        area = total(self.area_m2)
+        weighted = lambda values: total(values * self.area_m2) / area
+        return replace(
+            self,
+            names=order,
+            area_m2=area,
+            faces=np.full(k, -1),
+            incident_w=total(self.incident_w),
+            absorbed_w=total(self.absorbed_w),
+            irradiance_w_m2=total(self.incident_w) / area[:, None],
+            illuminance_lux=weighted(self.illuminance_lux),
+            direct_w=total(self.direct_w),
+            direct_lux=weighted(self.direct_lux),
+            indirect_lux=weighted(self.indirect_lux),
+            incident_w_sigma=np.full((k, 3), np.nan),
+            lux_sigma=np.full(k, np.nan),
+        )
 
 
 def _result(report_json: str) -> Result:
@@ -76,6 +127,12 @@ def _result(report_json: str) -> Result:
         absorbed_w=rgb("absorbed_power"),
         irradiance_w_m2=rgb("irradiance"),
         illuminance_lux=scalar("illuminance_lux"),
+        faces=np.array([-1 if row.get("face") is None else row["face"] for row in rows], dtype=int),
+        direct_w=rgb("direct_power"),
+        direct_lux=scalar("direct_illuminance_lux"),
+        indirect_lux=scalar("indirect_illuminance_lux"),
+        incident_w_sigma=rgb("incident_power_standard_error"),
+        lux_sigma=scalar("illuminance_standard_error_lux"),
         report=report,
     )
 
@@ -102,18 +159,33 @@ class Scene:
         *,
         seed: int = 0,
         threads: int = 0,
-        photons: Optional[int] = None,
-        error: Optional[float] = None,
+        per_face: bool = False,
+        diffuse_only: bool = False,
         progress: Optional[Callable[[str, int, int], None]] = None,
+        **settings,
     ) -> Result:
         """Runs a method that reports the light on every surface: ``light-trace`` (the light
-        model; ``photons``), ``matrix``, ``progressive``, ``hierarchical`` (``error``: the
-        refinement threshold, a share of the emitted power) or ``hierarchical-shooting``.
+        model), ``matrix``, ``progressive``, ``hierarchical`` or ``hierarchical-shooting``.
+
+        ``settings`` are the method's settings by the command line's names with ``_`` for
+        ``-`` (``photons=10**7``, ``error=1e-5``, ``mesh_size="levels:2"``,
+        ``oracle="lischinski"``, ``clustering=False``, ``surface_gather=0``; see
+        :func:`settings` and ``strahl solve --help`` for each one's meaning and units); a
+        setting the method does not take raises ValueError. ``per_face=True`` reports every
+        face of every object on its own (a triangle, for a scene from arrays: per triangle
+        results aligned with the input; :meth:`Result.by_object` sums them per object);
+        ``diffuse_only=True`` drops the materials' specular, mirror and refracting lobes.
         ``threads=0`` uses every core; the GIL is released meanwhile. ``progress(phase,
         done, total)`` is called as the work goes. Ctrl-C raises KeyboardInterrupt within a
         second. Bad settings raise ValueError with the command line's message."""
         report = self._scene.solve(
-            method, seed=seed, threads=threads, photons=photons, error=error, progress=progress
+            method,
+            seed=seed,
+            threads=threads,
+            settings=_named(settings),
+            per_face=per_face,
+            diffuse_only=diffuse_only,
+            progress=progress,
         )
         return _result(report)
 
@@ -127,20 +199,31 @@ class Scene:
         seed: int = 0,
         threads: int = 0,
         progress: Optional[Callable[[str, int, int], None]] = None,
+        **settings,
     ) -> np.ndarray:
-        """Renders the scene's camera view: ``pathtrace`` (``samples_per_pixel``),
-        ``raytrace``, ``radiosity`` or ``final-gather``. Returns the linear radiance,
-        W/(sr·m²), as a float32 array of shape (height, width, 3), rows from the top."""
+        """Renders the scene's camera view: ``pathtrace``, ``raytrace``, ``radiosity`` or
+        ``final-gather``, ``width`` × ``height`` pixels (the scene camera's where not given),
+        ``samples_per_pixel`` (the command line's ``spp``) and the method's other
+        ``settings`` by name as for :meth:`solve` (``depth=8``, ``time_limit=2.0`` seconds,
+        ``shading="flat"``, ``error=1e-3`` for the radiosity solve behind an image). Returns
+        the linear radiance, W/(sr·m²), as a float32 array of shape (height, width, 3), rows
+        from the top."""
+        named = dict(width=width, height=height, spp=samples_per_pixel, **settings)
         w, h, pixels = self._scene.render(
-            method,
-            width=width,
-            height=height,
-            samples_per_pixel=samples_per_pixel,
-            seed=seed,
-            threads=threads,
-            progress=progress,
+            method, seed=seed, threads=threads, settings=_named(named), progress=progress
         )
         return np.frombuffer(pixels, dtype="<f4").reshape(h, w, 3).copy()
+
+
+def _named(settings: dict) -> list:
+    """Python keywords as the library's setting names (``mesh_size`` → ``mesh-size``)."""
+    return [(name.replace("_", "-"), value) for name, value in settings.items()]
+
+
+def settings(method: str) -> list:
+    """The names of the settings ``method`` takes as keywords of :meth:`Scene.solve` or
+    :meth:`Scene.render` (``seed`` first)."""
+    return [n.replace("-", "_") for n in _strahl.Scene.setting_names(method)]
 
 
 def load(name: str) -> Scene:

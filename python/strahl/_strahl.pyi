@@ -1,6 +1,6 @@
 """Type stub of the extension module (python/src/lib.rs); use it through `strahl`."""
 
-from typing import Callable, Optional, Tuple
+from typing import Any, Callable, Optional, Tuple
 
 Progress = Optional[Callable[[str, int, int], None]]
 
@@ -15,20 +15,22 @@ class Scene:
         *,
         seed: int = 0,
         threads: int = 0,
-        photons: Optional[int] = None,
-        error: Optional[float] = None,
+        settings: list[Tuple[str, Any]] = [],
+        per_face: bool = False,
+        diffuse_only: bool = False,
         progress: Progress = None,
     ) -> str:
         """The report as JSON (the `strahl solve --report` file)."""
+    @staticmethod
+    def setting_names(method: str) -> list[str]:
+        """The settings `method` takes, by the command line's names (`seed` first)."""
     def render(
         self,
         method: str,
         *,
-        width: Optional[int] = None,
-        height: Optional[int] = None,
-        samples_per_pixel: Optional[int] = None,
         seed: int = 0,
         threads: int = 0,
+        settings: list[Tuple[str, Any]] = [],
         progress: Progress = None,
     ) -> Tuple[int, int, bytes]:
         """Width, height and linear radiance as little-endian f32 RGB, rows from the top."""

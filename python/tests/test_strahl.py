@@ -81,8 +81,16 @@ def test_bad_input_raises_with_the_located_message(tmp_path):
     cornell = strahl.load("cornell")
     with pytest.raises(ValueError, match="unknown method 'nonsense'.*hierarchical"):
         cornell.solve("nonsense")
-    with pytest.raises(ValueError, match="takes no photons"):
+    with pytest.raises(ValueError, match=r"hierarchical takes no setting 'photons' \(its settings: seed, surface-gather"):
         cornell.solve("hierarchical", photons=10)
+    with pytest.raises(ValueError, match=r"oracle 'best' is not one of: lischinski"):
+        cornell.solve("hierarchical", oracle="best")
+    with pytest.raises(ValueError, match="clustering must be true or false"):
+        cornell.solve("hierarchical", clustering=1)
+    with pytest.raises(ValueError, match="min-area must lie between"):
+        cornell.solve("hierarchical", min_area=2.0)
+    with pytest.raises(ValueError, match="spp must be at least 1"):
+        cornell.render("pathtrace", width=8, height=8, samples_per_pixel=0)
     with pytest.raises(ValueError, match="use render"):
         cornell.solve("pathtrace")
     with pytest.raises(ValueError):
@@ -208,3 +216,66 @@ def test_sensors_come_as_arrays(tmp_path):
     assert np.allclose(result.sensor_irradiance_w_m2, 4 * np.pi, rtol=1e-3)
     assert np.allclose(result.sensor_lux, 683 * 4 * np.pi, rtol=1e-3)
     assert strahl.load("cornell").solve("hierarchical").sensor_lux.shape == (0,)
+
+
+def test_every_setting_is_a_keyword_and_gives_what_the_command_line_gives(tmp_path):
+    assert strahl.settings("light-trace") == ["seed", "photons", "max_bounces"]
+    assert "mesh_size" in strahl.settings("hierarchical")
+    assert {"width", "height", "spp", "depth", "time_limit"} <= set(strahl.settings("pathtrace"))
+    report = tmp_path / "r.json"
+    flags = ["--error", "1e-3", "--min-area", "1e-4", "--link-samples", "4", "--no-clustering",
+             "--max-rounds", "5", "--oracle", "bfa", "--surface-gather", "0.02", "--mesh-size", "levels:1"]
+    subprocess.run(
+        [CLI, "solve", "cornell", "--solver", "hierarchical", "-q", "--report", report, *flags],
+        check=True,
+    )
+    by_cli = json.loads(report.read_text())["objects"]
+    by_python = strahl.load("cornell").solve(
+        "hierarchical", error=1e-3, min_area=1e-4, link_samples=4, clustering=False,
+        max_rounds=5, oracle="bfa", surface_gather=0.02, mesh_size="levels:1",
+    ).report["objects"]
+    default = strahl.load("cornell").solve("hierarchical").report["objects"]
+    key = lambda rows: [(r["name"], r["absorbed_power"]) for r in rows]
+    assert key(by_python) == key(by_cli)
+    assert key(by_python) != key(default)
+
+
+def test_per_triangle_results_of_whole_objects_sum_to_the_objects():
+    v, t = _sheet(0.0)
+    # Two leaves of two triangles each, the upper one lit by the sun, the lower one in its
+    # shade and the sky's light.
+    below = v + np.array([0.0, -0.5, 0.0])
+    scene = strahl.from_arrays(
+        np.vstack([v, below]), np.vstack([t, t + 4]), [0, 0, 1, 1], ["upper", "lower"], 0.3,
+        translucency=0.2, sun=([0.3, -1, 0.1], 1.0), sky=0.05,
+    )
+    whole = scene.solve("light-trace", photons=200_000, seed=4)
+    faces = scene.solve("light-trace", photons=200_000, seed=4, per_face=True)
+    assert faces.names == ["upper", "upper", "lower", "lower"]
+    assert list(faces.faces) == [0, 1, 0, 1]
+    assert list(whole.faces) == [-1, -1]
+    # The same photons: each object's triangles add up to the object.
+    summed = faces.by_object()
+    assert summed.names == whole.names
+    assert np.allclose(summed.absorbed_w, whole.absorbed_w, rtol=1e-12, atol=0)
+    assert np.allclose(summed.illuminance_lux, whole.illuminance_lux, rtol=1e-12)
+    assert np.allclose(summed.area_m2, [1.0, 1.0])
+    assert np.all(np.isnan(summed.lux_sigma)) and np.all(whole.lux_sigma > 0)
+    # Direct and indirect light are told apart, and add up to the whole.
+    assert np.allclose(whole.direct_lux + whole.indirect_lux, whole.illuminance_lux, rtol=1e-9)
+    assert np.all(faces.incident_w_sigma > 0)
+    # Hierarchical radiosity per triangle agrees with the light model.
+    by_radiosity = scene.solve("hierarchical", per_face=True)
+    sigma = faces.incident_w_sigma.mean(axis=1)
+    assert np.all(np.abs(by_radiosity.incident_w.mean(axis=1) - faces.incident_w.mean(axis=1)) < 4 * sigma + 0.01 * faces.incident_w.mean(axis=1))
+
+
+def test_render_settings_reach_the_image():
+    cornell = strahl.load("cornell")
+    full = cornell.render("pathtrace", width=24, height=18, samples_per_pixel=4)
+    direct = cornell.render("pathtrace", width=24, height=18, samples_per_pixel=4, depth=1)
+    # One scattering event at most: no light reflected between the walls.
+    assert direct.mean() < 0.9 * full.mean()
+    flat = cornell.render("radiosity", width=24, height=18, shading="flat", error=1e-3)
+    smooth = cornell.render("radiosity", width=24, height=18, error=1e-3)
+    assert flat.shape == smooth.shape == (18, 24, 3) and not np.array_equal(flat, smooth)

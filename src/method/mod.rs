@@ -30,6 +30,7 @@
 mod batches;
 mod error;
 mod kind;
+mod named;
 mod outcome;
 mod run;
 mod settings;
@@ -37,6 +38,7 @@ mod settings;
 pub use batches::{merge_batches, run_batch};
 pub use error::{MethodError, SettingError};
 pub use kind::MethodKind;
+pub use named::SettingValue;
 pub use outcome::{Outcome, SolvedRadiosity};
 pub use run::{run, solve_radiosity};
 pub use settings::{
