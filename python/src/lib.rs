@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 use strahl::method::{
-    AccelKind, Cancel, Choice, Film, Method, MethodKind, Outcome, ProgressListener, SettingValue,
+    AccelKind, Batch, Cancel, Choice, Film, Method, MethodKind, Outcome, ProgressListener, SettingValue,
     World,
 };
 use strahl::report::Report;
@@ -90,55 +90,6 @@ fn scene_from_arrays(
 fn open_world(name: &str) -> Result<World, String> {
     let scene = strahl::scene::open(name, &Default::default()).map_err(|e| e.to_string())?;
     World::new(scene, AccelKind::Bvh).map_err(|e| format!("scene '{name}': {e}"))
-}
-
-/// Batch `index` of `count` of a light-model run of `photons` photons on the scene `name`
-/// (built-in or a file, opened here: this runs where the batch is sent), as JSON for
-/// [`merge_batches`]. The GIL is released while it traces; Ctrl-C stops it.
-#[pyfunction]
-#[pyo3(signature = (name, photons, seed, index, count, threads=0))]
-fn light_trace_batch(
-    py: Python<'_>,
-    name: &str,
-    photons: u64,
-    seed: u64,
-    index: u32,
-    count: u32,
-    threads: usize,
-) -> PyResult<String> {
-    run_with(py, threads, None, |listener, cancel| {
-        let world = open_world(name)?;
-        let method = Method::LightTrace(strahl::method::LightTraceSettings {
-            photons,
-            seed,
-            ..Default::default()
-        });
-        let batch = strahl::method::Batch { index, count };
-        let partial = strahl::method::run_batch(&world, &method, batch, listener, cancel)
-            .map_err(|e| e.to_string())?;
-        serde_json::to_string(&partial).map_err(|e| e.to_string())
-    })
-}
-
-/// The report (JSON) of the whole run on the scene `name` from the JSON `partials` of all
-/// its batches: the one a single run with the same settings gives, but for the seconds.
-#[pyfunction]
-fn merge_batches(py: Python<'_>, name: &str, partials: Vec<String>) -> PyResult<String> {
-    py.detach(|| -> Result<String, String> {
-        let world = open_world(name)?;
-        let partials = partials
-            .iter()
-            .enumerate()
-            .map(|(k, p)| serde_json::from_str(p).map_err(|e| format!("partial {k}: {e}")))
-            .collect::<Result<Vec<strahl::method::LightTracePartial>, String>>()?;
-        let outcome =
-            strahl::method::merge_batches(&world, &partials).map_err(|e| e.to_string())?;
-        let measured = outcome
-            .measurement
-            .ok_or("the merge measured no surfaces")?;
-        serde_json::to_string(&Report::new(&world.scene.name, &measured)).map_err(|e| e.to_string())
-    })
-    .map_err(PyValueError::new_err)
 }
 
 /// What a run reports while it works, read by the waiting thread.
@@ -369,6 +320,63 @@ impl Scene {
         serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
+    /// Batch `index` of `count` of `method`'s run with `settings` (the light model's photons
+    /// split), as JSON for [`Scene::merge_light`]: run anywhere — another process, a Dask
+    /// worker — on the same scene. The GIL is released while it runs; Ctrl-C stops it.
+    #[pyo3(signature = (method, index, count, *, seed=0, threads=0, settings=Vec::new(), per_face=false, diffuse_only=false, progress=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn batch(
+        &self,
+        py: Python<'_>,
+        method: &str,
+        index: u32,
+        count: u32,
+        seed: u64,
+        threads: usize,
+        settings: Vec<(String, Bound<'_, PyAny>)>,
+        per_face: bool,
+        diffuse_only: bool,
+        progress: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<String> {
+        let method = self::method(method, seed, &settings)?;
+        let world = self.variant(py, per_face, diffuse_only)?;
+        let batch = Batch { index, count };
+        run_with(py, threads, progress, |listener, cancel| {
+            let partial = strahl::method::run_batch(&world, &method, batch, listener, cancel)
+                .map_err(|e| e.to_string())?;
+            serde_json::to_string(&partial).map_err(|e| e.to_string())
+        })
+    }
+
+    /// The report (JSON) of a light-model run from the JSON `partials` of all its batches
+    /// ([`Scene::batch`], each once, any order): the one a single run with the same settings
+    /// gives, but for the seconds. `per_face` and `diffuse_only` as the batches were run.
+    #[pyo3(signature = (partials, *, per_face=false, diffuse_only=false))]
+    fn merge_light(
+        &self,
+        py: Python<'_>,
+        partials: Vec<String>,
+        per_face: bool,
+        diffuse_only: bool,
+    ) -> PyResult<String> {
+        let world = self.variant(py, per_face, diffuse_only)?;
+        py.detach(|| -> Result<String, String> {
+            let partials = partials
+                .iter()
+                .enumerate()
+                .map(|(k, p)| serde_json::from_str(p).map_err(|e| format!("partial {k}: {e}")))
+                .collect::<Result<Vec<strahl::method::LightTracePartial>, String>>()?;
+            let outcome =
+                strahl::method::merge_batches(&world, &partials).map_err(|e| e.to_string())?;
+            let measured = outcome
+                .measurement
+                .ok_or("the merge measured no surfaces")?;
+            serde_json::to_string(&Report::new(&world.scene.name, &measured))
+                .map_err(|e| e.to_string())
+        })
+        .map_err(PyValueError::new_err)
+    }
+
     /// The names of the settings `method` takes (`seed` first), as `solve` and `render` take
     /// them.
     #[staticmethod]
@@ -418,7 +426,5 @@ fn _strahl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(scene_from_arrays, m)?)?;
-    m.add_function(wrap_pyfunction!(light_trace_batch, m)?)?;
-    m.add_function(wrap_pyfunction!(merge_batches, m)?)?;
     Ok(())
 }

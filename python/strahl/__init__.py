@@ -14,6 +14,8 @@ in lux (683 lm/W times the luminance), radiance in W/(sr·m²), linear Rec.709 R
 from __future__ import annotations
 
 import json
+import uuid
+from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from typing import Callable, Optional
 
@@ -138,10 +140,17 @@ def _result(report_json: str) -> Result:
 
 
 class Scene:
-    """A scene compiled for ray queries: open one with :func:`load`."""
+    """A scene compiled for ray queries: open one with :func:`load` or build one with
+    :func:`from_arrays`. It pickles as what it was made from (a name, or the arrays), so it
+    travels to other processes — Dask workers — which compile it once each."""
 
-    def __init__(self, compiled: _strahl.Scene):
+    def __init__(self, compiled: _strahl.Scene, recipe: tuple):
         self._scene = compiled
+        self._recipe = recipe
+        self._token = uuid.uuid4().hex
+
+    def __reduce__(self):
+        return (_rebuilt, (self._recipe, self._token))
 
     @property
     def name(self) -> str:
@@ -230,7 +239,7 @@ def load(name: str) -> Scene:
     """Opens a built-in scene by name (``cornell``, ``canopy:300``, ``blocks:216``, …) or a
     scene file (``.toml``, ``.obj``, ``.gltf``/``.glb``, ``.mgf``). A bad file raises
     ValueError naming the file, line and field."""
-    return Scene(_strahl.load(name))
+    return Scene(_strahl.load(name), ("load", name))
 
 
 def _rgb_rows(values, count: int, what: str) -> np.ndarray:
@@ -283,7 +292,7 @@ def from_arrays(
     rgb = lambda v: tuple(float(x) for x in np.broadcast_to(np.asarray(v, dtype=float), (3,)))
     sun_light = None if sun is None else (rgb(sun[0]), rgb(sun[1]))
     sky_light = None if sky is None else rgb(sky)
-    compiled = _strahl.scene_from_arrays(
+    given = (
         name,
         vertices.tobytes(),
         triangles.tobytes(),
@@ -295,4 +304,25 @@ def from_arrays(
         sun_light,
         sky_light,
     )
-    return Scene(compiled)
+    return Scene(_strahl.scene_from_arrays(*given), ("arrays", given))
+
+
+# Scenes rebuilt from pickles in this process, by the token of the scene pickled: a worker
+# that runs many tasks on one scene compiles it once.
+_REBUILT: "OrderedDict[str, Scene]" = OrderedDict()
+_REBUILT_KEPT = 4
+
+
+def _rebuilt(recipe: tuple, token: str) -> Scene:
+    """The scene `recipe` describes, compiled once per process for each `token`."""
+    scene = _REBUILT.get(token)
+    if scene is None:
+        kind, given = recipe
+        compiled = _strahl.load(given) if kind == "load" else _strahl.scene_from_arrays(*given)
+        scene = Scene(compiled, recipe)
+        scene._token = token
+        _REBUILT[token] = scene
+        while len(_REBUILT) > _REBUILT_KEPT:
+            _REBUILT.popitem(last=False)
+    _REBUILT.move_to_end(token)
+    return scene

@@ -21,6 +21,22 @@ class Scene:
         progress: Progress = None,
     ) -> str:
         """The report as JSON (the `strahl solve --report` file)."""
+    def batch(
+        self,
+        method: str,
+        index: int,
+        count: int,
+        *,
+        seed: int = 0,
+        threads: int = 0,
+        settings: list[Tuple[str, Any]] = [],
+        per_face: bool = False,
+        diffuse_only: bool = False,
+        progress: Progress = None,
+    ) -> str:
+        """Batch `index` of `count` of the run, as JSON for `merge_light`."""
+    def merge_light(self, partials: list[str], *, per_face: bool = False, diffuse_only: bool = False) -> str:
+        """The report (JSON) of the whole run from all its batches."""
     @staticmethod
     def setting_names(method: str) -> list[str]:
         """The settings `method` takes, by the command line's names (`seed` first)."""
@@ -48,7 +64,3 @@ def scene_from_arrays(
     sun: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]],
     sky: Optional[Tuple[float, float, float]],
 ) -> Scene: ...
-def light_trace_batch(
-    name: str, photons: int, seed: int, index: int, count: int, threads: int = 0
-) -> str: ...
-def merge_batches(name: str, partials: list[str]) -> str: ...

@@ -1,6 +1,6 @@
-"""The light model on a Dask cluster: a run's photons split into batches that run on the
-cluster's workers and merge into the report one process gives with the same seed, bit for
-bit (the light model tallies power in integers, so the sums do not depend on the split).
+"""strahl on a Dask cluster: a run split into batches that run on the cluster's workers and
+merge into what one process gives with the same seed, bit for bit — the light model's photons
+(it tallies power in integers, so the sums do not depend on the split).
 
     from dask.distributed import Client, LocalCluster
     import strahl.distributed
@@ -16,34 +16,81 @@ The same on Slurm (PBS, HTCondor alike) through dask-jobqueue:
     with Client(cluster) as client:
         result = strahl.distributed.solve_light(client, "field.toml", photons=10**10, batches=64)
 
-Each worker opens the scene itself, by built-in name or file path (the file must be where
-the workers can read it), so scenes built from arrays do not travel yet.
+A scene is named (a built-in name, or a file path the workers can read) or a
+:class:`strahl.Scene` — one built by :func:`strahl.from_arrays` travels as its arrays, sent to
+every worker once; each worker compiles a scene once for all its tasks.
 """
 
 from __future__ import annotations
 
-from . import Result, _result, _strahl
+from typing import Union
+
+from . import Result, Scene, _rebuilt, _result
 
 __all__ = ["solve_light", "trace_batch", "merge"]
 
-
-def trace_batch(scene: str, photons: int, seed: int, index: int, count: int, threads: int = 0) -> str:
-    """Batch ``index`` of ``count`` of the light model's run of ``photons`` photons on
-    ``scene`` (a built-in name or a file path), as JSON for :func:`merge`. Runs anywhere:
-    a Dask task, a job of an array, another process."""
-    return _strahl.light_trace_batch(scene, photons, seed, index, count, threads)
+SceneLike = Union[str, Scene]
 
 
-def merge(scene: str, partials: list) -> Result:
-    """The result of the whole run from every batch's JSON (each once, any order)."""
-    return _result(_strahl.merge_batches(scene, list(partials)))
+def _open(scene: SceneLike) -> Scene:
+    """`scene` compiled in this process (once per process for a name)."""
+    return scene if isinstance(scene, Scene) else _rebuilt(("load", scene), "load:" + scene)
 
 
-def solve_light(client, scene: str, photons: int, batches: int, seed: int = 0, threads: int = 1) -> Result:
-    """The light model's run of ``photons`` photons on ``scene`` split into ``batches``
-    tasks on the Dask ``client``'s cluster (``threads`` threads each), merged here."""
+def trace_batch(
+    scene: SceneLike,
+    index: int,
+    count: int,
+    *,
+    seed: int = 0,
+    threads: int = 0,
+    per_face: bool = False,
+    diffuse_only: bool = False,
+    **settings,
+) -> str:
+    """Batch ``index`` of ``count`` of the light model's run on ``scene`` with ``settings``
+    (``photons=…``, ``max_bounces=…``, as :meth:`strahl.Scene.solve` takes them), as JSON for
+    :func:`merge`. Runs anywhere: a Dask task, a job of an array, another process."""
+    from . import _named
+
+    return _open(scene)._scene.batch(
+        "light-trace",
+        index,
+        count,
+        seed=seed,
+        threads=threads,
+        settings=_named(settings),
+        per_face=per_face,
+        diffuse_only=diffuse_only,
+    )
+
+
+def merge(scene: SceneLike, partials: list, *, per_face: bool = False, diffuse_only: bool = False) -> Result:
+    """The result of the whole run from every batch's JSON (each once, any order); refuses
+    batches of another scene, settings, seed or split."""
+    merged = _open(scene)._scene.merge_light(list(partials), per_face=per_face, diffuse_only=diffuse_only)
+    return _result(merged)
+
+
+def solve_light(
+    client,
+    scene: SceneLike,
+    photons: int,
+    batches: int,
+    *,
+    seed: int = 0,
+    threads: int = 1,
+    per_face: bool = False,
+    diffuse_only: bool = False,
+    **settings,
+) -> Result:
+    """The light model's run of ``photons`` photons on ``scene`` split into ``batches`` tasks
+    on the Dask ``client``'s cluster (``threads`` threads each), merged here: the result
+    :meth:`strahl.Scene.solve` gives with the same seed and settings."""
+    sent = client.scatter(scene, broadcast=True) if isinstance(scene, Scene) else scene
+    options = dict(seed=seed, threads=threads, per_face=per_face, diffuse_only=diffuse_only)
     futures = [
-        client.submit(trace_batch, scene, photons, seed, k, batches, threads, pure=False)
+        client.submit(trace_batch, sent, k, batches, photons=photons, **options, **settings, pure=False)
         for k in range(batches)
     ]
-    return merge(scene, client.gather(futures))
+    return merge(scene, client.gather(futures), per_face=per_face, diffuse_only=diffuse_only)

@@ -35,8 +35,35 @@ def test_batches_on_two_dask_workers_give_the_single_process_report():
     assert (merged.absorbed_w == single.absorbed_w).all()
 
 
+def test_a_scene_from_arrays_travels_to_the_workers():
+    distributed = pytest.importorskip("dask.distributed")
+    import numpy as np
+
+    rng = np.random.default_rng(2)
+    # 40 small leaves at random heights and tilts under a sun and a sky.
+    centres = rng.uniform([0, 0, 0], [2, 1, 2], size=(40, 3))
+    corners = np.array([[-0.1, 0, -0.1], [0.1, 0, -0.1], [0.1, 0, 0.1], [-0.1, 0, 0.1]])
+    tilt = rng.uniform(-0.08, 0.08, size=(40, 4, 1)) * np.array([0, 1, 0])
+    vertices = (centres[:, None, :] + corners[None] + tilt).reshape(-1, 3)
+    triangles = np.array([[[4 * k, 4 * k + 2, 4 * k + 1], [4 * k, 4 * k + 3, 4 * k + 2]] for k in range(40)]).reshape(-1, 3)
+    leaves = np.repeat(np.arange(40), 2)
+    scene = strahl.from_arrays(
+        vertices, triangles, leaves, [f"leaf{k}" for k in range(40)], 0.1,
+        translucency=0.1, sun=([0.2, -1, 0.1], 500.0), sky=30.0,
+    )
+    single = scene.solve("light-trace", photons=100_000, seed=7, per_face=True, max_bounces=50)
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        merged = strahl.distributed.solve_light(
+            client, scene, photons=100_000, batches=4, seed=7, per_face=True, max_bounces=50
+        )
+    assert without_seconds(merged.report) == without_seconds(single.report)
+    assert len(merged.names) == 80
+
+
 def test_batches_merge_in_any_order_and_refuse_strangers():
-    parts = [strahl.distributed.trace_batch("cornell", 50_000, 3, k, 3) for k in range(3)]
+    parts = [strahl.distributed.trace_batch("cornell", k, 3, photons=50_000, seed=3) for k in range(3)]
     single = strahl.load("cornell").solve("light-trace", photons=50_000, seed=3)
     merged = strahl.distributed.merge("cornell", parts[::-1])
     assert without_seconds(merged.report) == without_seconds(single.report)
@@ -44,6 +71,8 @@ def test_batches_merge_in_any_order_and_refuse_strangers():
         strahl.distributed.merge("cornell", [parts[0], parts[2]])
     with pytest.raises(ValueError, match="another scene"):
         strahl.distributed.merge("canopy:10", parts)
+    with pytest.raises(ValueError, match="another scene"):
+        strahl.distributed.merge("cornell", parts, per_face=True)
 
 
 def test_the_command_lines_batches_merge_into_its_single_report(tmp_path):
