@@ -360,11 +360,12 @@ fn the_links_are_served_with_the_objects_at_their_ends() {
     let objects = scene["objects"].as_array().unwrap().len() as i32;
     let (status, _, links) = get(address, "/api/links");
     assert_eq!(status, 200);
-    assert_eq!(links.len(), 4 + 32 * shown);
+    assert_eq!(links.len(), 4 + 36 * shown);
     let word = |at: usize| <[u8; 4]>::try_from(&links[at..at + 4]).unwrap();
     assert_eq!(u32::from_le_bytes(word(0)) as usize, shown);
+    let mut levels = std::collections::BTreeSet::new();
     for k in 0..shown {
-        let at = 4 + 32 * k;
+        let at = 4 + 36 * k;
         // Both ends inside the box (0.56 m wide, 0.55 m high and deep; a little slack).
         for j in 0..6 {
             let v = f32::from_le_bytes(word(at + 4 * j));
@@ -374,7 +375,20 @@ fn the_links_are_served_with_the_objects_at_their_ends() {
             let object = i32::from_le_bytes(word(at + 4 * j));
             assert!((-1..objects).contains(&object), "link {k}: object {object}");
         }
+        let level = i32::from_le_bytes(word(at + 32));
+        let (receiver, emitter) = (
+            i32::from_le_bytes(word(at + 24)),
+            i32::from_le_bytes(word(at + 28)),
+        );
+        // A link with a cluster at an end has no level in the patch hierarchy.
+        assert_eq!(level == -1, receiver == -1 || emitter == -1, "link {k}");
+        levels.insert(level);
     }
+    // The box's links run between root patches and down several levels of the quadtrees.
+    assert!(
+        levels.contains(&0) && levels.iter().any(|&l| l >= 3),
+        "{levels:?}"
+    );
 }
 
 #[test]
@@ -562,6 +576,12 @@ fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
     assert!(wireframe > 0.05, "wireframe changed {wireframe}");
     let links = differing("links", "profile-links");
     assert!(links > 0.05, "links changed {links}");
+    // Only the links of one level: fewer lines, so less of the picture changes.
+    let level = differing("links&level=2", "profile-level");
+    assert!(
+        level > 0.0 && level < links,
+        "links of level 2 changed {level}, all {links}"
+    );
 
     // A click on the floor near the front reads what the solution gives there; after the
     // page moves the light 5 cm toward the back, the same click reads what a solve from

@@ -303,13 +303,17 @@ fn mesh_bytes(lit: &LitMesh) -> (Vec<u8>, f32) {
 
 /// The links of a hierarchical solution as the page draws them, little-endian: the count
 /// `N` (u32), then per link the receiver's and the emitter's centre (3 × f32 each, scene
-/// units) and the receiver's and the emitter's object index (i32 each; −1 for a cluster of
-/// patches). At most [`MAX_LINKS`], taken at an even stride; none for the other solvers.
+/// units), the receiver's and the emitter's object index (i32 each; −1 for a cluster of
+/// patches) and the link's level (i32: the quadtree depth of its finer patch, 0 between root
+/// patches; −1 for a link with a cluster at an end). At most [`MAX_LINKS`], taken at an even
+/// stride; none for the other solvers.
 fn link_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
+    /// Bytes of one link.
+    const LINK_BYTES: usize = 36;
     let all = &solved.solution.link_segments;
     let stride = all.len().div_ceil(MAX_LINKS).max(1);
     let shown: Vec<_> = all.iter().step_by(stride).collect();
-    let mut out = Vec::with_capacity(4 + 32 * shown.len());
+    let mut out = Vec::with_capacity(4 + LINK_BYTES * shown.len());
     out.extend((shown.len() as u32).to_le_bytes());
     let object = |o: Option<u32>| o.map_or(-1, |o| o as i32);
     for link in shown {
@@ -321,6 +325,7 @@ fn link_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
         }
         out.extend(object(link.receiver_object).to_le_bytes());
         out.extend(object(link.emitter_object).to_le_bytes());
+        out.extend(object(link.level).to_le_bytes());
     }
     out
 }

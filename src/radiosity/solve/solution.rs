@@ -114,6 +114,9 @@ pub struct LinkSegment {
     pub receiver_object: Option<u32>,
     /// Object index of the emitting patch (`None` for a cluster of patches).
     pub emitter_object: Option<u32>,
+    /// The link's level in the patch hierarchy: the quadtree depth of the finer of its two
+    /// patches (0: between root patches; `None` for a link with a cluster at an end).
+    pub level: Option<u32>,
 }
 
 impl Solution {

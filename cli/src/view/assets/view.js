@@ -6,7 +6,8 @@
 //
 // The address may ask for a view and for actions once the first final solution is drawn:
 // `?false-color` (with `&range=MIN,MAX` in lux and `&isolines=N`), `?wireframe`, `?links`
-// (all links) or `?links=picked` start with those on;
+// (all links) or `?links=picked` start with those on, `&level=N` only the links of level N
+// (−1: those with a cluster at an end);
 // `?move=NAME:X,Y,Z` moves an object or light by the offset; `?pick=X,Y` then reads the
 // surface at that point of the final solution (X, Y: fractions of the view's width and
 // height from its top left corner); `?orbit=N` draws N frames
@@ -129,18 +130,37 @@ function autoScale(mesh) {
 }
 
 // The links as `strahl view` sends them (cli/src/view/snapshot.rs, link_bytes): end points
-// (receiver, emitter) and the objects at their ends (−1: a cluster).
+// (receiver, emitter), the objects at their ends (−1: a cluster) and the level (the quadtree
+// depth of the finer end; −1: a cluster at an end).
 function parseLinks(buffer) {
   const count = new Uint32Array(buffer, 0, 1)[0];
   const positions = new Float32Array(count * 6);
   const objects = new Int32Array(count * 2);
+  const levels = new Int32Array(count);
   const data = new DataView(buffer, 4);
+  const size = 36;
   for (let k = 0; k < count; k++) {
-    for (let j = 0; j < 6; j++) positions[6 * k + j] = data.getFloat32(32 * k + 4 * j, true);
-    objects[2 * k] = data.getInt32(32 * k + 24, true);
-    objects[2 * k + 1] = data.getInt32(32 * k + 28, true);
+    for (let j = 0; j < 6; j++) positions[6 * k + j] = data.getFloat32(size * k + 4 * j, true);
+    objects[2 * k] = data.getInt32(size * k + 24, true);
+    objects[2 * k + 1] = data.getInt32(size * k + 28, true);
+    levels[k] = data.getInt32(size * k + 32, true);
   }
-  return { count, positions, objects };
+  return { count, positions, objects, levels };
+}
+
+// The level selector's choices: every level the links have, clusters (−1) first.
+function offerLevels(links) {
+  const select = control("links-level");
+  // Until links came, the selector holds only "every level": then the address chooses.
+  const wanted = select.options.length > 1 ? select.value : params.get("level") || "all";
+  const present = [...new Set(links.levels)].sort((a, b) => a - b);
+  select.replaceChildren(...["all", ...present.map(String)].map((value) => {
+    const option = document.createElement("option");
+    option.value = value;
+    option.textContent = value === "all" ? "every level" : value === "-1" ? "clusters" : `level ${value}`;
+    return option;
+  }));
+  select.value = [...select.options].some((o) => o.value === wanted) ? wanted : "all";
 }
 
 function edges(indices) {
@@ -230,6 +250,7 @@ async function load() {
   ]);
   const mesh = parseMesh(meshBytes);
   const links = linkBytes && parseLinks(linkBytes);
+  if (links) offerLevels(links);
   const first = shown.scene === null;
   Object.assign(shown, { scene, mesh, links, version: scene.version });
   // Between rounds there is no report: picks read the latest whole solution and its report.
@@ -300,10 +321,12 @@ function uploadLinks() {
   gl.enableVertexAttribArray(at);
   gl.vertexAttribPointer(at, 3, gl.FLOAT, false, 0, 0);
   const onlyPicked = control("links-picked").checked;
+  const level = control("links-level").value;
   const chosen = [];
   for (let k = 0; k < links.count; k++) {
     const [r, e] = [links.objects[2 * k], links.objects[2 * k + 1]];
-    if (!onlyPicked || r === shown.picked || e === shown.picked) chosen.push(2 * k, 2 * k + 1);
+    const ofLevel = level === "all" || level === "" || links.levels[k] === Number(level);
+    if (ofLevel && (!onlyPicked || r === shown.picked || e === shown.picked)) chosen.push(2 * k, 2 * k + 1);
   }
   gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, linkIndexBuffer);
   gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, new Uint32Array(chosen), gl.STATIC_DRAW);
@@ -538,10 +561,11 @@ async function main() {
       redraw();
     });
   }
-  for (const id of ["links", "links-picked"]) {
+  for (const id of ["links", "links-picked", "links-level"]) {
     control(id).addEventListener("change", async () => {
       if (control("links").checked && !shown.links) {
         shown.links = parseLinks(await fetchOk("/api/links").then((r) => r.arrayBuffer()));
+        offerLevels(shown.links);
       }
       uploadLinks();
       describeSolution();

@@ -827,6 +827,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     emitter: e.centroid,
                     receiver_object: Some(r.object),
                     emitter_object: Some(e.object),
+                    level: Some(r.depth.max(e.depth)),
                 }
             })
             .collect();
@@ -843,6 +844,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     emitter,
                     receiver_object,
                     emitter_object,
+                    // A cluster link between two root patches is a link between roots.
+                    level: (receiver_object.is_some() && emitter_object.is_some()).then_some(0),
                 }
             }));
         }
