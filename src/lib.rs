@@ -9,7 +9,7 @@
 //! has the map):
 //!
 //! 1. [`color`], [`geometry`], [`lanes`], [`sampling`], [`progress`], [`choice`],
-//!    [`atomic_file`] — foundations;
+//!    [`atomic_file`], [`sky`] — foundations;
 //! 2. [`scene`] — the scene model, its files and the built-in scenes;
 //! 3. [`accel`] — acceleration structures over any primitive set;
 //! 4. [`world`] — the scene compiled for ray queries;
@@ -50,6 +50,7 @@ pub mod radiosity;
 pub mod report;
 pub mod sampling;
 pub mod scene;
+pub mod sky;
 pub mod trace;
 pub mod validate;
 pub mod world;

@@ -15,6 +15,8 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("lanes", &[]),
     ("choice", &[]),
     ("atomic_file", &[]),
+    // The sun's position and the CIE skies: pure functions over `glam`.
+    ("sky", &[]),
     ("geometry", &["lanes"]),
     ("sampling", &["color", "geometry", "lanes"]),
     // The scene model and acceleration structures.
