@@ -6,11 +6,12 @@ use glam::Vec3;
 use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::light_model::{
-    Batch, LightTracePartial, LightTraceSettings, MergeError, merge_light_batches, trace_light,
+    LightTraceError, LightTracePartial, LightTraceSettings, merge_light_batches, trace_light,
     trace_light_batch,
 };
 use strahl::progress::{Cancel, NoProgress};
 use strahl::report::Report;
+use strahl::sampling::{Batch, MergeError};
 use strahl::world::World;
 
 fn world(name: &str) -> Arc<World> {
@@ -75,7 +76,7 @@ fn the_batches_cover_every_photon_once() {
     for photons in [1u64, 7, 60_001, u64::MAX / 3] {
         for count in [1u32, 2, 3, 1000] {
             let ranges: Vec<_> = (0..count)
-                .map(|index| Batch { index, count }.photons(photons))
+                .map(|index| Batch { index, count }.share(photons).unwrap())
                 .collect();
             assert_eq!(ranges[0].start, 0);
             assert_eq!(ranges.last().unwrap().end, photons);
@@ -88,7 +89,11 @@ fn the_batches_cover_every_photon_once() {
 fn batches_that_do_not_belong_together_are_refused() {
     let world = world("cornell");
     let (a, b) = (batch(&world, 0, 2, 1), batch(&world, 1, 2, 1));
-    let merge = |parts: &[LightTracePartial]| merge_light_batches(&world, parts).map(|_| ());
+    let merge = |parts: &[LightTracePartial]| match merge_light_batches(&world, parts) {
+        Ok(_) => Ok(()),
+        Err(LightTraceError::Merge(refused)) => Err(refused),
+        Err(other) => panic!("not a refusal to merge: {other}"),
+    };
     assert_eq!(merge(&[]), Err(MergeError::Nothing));
     assert_eq!(
         merge(std::slice::from_ref(&a)),
@@ -123,6 +128,9 @@ fn batches_that_do_not_belong_together_are_refused() {
     let moved = World::new(moved, AccelKind::Bvh).unwrap();
     assert_eq!(
         merge_light_batches(&moved, &[a, b]).map(|_| ()),
-        Err(MergeError::OtherScene(Batch { index: 0, count: 2 }))
+        Err(LightTraceError::Merge(MergeError::OtherScene(Batch {
+            index: 0,
+            count: 2
+        })))
     );
 }

@@ -11,6 +11,7 @@ mod outputs;
 mod progress;
 mod radiosity;
 mod render;
+mod render_batch;
 mod solve;
 mod tone;
 mod validate;
@@ -35,7 +36,8 @@ pub enum Command {
     /// Compute the light on every object and write a per-object report.
     Solve(solve::SolveArgs),
     /// Merge the partial results of a light-model run's batches (`solve --batch I/N
-    /// --partial FILE`) into its report.
+    /// --partial FILE`) into its report, or of a render's (`render --batch I/N --partial
+    /// FILE`) into its image.
     Merge(merge::MergeArgs),
     /// Run the analytic validation suite (closed-form cases through every method).
     Validate(validate::ValidateArgs),

@@ -12,7 +12,7 @@ use std::sync::Arc;
 use std::time::Instant;
 use strahl::image::{self, FalseColor, MAX_ISOLINES, ToneMap, ToneMapping};
 use strahl::method::{
-    AccelKind, Antialias, AntialiasMode, DisplaySettings, FinalGatherSettings, ImageSize,
+    AccelKind, Antialias, AntialiasMode, Batch, DisplaySettings, FinalGatherSettings, ImageSize,
     LinkDisplay, Method, MethodKind, NoProgress, PathTraceSettings, Photometric,
     RadiosityImageSettings, RayTraceSettings, ShadowMode, SolvedRadiosity, World,
 };
@@ -23,8 +23,22 @@ pub struct RenderArgs {
     /// Scene: a built-in name (see `strahl scenes`), a .toml scene file or a mesh file.
     pub scene: String,
     /// Output image; the extension chooses the format (.png, .exr, .pfm).
-    #[arg(short, long)]
-    pub output: PathBuf,
+    #[arg(
+        short,
+        long,
+        required_unless_present = "partial",
+        conflicts_with = "partial"
+    )]
+    pub output: Option<PathBuf>,
+    /// pathtrace: render only batch I of N of the samples per pixel (I from 0) and write its
+    /// partial result to --partial instead of an image; `strahl merge PARTS -o IMAGE` makes
+    /// the image of all N, the same bit for bit as one render with the same settings.
+    #[arg(long, requires = "partial", value_parser = clap::value_parser!(Batch))]
+    pub batch: Option<Batch>,
+    /// Where --batch writes its partial result (JSON: the exact per-pixel sums packed in
+    /// base64).
+    #[arg(long, requires = "batch")]
+    pub partial: Option<PathBuf>,
     /// Rendering method.
     #[arg(long, value_parser = choice_among(MethodKind::IMAGES), default_value_t = MethodKind::RayTrace)]
     pub method: MethodKind,
@@ -108,11 +122,28 @@ impl RenderArgs {
     /// Checks the arguments that need no scene: output formats, the method's options, the
     /// sample counts, an explicit image size and the radiosity options against their limits.
     pub fn check(&self) -> Result<()> {
-        image::FileFormat::from_path(&self.output).context("-o")?;
+        if let Some(output) = &self.output {
+            image::FileFormat::from_path(output).context("-o")?;
+        }
+        if self.batch.is_some() {
+            if self.method != MethodKind::PathTrace {
+                bail!(
+                    "--batch splits the path tracer's samples per pixel: it needs --method \
+                     pathtrace, not {}",
+                    self.method
+                );
+            }
+            if self.time_limit.is_some() {
+                bail!(
+                    "--time-limit with --batch would cut the batch short, and merging refuses it"
+                );
+            }
+        }
         super::outputs::check(
             &self.scene,
             &[
-                ("-o", Some(&self.output)),
+                ("-o", self.output.as_deref()),
+                ("--partial", self.partial.as_deref()),
                 ("--aa-map", self.aa_map.as_deref()),
                 ("--export", self.radiosity.solve.export.as_deref()),
             ],
@@ -120,20 +151,22 @@ impl RenderArgs {
         if let Some(path) = &self.radiosity.solve.export {
             strahl::report::ExportFormat::from_path(path).context("--export")?;
         }
-        match self.false_color {
-            Some(_) if self.method != MethodKind::RadiosityImage => bail!(
+        match (self.false_color, self.output.as_deref()) {
+            (Some(_), _) if self.method != MethodKind::RadiosityImage => bail!(
                 "--false-color needs --method radiosity (the illuminance and luminance it shows \
                  come from the radiosity solution), not {}",
                 self.method
             ),
-            Some(_) if image::FileFormat::from_path(&self.output)? != image::FileFormat::Png => {
+            (Some(_), Some(output))
+                if image::FileFormat::from_path(output)? != image::FileFormat::Png =>
+            {
                 bail!(
                     "-o {}: a false-colour image is written as PNG (its colours and legend are \
                      display colours, not radiance)",
-                    self.output.display()
+                    output.display()
                 )
             }
-            None if self.range.is_some() || self.isolines > 0 => {
+            (None, _) if self.range.is_some() || self.isolines > 0 => {
                 bail!("--range and --isolines apply to --false-color only")
             }
             _ => {}
@@ -295,6 +328,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         radiosity::warn_non_diffuse(&world.scene);
     }
     let world = Arc::new(world);
+    if let (Some(batch), Some(path)) = (args.batch, &args.partial) {
+        return super::render_batch::write(args, &world, &method, batch, path);
+    }
+    let output = args.output.as_deref().context("-o names no image")?;
     let start = Instant::now();
     let tone_mapping = args.tone.mapping();
     let outcome = run_method(&world, &method, "rendering", args.quiet, args.threads)?;
@@ -309,11 +346,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     match (args.false_color, &outcome.radiosity) {
         (Some(quantity), Some(solved)) => {
-            save_false_color(args, &world, solved, quantity, width, height)?
+            save_false_color(args, &world, solved, quantity, (width, height), output)?
         }
         _ => {
             let film = outcome.image.context("the method made no image")?;
-            image::save(&film, &args.output, &tone_mapping)?;
+            image::save(&film, output, &tone_mapping)?;
         }
     }
     if let Some(map) = &args.aa_map {
@@ -322,7 +359,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if !args.quiet {
         eprintln!(
             "{} {}×{} in {seconds:.2} s, {}{}",
-            args.output.display(),
+            output.display(),
             width,
             height,
             outcome.summary,
@@ -337,15 +374,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 }
 
 /// Writes `quantity` over `solved` through the scene camera at `width × height` in false
-/// colour with its legend to `-o`, the solution looked up as the image was (shading, rays
-/// per pixel).
+/// colour with its legend to `output`, the solution looked up as the image was (shading,
+/// rays per pixel).
 fn save_false_color(
     args: &RenderArgs,
     world: &World,
     solved: &SolvedRadiosity,
     quantity: Photometric,
-    width: u32,
-    height: u32,
+    (width, height): (u32, u32),
+    output: &Path,
 ) -> Result<()> {
     let settings = DisplaySettings {
         width,
@@ -373,7 +410,7 @@ fn save_false_color(
         range: args.range,
         isolines: args.isolines,
     };
-    image::save_false_color(&values, &false_color, &args.output)?;
+    image::save_false_color(&values, &false_color, output)?;
     Ok(())
 }
 

@@ -94,12 +94,12 @@ fn outputs_match_their_fingerprints() {
         case(
             "pathtrace",
             "render cornell -o {}/image.pfm --method pathtrace --width 48 --height 40 --spp 16",
-            &[("image.pfm", 0xa18c42fc7446f969)],
+            &[("image.pfm", 0xa3ee22db3c8e7885)],
         ),
         case(
             "pathtrace-branching",
             "render cornell -o {}/image.pfm --method pathtrace --width 32 --height 32 --spp 4 --first-hit-paths 3 --depth 4",
-            &[("image.pfm", 0x578e0163f118b9d8)],
+            &[("image.pfm", 0xc01c23d38a68eaf0)],
         ),
         case(
             "radiosity-matrix",
@@ -159,7 +159,7 @@ fn outputs_match_their_fingerprints() {
         case(
             "cornell-textured",
             "render cornell-textured -o {}/image.pfm --method pathtrace --width 32 --height 32 --spp 8",
-            &[("image.pfm", 0xb514d5dda4095bd9)],
+            &[("image.pfm", 0xc5cefae8bb3bbf02)],
         ),
         case(
             "spheres",
@@ -169,7 +169,7 @@ fn outputs_match_their_fingerprints() {
         case(
             "neon",
             "render neon -o {}/image.pfm --method pathtrace --width 32 --height 32 --spp 8",
-            &[("image.pfm", 0x9e7173821577f0ce)],
+            &[("image.pfm", 0xcd31f26dbb05d1c3)],
         ),
         case(
             "canopy",
@@ -186,7 +186,7 @@ fn outputs_match_their_fingerprints() {
         case(
             "lobes-pathtrace",
             "render ../tests/data/lobes.toml -o {}/image.pfm --method pathtrace --width 48 --height 36 --spp 16",
-            &[("image.pfm", 0xe00f4bc62551464d)],
+            &[("image.pfm", 0xc2012fc19801b859)],
         ),
         case(
             "lobes-light-trace",

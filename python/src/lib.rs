@@ -13,8 +13,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 use strahl::method::{
-    AccelKind, Batch, Cancel, Choice, Film, Method, MethodKind, Outcome, ProgressListener, SettingValue,
-    World,
+    AccelKind, Batch, Cancel, Choice, Film, Method, MethodKind, Outcome, ProgressListener,
+    SettingValue, World,
 };
 use strahl::report::Report;
 
@@ -320,9 +320,11 @@ impl Scene {
         serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 
-    /// Batch `index` of `count` of `method`'s run with `settings` (the light model's photons
-    /// split), as JSON for [`Scene::merge_light`]: run anywhere — another process, a Dask
-    /// worker — on the same scene. The GIL is released while it runs; Ctrl-C stops it.
+    /// Batch `index` of `count` of `method`'s run with `settings` — the light model's
+    /// photons (`light-trace`) or the path tracer's samples per pixel (`pathtrace`) split —
+    /// as JSON for [`Scene::merge_light`] or [`Scene::merge_render`]: run anywhere — another
+    /// process, a Dask worker — on the same scene. The GIL is released while it runs; Ctrl-C
+    /// stops it.
     #[pyo3(signature = (method, index, count, *, seed=0, threads=0, settings=Vec::new(), per_face=false, diffuse_only=false, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn batch(
@@ -342,10 +344,44 @@ impl Scene {
         let world = self.variant(py, per_face, diffuse_only)?;
         let batch = Batch { index, count };
         run_with(py, threads, progress, |listener, cancel| {
-            let partial = strahl::method::run_batch(&world, &method, batch, listener, cancel)
-                .map_err(|e| e.to_string())?;
-            serde_json::to_string(&partial).map_err(|e| e.to_string())
+            let json = if method.kind() == MethodKind::PathTrace {
+                let partial =
+                    strahl::method::run_render_batch(&world, &method, batch, listener, cancel)
+                        .map_err(|e| e.to_string())?;
+                serde_json::to_string(&partial)
+            } else {
+                let partial = strahl::method::run_batch(&world, &method, batch, listener, cancel)
+                    .map_err(|e| e.to_string())?;
+                serde_json::to_string(&partial)
+            };
+            json.map_err(|e| e.to_string())
         })
+    }
+
+    /// The image of a path-traced render from the JSON `partials` of all its batches
+    /// ([`Scene::batch`], each once, any order): width, height and the linear radiance
+    /// (W·sr⁻¹·m⁻²) as little-endian `f32` RGB, rows from the top — the image one render
+    /// with the same settings gives, bit for bit.
+    fn merge_render<'py>(
+        &self,
+        py: Python<'py>,
+        partials: Vec<String>,
+    ) -> PyResult<(u32, u32, Bound<'py, PyBytes>)> {
+        let film = py
+            .detach(|| -> Result<Film, String> {
+                let partials = partials
+                    .iter()
+                    .enumerate()
+                    .map(|(k, p)| serde_json::from_str(p).map_err(|e| format!("partial {k}: {e}")))
+                    .collect::<Result<Vec<strahl::method::RenderPartial>, String>>()?;
+                let outcome = strahl::method::merge_render_batches(&self.world, &partials)
+                    .map_err(|e| e.to_string())?;
+                outcome
+                    .image
+                    .ok_or_else(|| "the merge made no image".to_string())
+            })
+            .map_err(PyValueError::new_err)?;
+        Ok(film_bytes(py, &film))
     }
 
     /// The report (JSON) of a light-model run from the JSON `partials` of all its batches

@@ -218,10 +218,12 @@ class Scene:
         the linear radiance, W/(sr·m²), as a float32 array of shape (height, width, 3), rows
         from the top."""
         named = dict(width=width, height=height, spp=samples_per_pixel, **settings)
-        w, h, pixels = self._scene.render(
-            method, seed=seed, threads=threads, settings=_named(named), progress=progress
-        )
-        return np.frombuffer(pixels, dtype="<f4").reshape(h, w, 3).copy()
+        return _image(*self._scene.render(method, seed=seed, threads=threads, settings=_named(named), progress=progress))
+
+
+def _image(width: int, height: int, pixels: bytes) -> np.ndarray:
+    """Little-endian f32 RGB rows from the top as a (height, width, 3) array."""
+    return np.frombuffer(pixels, dtype="<f4").reshape(height, width, 3).copy()
 
 
 def _named(settings: dict) -> list:

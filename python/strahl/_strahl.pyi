@@ -37,6 +37,8 @@ class Scene:
         """Batch `index` of `count` of the run, as JSON for `merge_light`."""
     def merge_light(self, partials: list[str], *, per_face: bool = False, diffuse_only: bool = False) -> str:
         """The report (JSON) of the whole run from all its batches."""
+    def merge_render(self, partials: list[str]) -> Tuple[int, int, bytes]:
+        """Width, height and linear radiance (f32 RGB) of the render from all its batches."""
     @staticmethod
     def setting_names(method: str) -> list[str]:
         """The settings `method` takes, by the command line's names (`seed` first)."""

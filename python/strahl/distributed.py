@@ -1,12 +1,14 @@
 """strahl on a Dask cluster: a run split into batches that run on the cluster's workers and
 merge into what one process gives with the same seed, bit for bit — the light model's photons
-(it tallies power in integers, so the sums do not depend on the split).
+(it tallies power in integers, so the sums do not depend on the split) and the path tracer's
+samples per pixel (each pixel's samples summed in fixed point).
 
     from dask.distributed import Client, LocalCluster
     import strahl.distributed
 
     with Client(LocalCluster(n_workers=2, threads_per_worker=1)) as client:
         result = strahl.distributed.solve_light(client, "canopy:3000", photons=10**8, batches=16)
+        image = strahl.distributed.render(client, "cornell", batches=8, samples_per_pixel=1024)
 
 The same on Slurm (PBS, HTCondor alike) through dask-jobqueue:
 
@@ -23,11 +25,13 @@ every worker once; each worker compiles a scene once for all its tasks.
 
 from __future__ import annotations
 
-from typing import Union
+from typing import Optional, Union
 
-from . import Result, Scene, _rebuilt, _result
+import numpy as np
 
-__all__ = ["solve_light", "trace_batch", "merge"]
+from . import Result, Scene, _image, _named, _rebuilt, _result
+
+__all__ = ["solve_light", "trace_batch", "merge", "render", "render_batch", "merge_render"]
 
 SceneLike = Union[str, Scene]
 
@@ -51,8 +55,6 @@ def trace_batch(
     """Batch ``index`` of ``count`` of the light model's run on ``scene`` with ``settings``
     (``photons=…``, ``max_bounces=…``, as :meth:`strahl.Scene.solve` takes them), as JSON for
     :func:`merge`. Runs anywhere: a Dask task, a job of an array, another process."""
-    from . import _named
-
     return _open(scene)._scene.batch(
         "light-trace",
         index,
@@ -94,3 +96,53 @@ def solve_light(
         for k in range(batches)
     ]
     return merge(scene, client.gather(futures), per_face=per_face, diffuse_only=diffuse_only)
+
+
+def render_batch(
+    scene: SceneLike,
+    index: int,
+    count: int,
+    *,
+    width: Optional[int] = None,
+    height: Optional[int] = None,
+    samples_per_pixel: Optional[int] = None,
+    seed: int = 0,
+    threads: int = 0,
+    **settings,
+) -> str:
+    """Batch ``index`` of ``count`` of the path tracer's render of ``scene`` (samples
+    ``index·spp/count ..`` of every pixel) with the settings :meth:`strahl.Scene.render` takes,
+    as JSON for :func:`merge_render`."""
+    named = dict(width=width, height=height, spp=samples_per_pixel, **settings)
+    return _open(scene)._scene.batch("pathtrace", index, count, seed=seed, threads=threads, settings=_named(named))
+
+
+def merge_render(scene: SceneLike, partials: list) -> np.ndarray:
+    """The image of the whole render from every batch's JSON (each once, any order): the
+    array :meth:`strahl.Scene.render` gives with the same settings, bit for bit."""
+    return _image(*_open(scene)._scene.merge_render(list(partials)))
+
+
+def render(
+    client,
+    scene: SceneLike,
+    batches: int,
+    *,
+    width: Optional[int] = None,
+    height: Optional[int] = None,
+    samples_per_pixel: Optional[int] = None,
+    seed: int = 0,
+    threads: int = 1,
+    **settings,
+) -> np.ndarray:
+    """The path tracer's render of ``scene`` split into ``batches`` tasks on the Dask
+    ``client``'s cluster (``threads`` threads each), merged here: the linear radiance,
+    W/(sr·m²), as a float32 array of shape (height, width, 3), equal to what
+    :meth:`strahl.Scene.render` gives with the same seed and settings."""
+    sent = client.scatter(scene, broadcast=True) if isinstance(scene, Scene) else scene
+    options = dict(width=width, height=height, samples_per_pixel=samples_per_pixel, seed=seed, threads=threads)
+    futures = [
+        client.submit(render_batch, sent, k, batches, **options, **settings, pure=False)
+        for k in range(batches)
+    ]
+    return merge_render(scene, client.gather(futures))

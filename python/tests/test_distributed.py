@@ -99,3 +99,25 @@ def test_the_command_lines_batches_merge_into_its_single_report(tmp_path):
     )
     refused = subprocess.run([CLI, "merge", *parts[:3], other], capture_output=True, text=True)
     assert refused.returncode != 0 and "other settings" in refused.stderr
+
+
+def test_a_render_in_batches_on_dask_is_the_single_render():
+    distributed = pytest.importorskip("dask.distributed")
+    import numpy as np
+
+    settings = dict(width=40, height=30, samples_per_pixel=12, seed=5, depth=6)
+    single = strahl.load("cornell").render("pathtrace", **settings)
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster, distributed.Client(cluster) as client:
+        merged = strahl.distributed.render(client, "cornell", batches=5, **settings)
+    assert merged.dtype == np.float32 and merged.shape == (30, 40, 3)
+    assert np.array_equal(merged, single)
+    # Batches merge in any order; a missing one or one of another seed is refused.
+    parts = [strahl.distributed.render_batch("cornell", k, 3, **settings) for k in range(3)]
+    assert np.array_equal(strahl.distributed.merge_render("cornell", parts[::-1]), single)
+    with pytest.raises(ValueError, match="batch 1/3 is missing"):
+        strahl.distributed.merge_render("cornell", [parts[0], parts[2]])
+    other = strahl.distributed.render_batch("cornell", 1, 3, **dict(settings, seed=6))
+    with pytest.raises(ValueError, match="other settings"):
+        strahl.distributed.merge_render("cornell", [parts[0], other, parts[2]])

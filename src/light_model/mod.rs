@@ -38,6 +38,6 @@ mod tally;
 mod trace;
 
 pub use trace::{
-    Batch, LightTraceError, LightTraceOutput, LightTracePartial, LightTraceSettings, MergeError,
-    merge_light_batches, trace_light, trace_light_batch,
+    LightTraceError, LightTraceOutput, LightTracePartial, LightTraceSettings, merge_light_batches,
+    trace_light, trace_light_batch,
 };

@@ -9,7 +9,10 @@ use crate::color::{Rgb, Rgb64};
 use crate::geometry::spawn_ray;
 use crate::measure::{Measurement, SensorReading, Stats, SurfacePower, SurfaceTable};
 use crate::progress::{Cancel, ProgressListener};
-use crate::sampling::{Sampler, SequenceKind};
+use crate::sampling::{
+    Batch, BatchPart, MergeError, NoSuchBatch, Sampler, SequenceKind, check_batches, from_fixed,
+    to_fixed,
+};
 use crate::world::World;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -52,7 +55,7 @@ impl Default for LightTraceSettings {
     }
 }
 
-/// Why light tracing cannot run.
+/// Why light tracing, or the merge of its batches, cannot run.
 #[derive(Debug, thiserror::Error, PartialEq, Eq)]
 pub enum LightTraceError {
     /// No light with positive power.
@@ -62,48 +65,11 @@ pub enum LightTraceError {
     #[error("at least one photon is needed")]
     NoPhotons,
     /// A batch that is not one of its count.
-    #[error("batch {0} does not exist (batches are 0/N to N-1/N, N at least 1)")]
-    NoSuchBatch(Batch),
-}
-
-/// One of `count` equal parts of a run's photons (`index` from 0).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub struct Batch {
-    /// Which part, from 0.
-    pub index: u32,
-    /// Parts in all.
-    pub count: u32,
-}
-
-impl Batch {
-    /// The photons of this batch of a run of `photons`.
-    pub fn photons(self, photons: u64) -> std::ops::Range<u64> {
-        let at = |k: u32| (u128::from(photons) * u128::from(k) / u128::from(self.count)) as u64;
-        at(self.index)..at(self.index + 1)
-    }
-}
-
-impl std::str::FromStr for Batch {
-    type Err = String;
-
-    /// `I/N`: batch I (from 0) of N.
-    fn from_str(text: &str) -> Result<Self, String> {
-        let parsed = text
-            .split_once('/')
-            .and_then(|(i, n)| Some((i.trim().parse().ok()?, n.trim().parse().ok()?)));
-        match parsed {
-            Some((index, count)) if index < count => Ok(Batch { index, count }),
-            _ => Err(format!(
-                "'{text}' is not a batch I/N (I from 0 to N-1, e.g. 0/4 … 3/4)"
-            )),
-        }
-    }
-}
-
-impl std::fmt::Display for Batch {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}/{}", self.index, self.count)
-    }
+    #[error(transparent)]
+    NoSuchBatch(#[from] NoSuchBatch),
+    /// Batches that do not make one run.
+    #[error(transparent)]
+    Merge(#[from] MergeError),
 }
 
 /// What a batch of a run leaves for the merge ([`trace_light_batch`]): the scene's digest,
@@ -123,35 +89,6 @@ pub struct LightTracePartial {
     /// Seconds the batch took.
     pub seconds: f64,
     tally: Tally,
-}
-
-/// Why batches cannot be merged.
-#[derive(Debug, thiserror::Error, PartialEq, Eq)]
-pub enum MergeError {
-    /// No batch given.
-    #[error("no batch to merge")]
-    Nothing,
-    /// A batch of another scene (or another version of its file).
-    #[error("batch {0} is of another scene (its digest differs)")]
-    OtherScene(Batch),
-    /// A batch of other settings (photons, seed, bounces).
-    #[error("batch {0} has other settings (photons, seed or bounces) than the first")]
-    OtherSettings(Batch),
-    /// A batch of another split.
-    #[error("batch {0} is not one of {1} batches like the first")]
-    OtherBatching(Batch, u32),
-    /// A batch given twice.
-    #[error("batch {0} is given twice")]
-    Twice(Batch),
-    /// A batch missing.
-    #[error("batch {0} is missing")]
-    Missing(Batch),
-    /// A batch stopped before all its photons were traced.
-    #[error("batch {0} was stopped before all its photons were traced: run it again")]
-    CutShort(Batch),
-    /// The run's settings cannot be traced.
-    #[error("{0}")]
-    Trace(LightTraceError),
 }
 
 /// The result of a light-tracing run.
@@ -267,31 +204,6 @@ impl Worker {
 #[inline]
 fn square(x: f64) -> i128 {
     to_fixed(x * x * FIXED_POINT_SQUARE)
-}
-
-/// Magnitude below which a fixed-point value fits an `i64` (2⁶² with room to spare).
-const FITS_I64: f64 = 9.0e18;
-
-/// `x` rounded to the nearest integer, as `round() as i128` does; through `i64` (one machine
-/// instruction instead of a library call) whenever the value fits, which a photon's power
-/// almost always does.
-#[inline]
-fn to_fixed(x: f64) -> i128 {
-    let r = x.round();
-    if r.abs() < FITS_I64 {
-        r as i64 as i128
-    } else {
-        r as i128
-    }
-}
-
-/// `q as f64`, through `i64` whenever it fits (the same rounding, without a library call).
-#[inline]
-fn from_fixed(q: i128) -> f64 {
-    match i64::try_from(q) {
-        Ok(v) => v as f64,
-        Err(_) => q as f64,
-    }
 }
 
 /// Radical inverse in base 2 of `i`, in `[0, 1)`.
@@ -554,13 +466,11 @@ pub fn trace_light_batch(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<LightTracePartial, LightTraceError> {
-    if batch.count == 0 || batch.index >= batch.count {
-        return Err(LightTraceError::NoSuchBatch(batch));
-    }
+    let photons = batch.share(settings.photons)?;
     let start = Instant::now();
     let table = SurfaceTable::new(&world.scene, &world.geometry);
     let tracer = Tracer::new(world, settings, &table)?;
-    let (tally, traced) = tracer.trace(batch.photons(settings.photons), progress, cancel);
+    let (tally, traced) = tracer.trace(photons, progress, cancel);
     Ok(LightTracePartial {
         scene_digest: format!("{:016x}", world.scene.digest()),
         settings: settings.clone(),
@@ -574,46 +484,31 @@ pub fn trace_light_batch(
 /// The output of one run of all the photons, from the `partials` of its batches: their
 /// tallies added (integers: in any order the same sums), so the output is the one a single
 /// run with the same settings gives, bit for bit, but for the seconds (the batches' sum).
-/// Refuses batches of another scene, other settings, or not each batch exactly once.
+/// Refuses batches of another scene, other settings, or not each batch exactly once
+/// ([`check_batches`]).
 pub fn merge_light_batches(
     world: &World,
     partials: &[LightTracePartial],
-) -> Result<LightTraceOutput, MergeError> {
-    let first = partials.first().ok_or(MergeError::Nothing)?;
+) -> Result<LightTraceOutput, LightTraceError> {
     let digest = format!("{:016x}", world.scene.digest());
-    let count = first.batch.count;
-    let mut seen = vec![false; count as usize];
-    for p in partials {
-        if p.scene_digest != digest {
-            return Err(MergeError::OtherScene(p.batch));
-        }
-        if p.settings != first.settings {
-            return Err(MergeError::OtherSettings(p.batch));
-        }
-        if p.batch.count != count || p.batch.index >= count {
-            return Err(MergeError::OtherBatching(p.batch, count));
-        }
-        if std::mem::replace(&mut seen[p.batch.index as usize], true) {
-            return Err(MergeError::Twice(p.batch));
-        }
-        let share = p.batch.photons(p.settings.photons);
-        if p.photons_traced != share.end - share.start {
-            return Err(MergeError::CutShort(p.batch));
-        }
-    }
-    if let Some(missing) = seen.iter().position(|s| !s) {
-        return Err(MergeError::Missing(Batch {
-            index: missing as u32,
-            count,
-        }));
-    }
+    check_batches(
+        &digest,
+        partials.iter().map(|p| BatchPart {
+            scene_digest: &p.scene_digest,
+            settings: &p.settings,
+            batch: p.batch,
+            done: p.photons_traced,
+            total: p.settings.photons,
+        }),
+    )?;
+    let first = &partials[0];
     let table = SurfaceTable::new(&world.scene, &world.geometry);
-    let tracer = Tracer::new(world, &first.settings, &table).map_err(MergeError::Trace)?;
+    let tracer = Tracer::new(world, &first.settings, &table)?;
     let mut sum = Tally::new(table.len(), world.scene.sensors.len());
     for p in partials {
         if p.tally.entries.len() != sum.entries.len() || p.tally.sensors.len() != sum.sensors.len()
         {
-            return Err(MergeError::OtherScene(p.batch));
+            return Err(MergeError::Damaged(p.batch).into());
         }
         sum.merge(&p.tally);
     }
@@ -806,19 +701,5 @@ mod tests {
         // Any count, at once: a hundred billion photons split by their share.
         let counts = photons_per_source(&[0.25, 1.0], 100_000_000_000);
         assert_eq!(counts, vec![25_000_000_000, 75_000_000_000]);
-    }
-
-    #[test]
-    fn fixed_point_conversions_match_the_wide_ones() {
-        let mut x = 0.37f64;
-        for _ in 0..2000 {
-            for v in [x, -x, x + 0.5, (x * 1e3).floor() + 0.5] {
-                assert_eq!(to_fixed(v), v.round() as i128, "{v}");
-                let q = v.round() as i128;
-                assert_eq!(from_fixed(q).to_bits(), (q as f64).to_bits(), "{q}");
-            }
-            x *= 1.037;
-        }
-        assert!(x > 1e30, "the values cover more than i64's range");
     }
 }

@@ -1,12 +1,14 @@
 //! Runs split into batches that run apart — other processes, a cluster's job array, Dask
 //! workers — and merge into the outcome one run gives, bit for bit: the light model's photons
-//! (its tallies are integers, so their sums do not depend on how the photons were split).
+//! (its tallies are integers, so their sums do not depend on how the photons were split). A
+//! path-traced image's batches are `render_batches.rs`'s.
 
 use super::run::light_outcome;
 use super::{Method, MethodError, Outcome};
 use crate::choice::Choice;
-use crate::light_model::{Batch, LightTracePartial, merge_light_batches, trace_light_batch};
+use crate::light_model::{LightTracePartial, merge_light_batches, trace_light_batch};
 use crate::progress::{Cancel, ProgressListener};
+use crate::sampling::Batch;
 use crate::world::World;
 
 /// Batch `batch` of `method`'s run on `world` (the light model; other methods refuse):

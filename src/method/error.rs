@@ -1,7 +1,8 @@
 //! Why a method could not run.
 
-use crate::light_model::{LightTraceError, MergeError};
+use crate::light_model::LightTraceError;
 use crate::radiosity::solve::SolveError;
+use crate::sampling::{MergeError, NoSuchBatch};
 
 /// A setting outside its range, named as the command line names it (`min-area`,
 /// `time-limit`): displays as `min-area must lie between 0 and 1 (got 0)`.
@@ -45,9 +46,16 @@ pub enum MethodError {
     /// The light model refused the scene.
     #[error(transparent)]
     LightTrace(#[from] LightTraceError),
-    /// Only the light model's runs split into batches (the method named).
-    #[error("{0} does not run in batches: only the light model (light-trace) does")]
+    /// Only the light model's runs and the path tracer's images split into batches (the
+    /// method named).
+    #[error(
+        "{0} does not run in batches: only the light model (light-trace) and the path tracer \
+         (pathtrace) do"
+    )]
     NotInBatches(&'static str),
+    /// A batch that is not one of its count.
+    #[error(transparent)]
+    NoSuchBatch(#[from] NoSuchBatch),
     /// Batches that do not make one run.
     #[error(transparent)]
     Merge(#[from] MergeError),

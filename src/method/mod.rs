@@ -32,6 +32,7 @@ mod error;
 mod kind;
 mod named;
 mod outcome;
+mod render_batches;
 mod run;
 mod settings;
 
@@ -40,6 +41,9 @@ pub use error::{MethodError, SettingError};
 pub use kind::MethodKind;
 pub use named::SettingValue;
 pub use outcome::{Outcome, SolvedRadiosity};
+pub use render_batches::{
+    RenderBatchSettings, RenderPartial, merge_render_batches, run_render_batch,
+};
 pub use run::{run, solve_radiosity};
 pub use settings::{
     Antialias, FinalGatherSettings, ImageSize, LinkSelection, MIN_AREA, MIN_ERROR,
@@ -73,7 +77,8 @@ pub use crate::trace::{AntialiasMode, ShadowMode};
 pub use crate::world::{GeometryError, QueryTiming, RayBench, RaySet, World, bench_rays};
 
 pub use crate::final_gather::SurfaceGather;
-pub use crate::light_model::{Batch, LightTracePartial, LightTraceSettings, MergeError};
+pub use crate::light_model::{LightTracePartial, LightTraceSettings};
+pub use crate::sampling::{Batch, MergeError, NoSuchBatch};
 use settings::{at_least_one, check_light_trace};
 
 /// A method of computing light with all its settings.

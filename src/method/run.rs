@@ -50,7 +50,7 @@ pub fn run(
 }
 
 /// An outcome with nothing in it yet.
-fn empty() -> Outcome {
+pub(super) fn empty() -> Outcome {
     Outcome {
         image: None,
         subdivisions: Vec::new(),
@@ -220,18 +220,7 @@ fn path_trace(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<Outcome, MethodError> {
-    let (width, height) = image_size(world, s.size)?;
-    let integrator = PathTracer::new(world, s.max_depth, s.first_hit_paths);
-    let settings = ProgressiveSettings {
-        width,
-        height,
-        samples_per_pixel: s.samples_per_pixel,
-        seed: s.seed,
-        // A limit beyond what a duration holds is no limit.
-        time_limit: s
-            .time_limit
-            .map(|t| Duration::try_from_secs_f64(t).unwrap_or(Duration::MAX)),
-    };
+    let (integrator, settings) = path_tracer(world, s)?;
     progress.phase("rendering");
     let output = render_progressive(world, &integrator, &settings, progress, cancel)
         .ok_or(MethodError::DegenerateCamera)?;
@@ -244,6 +233,27 @@ fn path_trace(
         complete: output.complete,
         ..empty()
     })
+}
+
+/// The path tracer of `s` and the settings of its progressive render on `world`, refusing
+/// a degenerate camera.
+pub(super) fn path_tracer(
+    world: &World,
+    s: &PathTraceSettings,
+) -> Result<(PathTracer, ProgressiveSettings), MethodError> {
+    let (width, height) = image_size(world, s.size)?;
+    let integrator = PathTracer::new(world, s.max_depth, s.first_hit_paths);
+    let settings = ProgressiveSettings {
+        width,
+        height,
+        samples_per_pixel: s.samples_per_pixel,
+        seed: s.seed,
+        // A limit beyond what a duration holds is no limit.
+        time_limit: s
+            .time_limit
+            .map(|t| Duration::try_from_secs_f64(t).unwrap_or(Duration::MAX)),
+    };
+    Ok((integrator, settings))
 }
 
 /// A radiosity solution shown through the camera.

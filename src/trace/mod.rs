@@ -7,7 +7,8 @@
 //!   sampled BSDF and the choice of a light for next-event estimation;
 //! - render: the image loops that drive an integrator over the camera's pixels — tiles with
 //!   antialiasing ([`render()`]) and progressive passes for Monte Carlo integrators
-//!   ([`render_progressive`]);
+//!   ([`render_progressive`]), whose exact per-pixel sums let a render run in batches of its
+//!   samples ([`render_samples`], [`PixelSums`]);
 //! - sensors: the irradiance at the scene's point sensors by rays from the sensor
 //!   ([`sensor_readings`]: direct light as the standard ray tracer computes it, indirect light
 //!   from an integrator).
@@ -22,8 +23,8 @@ mod whitted;
 pub use direct::ShadowMode;
 pub use path::PathTracer;
 pub use render::{
-    AntialiasMode, ProgressiveOutput, ProgressiveSettings, RenderOutput, RenderSettings, render,
-    render_progressive,
+    AntialiasMode, PixelSums, ProgressiveOutput, ProgressiveSettings, RenderOutput, RenderSettings,
+    RenderedSamples, render, render_progressive, render_samples,
 };
 pub use sensors::{SensorSettings, irradiance_sample, sensor_readings};
 pub use whitted::StandardRayTracer;

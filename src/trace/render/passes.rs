@@ -4,10 +4,12 @@
 //!
 //! Sample `k` of pixel `p` draws its numbers from the Owen-scrambled Sobol point `k` of the
 //! pixel's stream (the first two dimensions place it in the pixel, the integrator uses the
-//! rest), and each pixel's samples are summed in sample order, so the image depends neither
-//! on the thread count nor on how the samples were split into passes.
+//! rest), and each pixel's samples are summed exactly (`sums.rs`), so the image depends
+//! neither on the thread count nor on how the samples were split into passes — nor into
+//! batches rendered apart ([`render_samples`]) whose sums are added afterwards.
 
 use super::super::Integrator;
+use super::sums::{PixelSum, PixelSums};
 use crate::color::Rgb;
 use crate::geometry::Ray;
 use crate::measure::Film;
@@ -15,6 +17,7 @@ use crate::progress::{Cancel, ProgressListener};
 use crate::sampling::{Sampler, SequenceKind};
 use crate::world::World;
 use rayon::prelude::*;
+use std::ops::Range;
 use std::time::{Duration, Instant};
 
 /// Pixel rows per parallel work item.
@@ -53,6 +56,15 @@ pub struct ProgressiveOutput {
     pub complete: bool,
 }
 
+/// Samples of every pixel rendered in passes ([`render_samples`]).
+#[derive(Clone, Debug)]
+pub struct RenderedSamples {
+    /// The radiance of the finished passes' samples summed per pixel.
+    pub sums: PixelSums,
+    /// Passes finished.
+    pub passes: u32,
+}
+
 /// Samples per pixel of pass `index` (counted from 0): 1, 1, 2, 4, 8, 8, … so that a time
 /// limit gets an image early and later passes amortise their overhead.
 fn pass_samples(index: u32) -> u32 {
@@ -73,8 +85,8 @@ struct SampleTracer<'a> {
 
 impl SampleTracer<'_> {
     /// Adds samples `first..first + count` of every pixel of `pixels` (row-major from pixel
-    /// index `start`) to its sum, in sample order, tracing them [`BATCH`] at a time.
-    fn add_samples(&self, pixels: &mut [Rgb], start: usize, first: u32, count: u32) {
+    /// index `start`) to its sum, tracing them [`BATCH`] at a time.
+    fn add_samples(&self, pixels: &mut [PixelSum], start: usize, first: u32, count: u32) {
         let w = self.width as usize;
         let samples: Vec<(usize, u32)> = (0..pixels.len())
             .flat_map(|i| (first..first + count).map(move |k| (i, k)))
@@ -98,7 +110,7 @@ impl SampleTracer<'_> {
             for (&(i, _), &c) in batch.iter().zip(out.iter()) {
                 // A NaN or infinite sample would poison the pixel; drop it.
                 if c.is_finite() {
-                    pixels[i] += c;
+                    pixels[i].add(c);
                 }
             }
         }
@@ -114,6 +126,31 @@ pub fn render_progressive(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Option<ProgressiveOutput> {
+    let target = settings.samples_per_pixel.max(1);
+    let rendered = render_samples(world, integrator, settings, 0..target, progress, cancel)?;
+    let done = rendered.sums.samples();
+    Some(ProgressiveOutput {
+        film: rendered.sums.film()?,
+        samples_per_pixel: done,
+        passes: rendered.passes,
+        complete: done == target,
+    })
+}
+
+/// Renders samples `samples` (sample indices, the same for every pixel) of the camera view
+/// of `world` with `integrator` in passes, each sample exactly as [`render_progressive`]
+/// renders it, and keeps their sums: the sums of any split of `0..N` into ranges, added,
+/// are those of `0..N` bit for bit. `settings` gives the size, seed and time limit (its
+/// `samples_per_pixel` is not read). Progress is counted in samples; cancelling or the time
+/// limit keeps the finished passes. `None` when the camera is degenerate.
+pub fn render_samples(
+    world: &World,
+    integrator: &dyn Integrator,
+    settings: &ProgressiveSettings,
+    samples: Range<u32>,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Option<RenderedSamples> {
     let camera = world
         .scene
         .camera
@@ -131,8 +168,12 @@ pub fn render_progressive(
     let deadline = settings
         .time_limit
         .and_then(|limit| start.checked_add(limit));
-    let target = settings.samples_per_pixel.max(1);
-    let mut sums = vec![Rgb::BLACK; w as usize * h as usize];
+    let target = samples.end.saturating_sub(samples.start);
+    // The sums of the finished passes, and those with the current pass: a pass cut short
+    // is dropped. Each strip copies its sums before adding the pass, while they are in cache.
+    let mut sums = vec![PixelSum::default(); w as usize * h as usize];
+    let mut next = sums.clone();
+    let strip = w as usize * STRIP_ROWS;
     let mut done = 0u32;
     let mut passes = 0u32;
     let mut last_pass_seconds_per_sample = 0.0f64;
@@ -149,34 +190,31 @@ pub fn render_progressive(
         let first = passes == 0;
         let stop =
             |now: Instant| cancel.is_requested() || (!first && deadline.is_some_and(|d| now > d));
-        let mut next = sums.clone();
         let finished = next
-            .par_chunks_mut(w as usize * STRIP_ROWS)
+            .par_chunks_mut(strip)
+            .zip(sums.par_chunks(strip))
             .enumerate()
-            .all(|(strip, pixels)| {
+            .all(|(index, (pixels, before))| {
                 if stop(Instant::now()) {
                     return false;
                 }
-                tracer.add_samples(pixels, strip * STRIP_ROWS * w as usize, done, count);
+                pixels.copy_from_slice(before);
+                tracer.add_samples(pixels, index * strip, samples.start + done, count);
                 progress.advance(pixels.len() as u64 * u64::from(count));
                 true
             });
         if !finished {
             break;
         }
-        sums = next;
+        std::mem::swap(&mut sums, &mut next);
         done += count;
         passes += 1;
         last_pass_seconds_per_sample = pass_start.elapsed().as_secs_f64() / count as f64;
     }
     progress.finish();
-    let scale = if done > 0 { 1.0 / done as f32 } else { 0.0 };
-    let pixels = sums.into_iter().map(|s| s * scale).collect();
-    Some(ProgressiveOutput {
-        film: Film::from_pixels(w, h, pixels)?,
-        samples_per_pixel: done,
+    Some(RenderedSamples {
+        sums: PixelSums::from_sums(w, h, done, sums)?,
         passes,
-        complete: done == target,
     })
 }
 
