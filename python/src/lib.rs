@@ -12,11 +12,12 @@ use pyo3::types::{PyBool, PyBytes, PyFloat, PyString};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
+use strahl::image::ToneMapping;
 use strahl::method::{
     AccelKind, Batch, Cancel, Choice, Film, Method, MethodKind, Outcome, ProgressListener,
     SettingValue, World,
 };
-use strahl::report::Report;
+use strahl::report::{ExportFormat, Report, export_lit_mesh};
 
 /// How often the waiting thread looks at Ctrl-C and reports progress.
 const POLL: Duration = Duration::from_millis(50);
@@ -291,7 +292,9 @@ impl Scene {
     /// and returns its report as JSON (the `strahl solve --report` file). `per_face` reports
     /// every face of every object on its own, `diffuse_only` drops the materials'
     /// non-diffuse lobes (`strahl solve --per-face --diffuse-only`).
-    #[pyo3(signature = (method, *, seed=0, threads=0, settings=Vec::new(), per_face=false, diffuse_only=false, progress=None))]
+    /// With `export` (a `.glb`, `.gltf` or `.ply` path) a radiosity solver's solution is
+    /// also written as a mesh with radiosity vertex colours (`strahl solve --export`).
+    #[pyo3(signature = (method, *, seed=0, threads=0, settings=Vec::new(), per_face=false, diffuse_only=false, export=None, progress=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
@@ -302,6 +305,7 @@ impl Scene {
         settings: Vec<(String, Bound<'_, PyAny>)>,
         per_face: bool,
         diffuse_only: bool,
+        export: Option<std::path::PathBuf>,
         progress: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<String> {
         let method = self::method(method, seed, &settings)?;
@@ -311,8 +315,25 @@ impl Scene {
                 method.kind().name()
             )));
         }
+        if export.is_some() && method.radiosity().is_none() {
+            return Err(PyValueError::new_err(format!(
+                "export writes a radiosity solution's mesh: method '{}' makes none",
+                method.kind().name()
+            )));
+        }
+        if let Some(path) = &export {
+            ExportFormat::from_path(path).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        }
         let world = self.variant(py, per_face, diffuse_only)?;
         let outcome = run(&world, py, &method, threads, progress)?;
+        if let (Some(path), Some(solved)) = (&export, &outcome.radiosity) {
+            py.detach(|| {
+                let lightmaps = ExportFormat::from_path(path)?.carries_lightmaps();
+                let mesh = solved.lit_mesh(lightmaps);
+                export_lit_mesh(&mesh, &world.scene.textures, &ToneMapping::default(), path)
+            })
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        }
         let measured = outcome
             .measurement
             .ok_or_else(|| PyRuntimeError::new_err("the method measured no surfaces"))?;
@@ -456,11 +477,22 @@ fn film_bytes<'py>(py: Python<'py>, film: &Film) -> (u32, u32, Bound<'py, PyByte
     (film.width(), film.height(), PyBytes::new(py, &bytes))
 }
 
+/// Writes the report `report` (JSON, as `Scene.solve` returns it) to `path`: `.json` (the
+/// whole report) or `.csv` (one row per surface, and the sensors beside it in
+/// `NAME.sensors.csv`), as `strahl solve --report` writes them.
+#[pyfunction]
+fn write_report(report: &str, path: std::path::PathBuf) -> PyResult<()> {
+    let report: Report = serde_json::from_str(report)
+        .map_err(|e| PyValueError::new_err(format!("not a strahl report: {e}")))?;
+    strahl::report::write_report(&report, &path).map_err(|e| PyValueError::new_err(e.to_string()))
+}
+
 /// The extension module.
 #[pymodule]
 fn _strahl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(scene_from_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(write_report, m)?)?;
     Ok(())
 }

@@ -73,6 +73,11 @@ class Result:
         """The report as JSON text."""
         return json.dumps(self.report, indent=2)
 
+    def write_report(self, path) -> None:
+        """Writes the report as ``strahl solve --report PATH`` does: ``.json`` (the whole
+        report) or ``.csv`` (one row per surface, the sensors in ``NAME.sensors.csv``)."""
+        _strahl.write_report(json.dumps(self.report), str(path))
+
     def by_object(self) -> "Result":
         """The rows of each object (its faces, when reported per face) summed into one row
         per object name, in order of first appearance: powers add, irradiance and
@@ -170,6 +175,7 @@ class Scene:
         threads: int = 0,
         per_face: bool = False,
         diffuse_only: bool = False,
+        export=None,
         progress: Optional[Callable[[str, int, int], None]] = None,
         **settings,
     ) -> Result:
@@ -184,6 +190,9 @@ class Scene:
         face of every object on its own (a triangle, for a scene from arrays: per triangle
         results aligned with the input; :meth:`Result.by_object` sums them per object);
         ``diffuse_only=True`` drops the materials' specular, mirror and refracting lobes.
+        ``export="room.glb"`` (``.gltf``, ``.ply``) also writes a radiosity solver's solution
+        as a mesh with radiosity vertex colours; :meth:`Result.write_report` writes the report
+        as JSON or CSV.
         ``threads=0`` uses every core; the GIL is released meanwhile. ``progress(phase,
         done, total)`` is called as the work goes. Ctrl-C raises KeyboardInterrupt within a
         second. Bad settings raise ValueError with the command line's message."""
@@ -194,6 +203,7 @@ class Scene:
             settings=_named(settings),
             per_face=per_face,
             diffuse_only=diffuse_only,
+            export=None if export is None else str(export),
             progress=progress,
         )
         return _result(report)

@@ -18,6 +18,7 @@ class Scene:
         settings: list[Tuple[str, Any]] = [],
         per_face: bool = False,
         diffuse_only: bool = False,
+        export: Optional[str] = None,
         progress: Progress = None,
     ) -> str:
         """The report as JSON (the `strahl solve --report` file)."""
@@ -66,3 +67,4 @@ def scene_from_arrays(
     sun: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]],
     sky: Optional[Tuple[float, float, float]],
 ) -> Scene: ...
+def write_report(report: str, path: str) -> None: ...

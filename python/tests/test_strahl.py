@@ -279,3 +279,19 @@ def test_render_settings_reach_the_image():
     flat = cornell.render("radiosity", width=24, height=18, shading="flat", error=1e-3)
     smooth = cornell.render("radiosity", width=24, height=18, error=1e-3)
     assert flat.shape == smooth.shape == (18, 24, 3) and not np.array_equal(flat, smooth)
+
+
+def test_reports_and_meshes_are_written_as_the_command_line_writes_them(tmp_path):
+    cornell = strahl.load("cornell")
+    result = cornell.solve("hierarchical", export=tmp_path / "box.glb")
+    assert (tmp_path / "box.glb").read_bytes()[:4] == b"glTF"
+    result.write_report(tmp_path / "r.csv")
+    result.write_report(tmp_path / "r.json")
+    by_cli = tmp_path / "cli.csv"
+    subprocess.run([CLI, "solve", "cornell", "--solver", "hierarchical", "-q", "--report", by_cli], check=True)
+    assert (tmp_path / "r.csv").read_text() == by_cli.read_text()
+    assert json.loads((tmp_path / "r.json").read_text()) == result.report
+    with pytest.raises(ValueError, match="makes none"):
+        cornell.solve("light-trace", photons=1000, export=tmp_path / "x.glb")
+    with pytest.raises(ValueError):
+        cornell.solve("hierarchical", export=tmp_path / "x.obj")
