@@ -20,13 +20,13 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("geometry", &["lanes"]),
     ("sampling", &["color", "geometry", "lanes"]),
     // The scene model and acceleration structures.
-    ("scene", &["color", "geometry"]),
+    ("scene", &["color", "geometry", "sky"]),
     ("accel", &["choice", "geometry"]),
     // The scene compiled for ray queries.
     (
         "world",
         &[
-            "accel", "choice", "color", "geometry", "lanes", "sampling", "scene",
+            "accel", "choice", "color", "geometry", "lanes", "sampling", "scene", "sky",
         ],
     ),
     // What the algorithms fill.

@@ -59,6 +59,7 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             LightKind::Spot { .. } => "spot",
             LightKind::Directional { .. } => "directional",
             LightKind::Sky { .. } => "sky",
+            LightKind::CieSky { .. } => "cie_sky",
         };
         *lights.entry(k).or_default() += 1;
     }

@@ -7,7 +7,8 @@
 //! photons, Nₛ ≈ N·Φₛ/ΣΦ: photon i takes the source whose cumulative power interval holds
 //! the radical inverse (base 2) of i, so every prefix of the photon sequence, and so every
 //! partial run, is stratified over the sources. Each photon emits power Φₛ/Nₛ (exactly so
-//! for untextured sources, so the emitted totals are exact) and starts with it (aimed
+//! for untextured sources, so the emitted totals are exact; a CIE sky's photons each carry
+//! Φₛ/Nₛ times a weight near 1 that corrects its tabulated directions) and starts with it (aimed
 //! directional and sky photons with a part of it, the rest escaping at once, see
 //! [`sources`]), and scatters as `scatter.rs` describes. The error falls as 1/√N.
 //!

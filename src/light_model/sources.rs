@@ -15,7 +15,10 @@
 //! - sky of uniform radiance L: Φ = 4π²R²·L, the power entering the bounding sphere from
 //!   outside (πL per unit area of the sphere's surface 4πR², or equivalently, per direction,
 //!   L times the sphere's cross-section πR², over 4π sr): uniform directions, each with a
-//!   uniform point on the disc across the sphere.
+//!   uniform point on the disc across the sphere;
+//! - CIE sky: Φ = πR²·∫L dω over the upper hemisphere (black below the horizon): directions
+//!   drawn from the world's table of the sky's radiance (nearly in proportion to L), each
+//!   photon weighted by L/(p·∫L dω) so the draw is exact, with points as for the uniform sky.
 //!
 //! Aimed parallel photons. Of the rays through the disc across the sphere, only those through
 //! the union of the discs of a few spheres holding all bounded geometry (`sources/aim.rs`) can
@@ -73,6 +76,8 @@ enum SourceKind {
     Directional { frame: Frame },
     /// Uniform sky radiance.
     Sky,
+    /// CIE sky `index` of the world's [`crate::world::Sky::cie`].
+    CieSky { index: usize },
 }
 
 /// One light as a photon source.
@@ -204,20 +209,31 @@ impl PhotonSources {
                         power,
                     }
                 }
-                LightKind::Sky { .. } => continue,
+                LightKind::Sky { .. } | LightKind::CieSky { .. } => continue,
             };
             sources.push(source);
         }
-        if let Some(radiance) = world.lights.sky {
-            sources.push(PhotonSource {
-                kind: SourceKind::Sky,
-                power: world.light_power(&LightKind::Sky { radiance }),
-            });
+        if let Some(sky) = &world.lights.sky {
+            if let Some(radiance) = sky.uniform {
+                sources.push(PhotonSource {
+                    kind: SourceKind::Sky,
+                    power: world.light_power(&LightKind::Sky { radiance }),
+                });
+            }
+            for (index, cie) in sky.cie.iter().enumerate() {
+                sources.push(PhotonSource {
+                    kind: SourceKind::CieSky { index },
+                    power: world.light_power(&cie.light()),
+                });
+            }
         }
         sources.retain(|s| s.power.is_finite() && s.power.max_channel() > 0.0);
-        let parallel = sources
-            .iter()
-            .any(|s| matches!(s.kind, SourceKind::Directional { .. } | SourceKind::Sky));
+        let parallel = sources.iter().any(|s| {
+            matches!(
+                s.kind,
+                SourceKind::Directional { .. } | SourceKind::Sky | SourceKind::CieSky { .. }
+            )
+        });
         let aim = parallel
             .then(|| AimSet::new(&world.geometry, (center, radius)))
             .flatten();
@@ -297,23 +313,29 @@ impl PhotonSources {
                     normal: None,
                 }
             }
-            SourceKind::Directional { frame, .. } => self.parallel_photon(frame, source, sampler),
+            SourceKind::Directional { frame, .. } => {
+                self.parallel_photon(frame, source.power, sampler)
+            }
             SourceKind::Sky => {
                 let frame = Frame::from_normal(uniform_sphere(sampler.next_2d()));
-                self.parallel_photon(&frame, source, sampler)
+                self.parallel_photon(&frame, source.power, sampler)
+            }
+            SourceKind::CieSky { index } => {
+                let u = sampler.next_2d();
+                let sky = world.lights.sky.as_ref().and_then(|s| s.cie.get(*index));
+                let arrival = sky.and_then(|s| s.sample_arrival([f64::from(u.x), f64::from(u.y)]));
+                // A black sky has no sources; the zenith with no power stands in regardless.
+                let (toward, weight) = arrival.unwrap_or((glam::DVec3::Y, 0.0));
+                let frame = Frame::from_normal(-toward.as_vec3());
+                self.parallel_photon(&frame, source.power * weight as f32, sampler)
             }
         }
     }
 
-    /// A photon of `source` travelling along `frame.n`, entering the bounding sphere through
+    /// A photon of `power` travelling along `frame.n`, entering the bounding sphere through
     /// a point of its cross-section: uniform over the whole cross-section, or aimed at what
     /// it can meet (carrying the corresponding fraction of its share).
-    fn parallel_photon(
-        &self,
-        frame: &Frame,
-        source: &PhotonSource,
-        sampler: &mut Sampler,
-    ) -> EmittedPhoton {
+    fn parallel_photon(&self, frame: &Frame, power: Rgb, sampler: &mut Sampler) -> EmittedPhoton {
         let (offset, carried) = match &self.aim {
             Some(aim) => {
                 let point = aim.sample(frame, sampler);
@@ -325,7 +347,7 @@ impl PhotonSources {
             self.center + frame.s * offset.x + frame.t * offset.y - frame.n * (2.0 * self.radius);
         EmittedPhoton {
             ray: Ray::new(origin, frame.n),
-            power: source.power,
+            power,
             surface: None,
             carried,
             normal: None,

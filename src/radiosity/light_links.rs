@@ -11,7 +11,10 @@
 //! - directional light: `E·cos θ` times the share of receiver points that see it;
 //! - sky of uniform radiance `L`: `π·L` times the cosine-weighted share of directions that
 //!   reach the sky, from stratified directions at every receiver point (fewer per point the
-//!   more points there are: about 64 rays per patch side).
+//!   more points there are: about 64 rays per patch side);
+//! - CIE sky: the irradiance the unoccluded sky sends onto the patch's orientation (a fine
+//!   quadrature of its radiance) times the share of the same directions that reach the sky,
+//!   each weighted by the sky's radiance ([`crate::world::sky_irradiance`]).
 
 use super::element::Side;
 use super::form_factor::receiver_points;
@@ -19,9 +22,8 @@ use super::mesh::Patch;
 use crate::color::Rgb64;
 use crate::geometry::angle::upper_angle;
 use crate::scene::LightKind;
-use crate::world::{World, sees_light, sky_share};
+use crate::world::{World, sees_light, sky_irradiance};
 use glam::DVec3;
-use std::f64::consts::PI;
 
 /// Sky directions per axis at each receiver point of a patch (`n × n` cosine-weighted strata).
 pub const SKY_DIRECTIONS_PER_AXIS: u32 = 4;
@@ -70,8 +72,7 @@ const BOUNDARY_INSET: f64 = 1e-2;
 /// What `light` sends to side `side` of `patch`, with shadows from every surface of `world`
 /// (for patches of curved shapes, the world of [`super::Visibility::world`], whose surfaces
 /// they lie on); the visible share is estimated at `samples × samples` receiver points (the
-/// centroid for `samples ≤ 1`). The sky gives `π·L` times the share of the hemisphere that
-/// reaches it.
+/// centroid for `samples ≤ 1`). A sky gives what [`sky_irradiance`] estimates.
 pub fn light_arrival(
     world: &World,
     light: &LightKind,
@@ -82,11 +83,11 @@ pub fn light_arrival(
     let normal = side.normal(patch);
     let points = receiver_points(patch, samples);
     match *light {
-        LightKind::Sky { radiance } => {
+        LightKind::Sky { .. } | LightKind::CieSky { .. } => {
             // About the same rays whatever the points: 4 × 4 directions at each of 2 × 2
             // points, one at each of 8 × 8.
             let per_axis = (SKY_DIRECTIONS_PER_AXIS * 2 / samples.max(1)).max(1);
-            let irradiance = radiance.to_f64() * (PI * sky_share(world, &points, normal, per_axis));
+            let irradiance = sky_irradiance(world, light, &points, normal, per_axis);
             LightArrival {
                 irradiance,
                 partly_shadowed: false,
@@ -175,7 +176,7 @@ pub fn light_arrival(
 /// (`canopy:300`: a leaf 1.5 % in another's shadow read fully lit at 8 × 8 points). Never
 /// for the sky, whose share varies without an edge.
 pub fn shadow_at_edges(world: &World, light: &LightKind, patch: &Patch, side: Side) -> bool {
-    if matches!(light, LightKind::Sky { .. }) {
+    if light.is_sky() {
         return false;
     }
     let normal = side.normal(patch);
@@ -189,7 +190,7 @@ pub fn shadow_at_edges(world: &World, light: &LightKind, patch: &Patch, side: Si
 
 /// The share of the intensity that `light` sends toward `x`: the spot falloff, the cosine
 /// for a Lambertian light, 1 for a point light (and for the lights that send no intensity
-/// from a point: directional light and sky).
+/// from a point: directional light and skies).
 fn falloff(light: &LightKind, x: DVec3) -> f64 {
     match *light {
         LightKind::Lambertian {
@@ -211,7 +212,10 @@ fn falloff(light: &LightKind, x: DVec3) -> f64 {
             let cos = toward.dot(direction.as_dvec3().normalize_or_zero());
             LightKind::spot_falloff(cos as f32, inner_degrees, outer_degrees) as f64
         }
-        LightKind::Point { .. } | LightKind::Directional { .. } | LightKind::Sky { .. } => 1.0,
+        LightKind::Point { .. }
+        | LightKind::Directional { .. }
+        | LightKind::Sky { .. }
+        | LightKind::CieSky { .. } => 1.0,
     }
 }
 
@@ -239,6 +243,7 @@ mod tests {
     use crate::radiosity::mesh::{MeshOptions, PatchMesh};
     use crate::scene::{Material, Scene, Shape};
     use glam::Vec3;
+    use std::f64::consts::PI;
 
     fn floor_world(with_roof: bool) -> (World, PatchMesh) {
         let mut scene = Scene::empty("floor");

@@ -1,8 +1,9 @@
-//! Light sources that are not surfaces: point (isotropic or Lambertian), spot, directional
-//! and sky. (Every emissive surface is an area light; see [`super::Material::emission`].)
+//! Light sources that are not surfaces: point (isotropic or Lambertian), spot, directional,
+//! uniform sky and CIE standard sky. (Every emissive surface is an area light; see [`super::Material::emission`].)
 //! These lights only send light; they never receive it.
 
 use crate::color::Rgb;
+use crate::sky::CieSkyType;
 use glam::Vec3;
 use std::f32::consts::PI;
 
@@ -63,6 +64,20 @@ pub enum LightKind {
         /// Radiance, W·sr⁻¹·m⁻²; an unoccluded upward-facing surface receives E = π·L.
         radiance: Rgb,
     },
+    /// One of the 15 CIE standard general skies (CIE S 011 / ISO 15469) over the upper
+    /// hemisphere (y up, −z north, +x east), black below the horizon (there is no ground):
+    /// its radiance distribution is the type's relative luminance for the sun in `sun`,
+    /// scaled so that an unoccluded upward-facing surface receives `diffuse_horizontal`.
+    /// The sun's disc itself is not part of the sky (a [`LightKind::Directional`] light is).
+    CieSky {
+        /// Which of the 15 standard skies.
+        sky: CieSkyType,
+        /// Unit direction toward the sun (y ≥ 0 for a sun above the horizon).
+        sun: Vec3,
+        /// Diffuse horizontal irradiance, W·m⁻² per channel: what an unoccluded upward-facing
+        /// surface receives from the sky.
+        diffuse_horizontal: Rgb,
+    },
 }
 
 /// Light arriving at a point from a point (isotropic or Lambertian), spot or directional
@@ -81,7 +96,7 @@ pub struct Incidence {
 impl LightKind {
     /// How a point (isotropic or Lambertian), spot or directional light reaches point `x`
     /// (ignoring occluders): `I/d²` (times the spot or cosine falloff) or the directional
-    /// irradiance. `None` for the sky, for
+    /// irradiance. `None` for the skies, for
     /// a point at the light's position, or for a spot pointing away.
     pub fn incidence(&self, x: Vec3) -> Option<Incidence> {
         let from_point = |position: Vec3, intensity: Rgb| {
@@ -129,7 +144,7 @@ impl LightKind {
                 distance: f32::INFINITY,
                 irradiance,
             }),
-            LightKind::Sky { .. } => None,
+            LightKind::Sky { .. } | LightKind::CieSky { .. } => None,
         }
     }
 
@@ -148,7 +163,7 @@ impl LightKind {
     /// Power (W) a point (isotropic or Lambertian), spot or directional light sends into a
     /// scene bounded by a sphere of `scene_radius`: 4π·I, π·I₀ for a Lambertian one, I times
     /// the spot's solid angle, E·πR².
-    /// `None` for the sky, whose power depends on how it is sampled.
+    /// `None` for the skies, whose power depends on how they are sampled.
     pub fn power(&self, scene_radius: f32) -> Option<Rgb> {
         match *self {
             LightKind::Point { intensity, .. } => Some(intensity * (4.0 * PI)),
@@ -162,8 +177,14 @@ impl LightKind {
             LightKind::Directional { irradiance, .. } => {
                 Some(irradiance * (PI * scene_radius * scene_radius))
             }
-            LightKind::Sky { .. } => None,
+            LightKind::Sky { .. } | LightKind::CieSky { .. } => None,
         }
+    }
+
+    /// Whether this is a sky (uniform or CIE): light from every unblocked direction at
+    /// infinity rather than from a point or along one direction.
+    pub fn is_sky(&self) -> bool {
+        matches!(self, LightKind::Sky { .. } | LightKind::CieSky { .. })
     }
 
     /// Relative intensity of a spot light in a direction at angle θ from its axis, given

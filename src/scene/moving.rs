@@ -68,7 +68,7 @@ impl Scene {
                 *position += by;
                 Ok(Moved::Light(k))
             }
-            LightKind::Directional { .. } | LightKind::Sky { .. } => {
+            LightKind::Directional { .. } | LightKind::Sky { .. } | LightKind::CieSky { .. } => {
                 Err(MoveError::NotPlaced(name.to_string()))
             }
         }
@@ -77,7 +77,7 @@ impl Scene {
 
 /// Whether a light of this kind has a position.
 fn placed(kind: &LightKind) -> bool {
-    !matches!(kind, LightKind::Directional { .. } | LightKind::Sky { .. })
+    !matches!(kind, LightKind::Directional { .. }) && !kind.is_sky()
 }
 
 #[cfg(test)]

@@ -45,7 +45,8 @@ pub fn seen_directly(
     sampler: &mut Sampler,
 ) -> (Rgb, Option<ShadingPoint>) {
     let Some(hit) = world.intersect(ray) else {
-        return (world.lights.sky.unwrap_or(Rgb::BLACK), None);
+        let sky = world.lights.sky.as_ref();
+        return (sky.map_or(Rgb::BLACK, |sky| sky.radiance(ray.dir)), None);
     };
     seen_at(world, hit, ray.dir, light_samples, shadows, sampler)
 }
@@ -136,9 +137,10 @@ pub fn direct_light(
         }
         total += sum / count as f32;
     }
-    if let Some(sky) = world.lights.sky {
+    if let Some(sky) = &world.lights.sky {
         // The sky in front, and behind a translucent surface: `count` cosine-distributed
-        // directions about the normal on each side.
+        // directions about the normal on each side, each weighted by the sky's radiance
+        // (uniform, or a CIE sky's by direction: its smooth distribution needs no table).
         for &sign in sp.material.hemispheres() {
             let frame = Frame::from_normal(sp.n * sign);
             let mut sum = Rgb::BLACK;
@@ -147,7 +149,7 @@ pub fn direct_light(
                 let wi = frame.to_world(cosine_hemisphere(u));
                 if sign * sp.ng.dot(wi) > 0.0 && shadows.lets_through(|| sp.sees_along(world, wi)) {
                     // L·f·cos / (cos/π) = π·L·f.
-                    sum += sp.material.eval(sp.n, sp.wo, wi) * sky * PI;
+                    sum += sp.material.eval(sp.n, sp.wo, wi) * sky.radiance(wi) * PI;
                 }
             }
             total += sum / count as f32;

@@ -161,7 +161,8 @@ pub fn irradiance_sample(
             direct += world
                 .lights
                 .sky
-                .map_or(Rgb64::BLACK, |sky| sky.to_f64() * PI);
+                .as_ref()
+                .map_or(Rgb64::BLACK, |sky| sky.radiance(dir).to_f64() * PI);
             Rgb64::BLACK
         }
         Some(hit) => {

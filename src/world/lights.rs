@@ -1,7 +1,8 @@
 //! The lights of a scene as the algorithms see them: area lights (emissive objects, sampled
-//! by area), point (isotropic or Lambertian), spot and directional lights, and the sky.
+//! by area), point (isotropic or Lambertian), spot and directional lights, and the skies.
 
 use super::SceneGeometry;
+use super::sky::{CompiledCieSky, Sky};
 use super::surface_material::emitted_toward;
 use crate::color::Rgb;
 use crate::sampling::warp::uniform_triangle;
@@ -58,8 +59,8 @@ pub struct LightSet {
     pub area: Vec<AreaLight>,
     /// Point (isotropic or Lambertian), spot and directional lights.
     pub delta: Vec<LightKind>,
-    /// Sky radiance, if the scene has a sky.
-    pub sky: Option<Rgb>,
+    /// The skies (uniform and CIE), if the scene has any.
+    pub sky: Option<Sky>,
     /// Per triangle primitive: index into `area` of its area light, or `u32::MAX`.
     light_of_prim: Vec<u32>,
 }
@@ -117,11 +118,26 @@ impl LightSet {
             }
         }
         let mut delta = Vec::new();
-        let mut sky = None;
+        let mut sky: Option<Sky> = None;
         for l in &scene.lights {
             match l.kind {
-                LightKind::Sky { radiance } => sky = Some(sky.unwrap_or(Rgb::BLACK) + radiance),
-                ref k => delta.push(k.clone()),
+                LightKind::Sky { radiance } => {
+                    let sky = sky.get_or_insert_default();
+                    sky.uniform = Some(sky.uniform.unwrap_or(Rgb::BLACK) + radiance);
+                }
+                LightKind::CieSky {
+                    sky: sky_type,
+                    sun,
+                    diffuse_horizontal,
+                } => sky.get_or_insert_default().cie.push(CompiledCieSky::new(
+                    sky_type,
+                    sun,
+                    diffuse_horizontal,
+                )),
+                LightKind::Point { .. }
+                | LightKind::Lambertian { .. }
+                | LightKind::Spot { .. }
+                | LightKind::Directional { .. } => delta.push(l.kind.clone()),
             }
         }
         LightSet {

@@ -18,16 +18,18 @@ pub mod lobes;
 pub mod optics;
 mod ray_bench;
 mod scene_geometry;
+mod sky;
 mod surface_material;
 
 pub use light_at_point::{
-    non_surface_irradiance, point_irradiance, sees_light, sees_point, sky_share,
+    non_surface_irradiance, point_irradiance, sees_light, sees_point, sky_irradiance, sky_share,
 };
 pub use lights::{AreaLight, AreaSample, LightSet};
 pub use ray_bench::{
     PRIMARY_WIDTH, QueryTiming, RANDOM_RAYS, RayBench, RaySet, RaySetError, bench_rays, ray_set,
 };
 pub use scene_geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
+pub use sky::{CompiledCieSky, Sky};
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
 
 use crate::accel::{AccelKind, AccelStats, Accelerator, PrimHit};
@@ -35,6 +37,7 @@ use crate::color::Rgb;
 use crate::geometry::Ray;
 use crate::scene::{LightKind, Material, Scene, Shape};
 use glam::Vec3;
+use std::borrow::Cow;
 use std::f32::consts::PI;
 use std::time::Instant;
 
@@ -202,12 +205,40 @@ impl World {
     /// The power (W per channel) a light that is not a surface sends into the scene, the one
     /// definition every solver reports: point 4π·I, spot I times its solid angle
     /// ([`LightKind::power`]), directional E·πR², sky of radiance L 4π²R²·L (the power
-    /// entering the entry sphere of radius R from outside).
+    /// entering the entry sphere of radius R from outside), CIE sky πR²·∫L dω over the upper
+    /// hemisphere (the same, from above the horizon only).
     pub fn light_power(&self, light: &LightKind) -> Rgb {
         let (_, radius) = self.entry_sphere();
         match *light {
             LightKind::Sky { radiance } => radiance * (4.0 * PI * PI * radius * radius),
+            LightKind::CieSky { .. } => self.cie_sky(light).map_or(Rgb::BLACK, |sky| {
+                sky.radiance_integral().to_f32() * (PI * radius * radius)
+            }),
             ref kind => kind.power(radius).unwrap_or(Rgb::BLACK),
+        }
+    }
+
+    /// The compiled CIE sky of `light`: this world's, or compiled now for a CIE sky the
+    /// world does not hold; `None` for any other kind of light.
+    pub fn cie_sky(&self, light: &LightKind) -> Option<Cow<'_, CompiledCieSky>> {
+        if let Some(sky) = self.lights.sky.as_ref().and_then(|s| s.cie_of(light)) {
+            return Some(Cow::Borrowed(sky));
+        }
+        match *light {
+            LightKind::CieSky {
+                sky,
+                sun,
+                diffuse_horizontal,
+            } => Some(Cow::Owned(CompiledCieSky::new(
+                sky,
+                sun,
+                diffuse_horizontal,
+            ))),
+            LightKind::Point { .. }
+            | LightKind::Lambertian { .. }
+            | LightKind::Spot { .. }
+            | LightKind::Directional { .. }
+            | LightKind::Sky { .. } => None,
         }
     }
 

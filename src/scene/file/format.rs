@@ -217,6 +217,8 @@ pub(super) enum LightType {
     Spot,
     Directional,
     Sky,
+    #[serde(rename = "cie_sky")]
+    CieSky,
 }
 
 impl LightType {
@@ -228,6 +230,7 @@ impl LightType {
             LightType::Spot => "spot",
             LightType::Directional => "directional",
             LightType::Sky => "sky",
+            LightType::CieSky => "cie_sky",
         }
     }
 
@@ -255,8 +258,38 @@ impl LightType {
                 "inner_degrees",
                 "outer_degrees",
             ],
-            LightType::Directional => &["direction", "irradiance", "illuminance_lux", "color"],
+            LightType::Directional => &[
+                "direction",
+                "irradiance",
+                "illuminance_lux",
+                "color",
+                "date",
+                "time",
+                "utc_offset_hours",
+                "latitude_deg",
+                "longitude_deg",
+                "elevation_m",
+                "pressure_mbar",
+                "temperature_c",
+                "delta_t_s",
+            ],
             LightType::Sky => &["radiance", "luminance_cd_m2", "color"],
+            LightType::CieSky => &[
+                "sky_type",
+                "sun_direction",
+                "diffuse_horizontal",
+                "illuminance_lux",
+                "color",
+                "date",
+                "time",
+                "utc_offset_hours",
+                "latitude_deg",
+                "longitude_deg",
+                "elevation_m",
+                "pressure_mbar",
+                "temperature_c",
+                "delta_t_s",
+            ],
         }
     }
 }
@@ -281,6 +314,18 @@ pub(super) struct LightEntry {
     pub illuminance_lux: Option<Spanned<f32>>,
     pub luminance_cd_m2: Option<Spanned<f32>>,
     pub color: Option<Spanned<Triple>>,
+    pub sky_type: Option<Spanned<i64>>,
+    pub sun_direction: Option<Spanned<Coords>>,
+    pub diffuse_horizontal: Option<Spanned<Triple>>,
+    pub date: Option<Spanned<String>>,
+    pub time: Option<Spanned<String>>,
+    pub utc_offset_hours: Option<Spanned<f64>>,
+    pub latitude_deg: Option<Spanned<f64>>,
+    pub longitude_deg: Option<Spanned<f64>>,
+    pub elevation_m: Option<Spanned<f64>>,
+    pub pressure_mbar: Option<Spanned<f64>>,
+    pub temperature_c: Option<Spanned<f64>>,
+    pub delta_t_s: Option<Spanned<f64>>,
 }
 
 impl LightEntry {
@@ -289,6 +334,8 @@ impl LightEntry {
         let triple = |v: &Option<Spanned<Triple>>| v.as_ref().map(Spanned::span);
         let coords = |v: &Option<Spanned<Coords>>| v.as_ref().map(Spanned::span);
         let number = |v: &Option<Spanned<f32>>| v.as_ref().map(Spanned::span);
+        let text = |v: &Option<Spanned<String>>| v.as_ref().map(Spanned::span);
+        let real = |v: &Option<Spanned<f64>>| v.as_ref().map(Spanned::span);
         [
             ("position", coords(&self.position)),
             ("direction", coords(&self.direction)),
@@ -303,6 +350,18 @@ impl LightEntry {
             ("illuminance_lux", number(&self.illuminance_lux)),
             ("luminance_cd_m2", number(&self.luminance_cd_m2)),
             ("color", triple(&self.color)),
+            ("sky_type", self.sky_type.as_ref().map(Spanned::span)),
+            ("sun_direction", coords(&self.sun_direction)),
+            ("diffuse_horizontal", triple(&self.diffuse_horizontal)),
+            ("date", text(&self.date)),
+            ("time", text(&self.time)),
+            ("utc_offset_hours", real(&self.utc_offset_hours)),
+            ("latitude_deg", real(&self.latitude_deg)),
+            ("longitude_deg", real(&self.longitude_deg)),
+            ("elevation_m", real(&self.elevation_m)),
+            ("pressure_mbar", real(&self.pressure_mbar)),
+            ("temperature_c", real(&self.temperature_c)),
+            ("delta_t_s", real(&self.delta_t_s)),
         ]
         .into_iter()
         .filter_map(|(name, span)| span.map(|span| (name, span)))

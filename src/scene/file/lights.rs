@@ -1,10 +1,12 @@
-//! `[[lights]]` entries: point, Lambertian point, spot, directional and sky lights.
+//! `[[lights]]` entries: point, Lambertian point, spot, directional, sky and CIE sky lights.
 
 use super::error::SceneError;
 use super::fields::Table;
 use super::format::{LightEntry, LightType};
 use super::photometry::{self, Photometric};
+use super::sun::sun_toward;
 use crate::scene::{Light, LightKind};
+use crate::sky::CieSkyType;
 use glam::Vec3;
 use std::f32::consts::PI;
 use toml::Spanned;
@@ -72,25 +74,14 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
                 outer_degrees: outer,
             }
         }
-        LightType::Directional => {
-            let d = e
-                .direction
-                .as_ref()
-                .ok_or_else(|| t.missing("direction", why))?;
-            LightKind::Directional {
-                direction: unit(
-                    t,
-                    "direction",
-                    d,
-                    t.required_vec3("direction", Some(d), why)?,
-                )?,
-                irradiance: color(
-                    "irradiance",
-                    e.irradiance.as_ref(),
-                    &[("illuminance_lux", e.illuminance_lux.as_ref(), 1.0)],
-                )?,
-            }
-        }
+        LightType::Directional => LightKind::Directional {
+            direction: -sun_toward(t, e, ("direction", e.direction.as_ref(), false), why)?,
+            irradiance: color(
+                "irradiance",
+                e.irradiance.as_ref(),
+                &[("illuminance_lux", e.illuminance_lux.as_ref(), 1.0)],
+            )?,
+        },
         LightType::Sky => LightKind::Sky {
             radiance: color(
                 "radiance",
@@ -98,6 +89,31 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
                 &[("luminance_cd_m2", e.luminance_cd_m2.as_ref(), 1.0)],
             )?,
         },
+        LightType::CieSky => {
+            let number = e
+                .sky_type
+                .as_ref()
+                .ok_or_else(|| t.missing("sky_type", why))?;
+            let sky = u8::try_from(*number.get_ref())
+                .ok()
+                .and_then(CieSkyType::from_number)
+                .ok_or_else(|| {
+                    t.error(
+                        number.span(),
+                        "sky_type",
+                        "must be a CIE standard general sky number, 1 to 15",
+                    )
+                })?;
+            LightKind::CieSky {
+                sky,
+                sun: sun_toward(t, e, ("sun_direction", e.sun_direction.as_ref(), true), why)?,
+                diffuse_horizontal: color(
+                    "diffuse_horizontal",
+                    e.diffuse_horizontal.as_ref(),
+                    &[("illuminance_lux", e.illuminance_lux.as_ref(), 1.0)],
+                )?,
+            }
+        }
     };
     Ok(Light {
         name: e.name.clone(),

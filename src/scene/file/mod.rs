@@ -15,6 +15,7 @@ mod mgf_scene;
 mod photometry;
 mod sensors;
 mod shapes;
+mod sun;
 mod textures;
 mod transform;
 mod value;

@@ -220,8 +220,8 @@ impl PathTracer {
         radiance: &mut Rgb,
     ) -> Option<(ShadingPoint, LobeChoice)> {
         let Some(hit) = world.intersect(ray) else {
-            if let Some(sky) = world.lights.sky {
-                *radiance += beta * sky * self.sky_weight(arrival, ray.dir);
+            if let Some(sky) = &world.lights.sky {
+                *radiance += beta * sky.radiance(ray.dir) * self.sky_weight(arrival, ray.dir);
             }
             return None;
         };

@@ -132,9 +132,9 @@ impl LightPicker {
             choices.push(Choice::Delta(i));
             power.push(p);
         }
-        if let Some(sky) = lights.sky {
+        if let Some(sky) = &lights.sky {
             choices.push(Choice::Sky);
-            power.push(PI * sky.luminance() * cross_section);
+            power.push(sky.horizontal_luminance() * cross_section);
         }
         let power: Vec<f32> = power.into_iter().map(|p| p.max(0.0)).collect();
         let total: f32 = power.iter().sum();
@@ -268,7 +268,7 @@ impl LightPicker {
                 })
             }
             Choice::Sky => {
-                let sky = world.lights.sky?;
+                let sky = world.lights.sky.as_ref()?;
                 let wi = Frame::from_normal(n).to_world(cosine_hemisphere(u));
                 let pdf = self.sky_pdf(n, wi);
                 if pdf <= 0.0 {
@@ -276,7 +276,7 @@ impl LightPicker {
                 }
                 Some(LightSample {
                     wi,
-                    radiance_over_pdf: sky / pdf,
+                    radiance_over_pdf: sky.radiance(wi) / pdf,
                     pdf,
                     target: ShadowTarget::Infinity,
                 })
