@@ -1,9 +1,11 @@
 //! Scenes built from arrays (a plant model's organs handed over without files): triangles
 //! grouped into named objects, a diffuse reflectance and translucency per object, and a sun
-//! and a uniform sky.
+//! and a uniform or a CIE standard sky.
 
 use glam::Vec3;
-use strahl::scene::{ENERGY_TOLERANCE, Light, LightKind, Material, PolygonMesh, Scene, Shape};
+use strahl::scene::{
+    CieSkyType, ENERGY_TOLERANCE, Light, LightKind, Material, PolygonMesh, Scene, Shape,
+};
 
 /// What Python hands over, decoded: little-endian `f32` / `u32` arrays.
 pub struct Arrays {
@@ -26,6 +28,9 @@ pub struct Arrays {
     pub sun: Option<([f32; 3], [f32; 3])>,
     /// A uniform sky's radiance, W·sr⁻¹·m⁻².
     pub sky: Option<[f32; 3]>,
+    /// A CIE standard general sky: its type (1–15), the direction toward the sun (above the
+    /// horizon) and the diffuse irradiance on an open horizontal surface, W·m⁻².
+    pub cie_sky: Option<(u8, [f32; 3], [f32; 3])>,
 }
 
 /// `bytes` as little-endian 4-byte words, `width` to a row; an error names `what`.
@@ -159,6 +164,23 @@ pub fn scene(name: &str, a: Arrays) -> Result<Scene, String> {
             name: Some("sky".into()),
             kind: LightKind::Sky {
                 radiance: radiance.into(),
+            },
+        });
+    }
+    if let Some((number, sun, diffuse_horizontal)) = a.cie_sky {
+        let sky = CieSkyType::from_number(number)
+            .ok_or_else(|| format!("the CIE sky's type must be 1 to 15 (got {number})"))?;
+        let sun = Vec3::from(sun)
+            .try_normalize()
+            .filter(|d| d.y > 0.0)
+            .ok_or("the CIE sky's sun must point above the horizon (y > 0)")?;
+        scene.lights.push(Light {
+            name: Some("sky".into()),
+            kind: LightKind::CieSky {
+                sky,
+                sun,
+                diffuse_horizontal: light("CIE sky's diffuse irradiance", diffuse_horizontal)?
+                    .into(),
             },
         });
     }

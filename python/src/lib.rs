@@ -18,6 +18,7 @@ use strahl::method::{
     SettingValue, World,
 };
 use strahl::report::{ExportFormat, Report, export_lit_mesh};
+use strahl::scene::{LocalTime, Observer};
 
 /// How often the waiting thread looks at Ctrl-C and reports progress.
 const POLL: Duration = Duration::from_millis(50);
@@ -41,10 +42,12 @@ fn load(py: Python<'_>, name: &str) -> PyResult<Scene> {
 /// A scene of triangles grouped into named objects, from arrays as little-endian bytes:
 /// `vertices` (n × 3 `f32`, scene units), `triangles` (m × 3 `u32`), `object_ids` (m
 /// `u32`), `reflectance` and `translucency` (one RGB `f32` row per name); a sun (the
-/// direction its light travels, the irradiance facing it in W·m⁻²) and a uniform sky
-/// (radiance, W·sr⁻¹·m⁻²). With `per_face`, every triangle is reported on its own.
+/// direction its light travels, the irradiance facing it in W·m⁻²), a uniform sky
+/// (radiance, W·sr⁻¹·m⁻²) and a CIE standard sky (type 1–15, the direction toward the sun,
+/// the diffuse horizontal irradiance in W·m⁻²). With `per_face`, every triangle is reported
+/// on its own.
 #[pyfunction]
-#[pyo3(signature = (name, vertices, triangles, object_ids, names, reflectance, translucency, per_face, sun, sky))]
+#[pyo3(signature = (name, vertices, triangles, object_ids, names, reflectance, translucency, per_face, sun, sky, cie_sky=None))]
 #[allow(clippy::too_many_arguments)]
 fn scene_from_arrays(
     py: Python<'_>,
@@ -58,6 +61,7 @@ fn scene_from_arrays(
     per_face: bool,
     sun: Option<([f32; 3], [f32; 3])>,
     sky: Option<[f32; 3]>,
+    cie_sky: Option<(u8, [f32; 3], [f32; 3])>,
 ) -> PyResult<Scene> {
     let world = py.detach(|| -> Result<World, String> {
         let float = f32::from_le_bytes;
@@ -78,6 +82,7 @@ fn scene_from_arrays(
             per_face,
             sun,
             sky,
+            cie_sky,
         };
         let scene = arrays::scene(name, given)?;
         World::new(scene, AccelKind::Bvh).map_err(|e| format!("scene '{name}': {e}"))
@@ -85,6 +90,81 @@ fn scene_from_arrays(
     Ok(Scene {
         world: Arc::new(world.map_err(PyValueError::new_err)?),
     })
+}
+
+/// Where the sun is at a local date and time (`utc_offset_hours` from UTC) seen from a site
+/// (degrees north and east, metres above the sea, the mean pressure in mbar and temperature
+/// in °C for refraction, ΔT = TT − UT1 in seconds), by NREL's Solar Position Algorithm:
+/// zenith and azimuth (degrees; azimuth clockwise from north), the unit direction toward the
+/// sun in strahl's frame (y up, −z north, +x east) and the Earth–Sun distance in AU.
+#[pyfunction]
+#[pyo3(signature = (year, month, day, hour, minute, second, utc_offset_hours, latitude_deg, longitude_deg, elevation_m=0.0, pressure_mbar=1013.25, temperature_c=15.0, delta_t_s=69.0))]
+#[allow(clippy::too_many_arguments)]
+fn sun_position(
+    year: i32,
+    month: u32,
+    day: u32,
+    hour: u32,
+    minute: u32,
+    second: f64,
+    utc_offset_hours: f64,
+    latitude_deg: f64,
+    longitude_deg: f64,
+    elevation_m: f64,
+    pressure_mbar: f64,
+    temperature_c: f64,
+    delta_t_s: f64,
+) -> PyResult<(f64, f64, [f64; 3], f64)> {
+    let finite = [
+        second,
+        utc_offset_hours,
+        latitude_deg,
+        longitude_deg,
+        elevation_m,
+        pressure_mbar,
+        temperature_c,
+        delta_t_s,
+    ]
+    .iter()
+    .all(|v| v.is_finite());
+    if !finite || !(1..=12).contains(&month) || !(1..=31).contains(&day) || hour > 24 || minute > 59
+    {
+        return Err(PyValueError::new_err(
+            "sun_position: a date, time or site out of range or not finite",
+        ));
+    }
+    if !(-90.0..=90.0).contains(&latitude_deg) || !(-180.0..=180.0).contains(&longitude_deg) {
+        return Err(PyValueError::new_err(format!(
+            "sun_position: latitude {latitude_deg} must lie in −90…90 and longitude \
+             {longitude_deg} in −180…180 degrees"
+        )));
+    }
+    let time = LocalTime {
+        year,
+        month,
+        day,
+        hour,
+        minute,
+        second,
+        utc_offset_hours,
+        delta_ut1_s: 0.0,
+        delta_t_s,
+    };
+    let observer = Observer {
+        latitude_deg,
+        longitude_deg,
+        elevation_m,
+        pressure_mbar,
+        temperature_c,
+        refraction_deg: 0.5667,
+    };
+    let sun = strahl::scene::sun_position(&time, &observer);
+    Ok((
+        sun.zenith_deg,
+        sun.azimuth_deg,
+        sun.direction().to_array(),
+        sun.distance_au,
+    ))
 }
 
 /// The scene named `name` (built-in or a file), compiled.
@@ -494,5 +574,6 @@ fn _strahl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(scene_from_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(write_report, m)?)?;
+    m.add_function(wrap_pyfunction!(sun_position, m)?)?;
     Ok(())
 }

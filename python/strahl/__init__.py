@@ -17,13 +17,13 @@ import json
 import uuid
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
-from typing import Callable, Optional
+from typing import Callable, NamedTuple, Optional
 
 import numpy as np
 
 from . import _strahl
 
-__all__ = ["load", "from_arrays", "settings", "Scene", "Result"]
+__all__ = ["load", "from_arrays", "settings", "sun_position", "Scene", "Result", "SunPosition"]
 
 
 @dataclass(frozen=True)
@@ -278,6 +278,7 @@ def from_arrays(
     translucency=0.0,
     sun=None,
     sky=None,
+    cie_sky=None,
     per_face: bool = False,
     name: str = "arrays",
 ) -> Scene:
@@ -288,7 +289,11 @@ def from_arrays(
     side, diffusely; ρ + τ ≤ 1 per channel) — each a number, an RGB triple, or one of
     either per object. Lights: ``sun=(direction, irradiance)`` (the direction its light
     travels; W/m² on a surface facing it, a number or RGB) and ``sky=radiance``
-    (W/(sr·m²); an open horizontal surface then receives π × radiance). With ``per_face``
+    (W/(sr·m²); an open horizontal surface then receives π × radiance) or
+    ``cie_sky=(sky_type, sun_direction, diffuse_horizontal)``, one of the 15 CIE standard
+    general skies (1 overcast … 12 clear … 15), brighter toward the sun (the direction toward
+    it, above the horizon: :func:`sun_position` gives it), scaled so that an open horizontal
+    surface receives ``diffuse_horizontal`` W/m² (a number or RGB). With ``per_face``
     every triangle is reported on its own. Surfaces reflect and transmit on both sides."""
     vertices = np.ascontiguousarray(vertices, dtype="<f4")
     triangles = np.ascontiguousarray(triangles, dtype="<u4")
@@ -304,6 +309,7 @@ def from_arrays(
     rgb = lambda v: tuple(float(x) for x in np.broadcast_to(np.asarray(v, dtype=float), (3,)))
     sun_light = None if sun is None else (rgb(sun[0]), rgb(sun[1]))
     sky_light = None if sky is None else rgb(sky)
+    cie_light = None if cie_sky is None else (int(cie_sky[0]), rgb(cie_sky[1]), rgb(cie_sky[2]))
     given = (
         name,
         vertices.tobytes(),
@@ -315,8 +321,45 @@ def from_arrays(
         per_face,
         sun_light,
         sky_light,
+        cie_light,
     )
     return Scene(_strahl.scene_from_arrays(*given), ("arrays", given))
+
+
+class SunPosition(NamedTuple):
+    """Where the sun is (:func:`sun_position`)."""
+
+    zenith_deg: float
+    """Angle from straight up, degrees (above 90 at night)."""
+    azimuth_deg: float
+    """Clockwise from north, degrees."""
+    direction: np.ndarray
+    """Unit vector toward the sun in strahl's frame: y up, −z north, +x east."""
+    distance_au: float
+    """Earth–Sun distance, astronomical units."""
+
+
+def sun_position(
+    when,
+    utc_offset_hours: float,
+    latitude_deg: float,
+    longitude_deg: float,
+    *,
+    elevation_m: float = 0.0,
+    pressure_mbar: float = 1013.25,
+    temperature_c: float = 15.0,
+    delta_t_s: float = 69.0,
+) -> SunPosition:
+    """The sun seen from a site (degrees north and east) at the local time ``when`` (a
+    ``datetime.datetime``, ``utc_offset_hours`` ahead of UTC), by NREL's Solar Position
+    Algorithm (to 10⁻⁵° on NREL's published example). The direction toward the sun is the
+    ``sun`` of a CIE sky; a directional sun travels along its negative."""
+    second = when.second + when.microsecond / 1e6
+    zenith, azimuth, direction, distance = _strahl.sun_position(
+        when.year, when.month, when.day, when.hour, when.minute, second, utc_offset_hours,
+        latitude_deg, longitude_deg, elevation_m, pressure_mbar, temperature_c, delta_t_s,
+    )
+    return SunPosition(zenith, azimuth, np.array(direction), distance)
 
 
 # Scenes rebuilt from pickles in this process, by the token of the scene pickled: a worker

@@ -66,5 +66,12 @@ def scene_from_arrays(
     per_face: bool,
     sun: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]],
     sky: Optional[Tuple[float, float, float]],
+    cie_sky: Optional[Tuple[int, Tuple[float, float, float], Tuple[float, float, float]]] = None,
 ) -> Scene: ...
+def sun_position(
+    year: int, month: int, day: int, hour: int, minute: int, second: float,
+    utc_offset_hours: float, latitude_deg: float, longitude_deg: float,
+    elevation_m: float = 0.0, pressure_mbar: float = 1013.25, temperature_c: float = 15.0,
+    delta_t_s: float = 69.0,
+) -> Tuple[float, float, Tuple[float, float, float], float]: ...
 def write_report(report: str, path: str) -> None: ...

@@ -295,3 +295,33 @@ def test_reports_and_meshes_are_written_as_the_command_line_writes_them(tmp_path
         cornell.solve("light-trace", photons=1000, export=tmp_path / "x.glb")
     with pytest.raises(ValueError):
         cornell.solve("hierarchical", export=tmp_path / "x.obj")
+
+
+def test_a_leaf_under_a_cie_sky_and_the_sun_of_a_date_and_place():
+    import datetime
+
+    # NREL's published example: Golden, Colorado, 2003-10-17 12:30:30 at UTC−7.
+    sun = strahl.sun_position(
+        datetime.datetime(2003, 10, 17, 12, 30, 30), -7, 39.742476, -105.1786,
+        elevation_m=1830.14, pressure_mbar=820, temperature_c=11, delta_t_s=67,
+    )
+    assert abs(sun.zenith_deg - 50.11162) < 1e-4 and abs(sun.azimuth_deg - 194.34024) < 1e-4
+    assert abs(np.linalg.norm(sun.direction) - 1) < 1e-12
+    assert abs(np.degrees(np.arccos(sun.direction[1])) - sun.zenith_deg) < 1e-9
+    # South of west a little (azimuth 194°): −z is north, +x east.
+    assert sun.direction[2] > 0 and sun.direction[0] < 0
+    # An open black sheet under the CIE clear sky receives the diffuse horizontal irradiance
+    # on its top (nothing from below the horizon), and the sun's beam times cos(zenith).
+    v, t = _sheet(0.0)
+    scene = strahl.from_arrays(
+        v, t, [0, 0], ["sheet"], 0.0,
+        sun=(-sun.direction, 800.0), cie_sky=(12, sun.direction, 110.0),
+    )
+    expected = 110.0 + 800.0 * sun.direction[1]
+    for method in ["hierarchical", "light-trace"]:
+        result = scene.solve(method, photons=400_000) if method == "light-trace" else scene.solve(method)
+        assert np.allclose(result.incident_w, expected, rtol=0.01), (method, result.incident_w, expected)
+    with pytest.raises(ValueError, match="type must be 1 to 15"):
+        strahl.from_arrays(v, t, [0, 0], ["x"], 0.5, cie_sky=(16, [0, 1, 0], 100.0))
+    with pytest.raises(ValueError, match="above the horizon"):
+        strahl.from_arrays(v, t, [0, 0], ["x"], 0.5, cie_sky=(1, [0, -1, 0], 100.0))
