@@ -2,6 +2,7 @@
 //! `view`. The only part of strahl that knows the argument parser and HTTP; everything it
 //! runs is in the library.
 
+mod batch_file;
 mod bench;
 mod choice;
 mod info;

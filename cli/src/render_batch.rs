@@ -8,12 +8,12 @@
 //! string of the per-pixel fixed-point sums as zigzag varints (about 11 bytes a channel,
 //! some 9 MB for a 512×512 image).
 
+use super::batch_file;
 use super::radiosity::method_error;
 use super::render::RenderArgs;
 use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use strahl::atomic_file::AtomicFile;
 use strahl::image::{self, ToneMapping};
 use strahl::method::{AccelKind, Batch, Method, RenderPartial, World};
 
@@ -35,23 +35,14 @@ pub fn write(
     batch: Batch,
     path: &Path,
 ) -> Result<()> {
-    let bar = super::progress::Bar::new("rendering", args.quiet);
-    let cancel = super::progress::cancel_flag();
-    let render = super::with_threads(args.threads, || {
-        strahl::method::run_render_batch(world, method, batch, &bar, cancel)
-    })?
-    .map_err(method_error)?;
-    if super::progress::interrupted() {
-        anyhow::bail!("interrupted: a batch cut short cannot be merged, so nothing is written");
-    }
+    let render = batch_file::run_whole("rendering", args.quiet, args.threads, |bar, cancel| {
+        strahl::method::run_render_batch(world, method, batch, bar, cancel)
+    })?;
     let file = RenderPartialFile {
         scene: args.scene.clone(),
         render,
     };
-    let io = |e| anyhow::anyhow!("{}: {e}", path.display());
-    let mut out = AtomicFile::create(path).map_err(io)?;
-    serde_json::to_writer(&mut out, &file)?;
-    out.commit().map_err(io)?;
+    batch_file::write(path, &file)?;
     if !args.quiet {
         eprintln!(
             "batch {batch}: {} paths per pixel in {:.2} s → {}",

@@ -1,6 +1,7 @@
 //! `strahl solve`: compute the light on every object of a scene and report it per object
 //! (or per face) as JSON or CSV.
 
+use super::batch_file;
 use super::choice::{choice, choice_among};
 use super::limits::LimitArgs;
 use super::merge::PartialFile;
@@ -12,7 +13,6 @@ use clap::Args;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use strahl::atomic_file::AtomicFile;
 use strahl::method::World;
 use strahl::method::{AccelKind, Batch, LightTraceSettings, Method, MethodKind};
 use strahl::report::{ExportFormat, ObjectReport, Report, ReportFormat, write_report};
@@ -333,25 +333,16 @@ fn solve_batch(
     batch: Batch,
     path: &Path,
 ) -> Result<()> {
-    let bar = super::progress::Bar::new("photons", args.quiet);
-    let cancel = super::progress::cancel_flag();
-    let partial = super::with_threads(args.threads, || {
-        strahl::method::run_batch(world, method, batch, &bar, cancel)
-    })?
-    .map_err(method_error)?;
-    if super::progress::interrupted() {
-        bail!("interrupted: a batch cut short cannot be merged, so nothing is written");
-    }
+    let partial = batch_file::run_whole("photons", args.quiet, args.threads, |bar, cancel| {
+        strahl::method::run_batch(world, method, batch, bar, cancel)
+    })?;
     let file = PartialFile {
         scene: args.scene.clone(),
         per_face: args.per_face,
         diffuse_only: args.diffuse_only,
         partial,
     };
-    let io = |e| anyhow::anyhow!("{}: {e}", path.display());
-    let mut out = AtomicFile::create(path).map_err(io)?;
-    serde_json::to_writer(&mut out, &file)?;
-    out.commit().map_err(io)?;
+    batch_file::write(path, &file)?;
     if !args.quiet {
         eprintln!(
             "batch {batch}: {} photons in {:.2} s → {}",
