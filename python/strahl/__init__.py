@@ -95,7 +95,13 @@ class Result:
             return out
 
         area = total(self.area_m2)
-        weighted = lambda values: total(values * self.area_m2) / area
+        known = area > 0  # a sum of no area (or of an unknown one) has no mean: NaN
+
+        def per_area(values):
+            shape = (k,) + (1,) * (values.ndim - 1)
+            return np.divide(values, area.reshape(shape), out=np.full(values.shape, np.nan), where=known.reshape(shape))
+
+        weighted = lambda values: per_area(total(values * self.area_m2.reshape((-1,) + (1,) * (values.ndim - 1))))
         return replace(
             self,
             names=order,
@@ -103,7 +109,7 @@ class Result:
             faces=np.full(k, -1),
             incident_w=total(self.incident_w),
             absorbed_w=total(self.absorbed_w),
-            irradiance_w_m2=total(self.incident_w) / area[:, None],
+            irradiance_w_m2=per_area(total(self.incident_w)),
             illuminance_lux=weighted(self.illuminance_lux),
             direct_w=total(self.direct_w),
             direct_lux=weighted(self.direct_lux),

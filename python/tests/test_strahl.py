@@ -261,6 +261,12 @@ def test_per_triangle_results_of_whole_objects_sum_to_the_objects():
     assert np.allclose(summed.illuminance_lux, whole.illuminance_lux, rtol=1e-12)
     assert np.allclose(summed.area_m2, [1.0, 1.0])
     assert np.all(np.isnan(summed.lux_sigma)) and np.all(whole.lux_sigma > 0)
+    # Rows of no area have no mean: NaN, never infinite.
+    from dataclasses import replace
+
+    flat = replace(faces, area_m2=np.array([0.0, 0.0, 0.5, 0.5])).by_object()
+    assert np.all(np.isnan(flat.irradiance_w_m2[0])) and np.isnan(flat.illuminance_lux[0])
+    assert np.all(np.isfinite(flat.irradiance_w_m2[1]))
     # Direct and indirect light are told apart, and add up to the whole.
     assert np.allclose(whole.direct_lux + whole.indirect_lux, whole.illuminance_lux, rtol=1e-9)
     assert np.all(faces.incident_w_sigma > 0)
