@@ -286,10 +286,11 @@ pub fn deliver(report: &Report, path: Option<&Path>, quiet: bool) -> Result<()> 
             }
         }
         None => {
-            let mut out = std::io::stdout().lock();
+            let mut out = std::io::BufWriter::new(std::io::stdout().lock());
             let written = serde_json::to_writer_pretty(&mut out, report)
                 .map_err(std::io::Error::from)
-                .and_then(|()| writeln!(out));
+                .and_then(|()| writeln!(out))
+                .and_then(|()| out.flush());
             match written {
                 // The reader stopped reading (`strahl solve … | head`): nothing is lost.
                 Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {}

@@ -34,6 +34,14 @@
 //!
 //! Unbounded shapes (infinite planes) are outside the bounding sphere's measure: they receive
 //! directional and sky light only where it falls inside the sphere's shadow cylinder.
+//!
+//! Periodic scenes. In a plot repeated without end ([`crate::world::Field`]), directional and
+//! sky light enter through the plot's top (a rectangle just above all geometry) and the sky's
+//! light from below the horizon through its bottom, with the powers of
+//! [`World::light_power`]: photons start at uniform points of the rectangle, directional ones
+//! along the light, uniform-sky ones cosine-distributed about the vertical (a random one of
+//! the two), CIE-sky ones drawn from its table and weighted by `L·cos θ` over the draw's
+//! density.
 
 mod aim;
 
@@ -41,7 +49,7 @@ use crate::color::Rgb;
 use crate::geometry::{Frame, Ray, spawn_ray};
 use crate::sampling::Sampler;
 use crate::sampling::warp::{concentric_disk, cosine_hemisphere, uniform_sphere, uniform_triangle};
-use crate::scene::LightKind;
+use crate::scene::{LightKind, Periodic};
 use crate::world::{World, emitted_toward};
 use aim::AimSet;
 use glam::Vec3;
@@ -118,6 +126,9 @@ pub struct PhotonSources {
     radius: f32,
     /// The spheres directional and sky photons are aimed at, when aiming pays.
     aim: Option<AimSet>,
+    /// In a periodic scene: the plot, and the heights (scene units) of the rectangles above
+    /// and below all geometry through which directional and sky photons enter it.
+    entry: Option<(Periodic, [f32; 2])>,
 }
 
 impl PhotonSources {
@@ -234,7 +245,12 @@ impl PhotonSources {
                 SourceKind::Directional { .. } | SourceKind::Sky | SourceKind::CieSky { .. }
             )
         });
-        let aim = parallel
+        let entry = world.field().map(|field| {
+            let period = field.plot.period();
+            let margin = 1e-3 * (field.top - field.bottom).max(period.max_element());
+            (field.plot, [field.bottom - margin, field.top + margin])
+        });
+        let aim = (parallel && entry.is_none())
             .then(|| AimSet::new(&world.geometry, (center, radius)))
             .flatten();
         PhotonSources {
@@ -242,6 +258,7 @@ impl PhotonSources {
             center,
             radius,
             aim,
+            entry,
         }
     }
 
@@ -313,17 +330,37 @@ impl PhotonSources {
                     normal: None,
                 }
             }
-            SourceKind::Directional { frame, .. } => {
-                self.parallel_photon(frame, source.power, sampler)
-            }
-            SourceKind::Sky => {
-                let frame = Frame::from_normal(uniform_sphere(sampler.next_2d()));
-                self.parallel_photon(&frame, source.power, sampler)
-            }
+            SourceKind::Directional { frame, .. } => match self.entry {
+                Some(entry) => entering_photon(entry, frame.n, source.power, sampler),
+                None => self.parallel_photon(frame, source.power, sampler),
+            },
+            SourceKind::Sky => match self.entry {
+                Some(entry) => {
+                    let vertical = if sampler.next_1d() < 0.5 {
+                        -Vec3::Y
+                    } else {
+                        Vec3::Y
+                    };
+                    let local = cosine_hemisphere(sampler.next_2d());
+                    let dir = Frame::from_normal(vertical).to_world(local);
+                    entering_photon(entry, dir, source.power, sampler)
+                }
+                None => {
+                    let frame = Frame::from_normal(uniform_sphere(sampler.next_2d()));
+                    self.parallel_photon(&frame, source.power, sampler)
+                }
+            },
             SourceKind::CieSky { index } => {
                 let u = sampler.next_2d();
+                let u = [f64::from(u.x), f64::from(u.y)];
                 let sky = world.lights.sky.as_ref().and_then(|s| s.cie.get(*index));
-                let arrival = sky.and_then(|s| s.sample_arrival([f64::from(u.x), f64::from(u.y)]));
+                if let Some(entry) = self.entry {
+                    let arrival = sky.and_then(|s| s.sample_arrival_horizontal(u));
+                    let (toward, weight) = arrival.unwrap_or((glam::DVec3::Y, 0.0));
+                    let power = source.power * weight as f32;
+                    return entering_photon(entry, -toward.as_vec3(), power, sampler);
+                }
+                let arrival = sky.and_then(|s| s.sample_arrival(u));
                 // A black sky has no sources; the zenith with no power stands in regardless.
                 let (toward, weight) = arrival.unwrap_or((glam::DVec3::Y, 0.0));
                 let frame = Frame::from_normal(-toward.as_vec3());
@@ -352,6 +389,25 @@ impl PhotonSources {
             carried,
             normal: None,
         }
+    }
+}
+
+/// A photon of `power` travelling along the unit `dir`, entering a periodic plot at a
+/// uniform point of its top (going down) or bottom (going up); `entry` is the plot and the
+/// bottom's and top's heights.
+fn entering_photon(
+    (plot, [bottom, top]): (Periodic, [f32; 2]),
+    dir: Vec3,
+    power: Rgb,
+    sampler: &mut Sampler,
+) -> EmittedPhoton {
+    let y = if dir.y < 0.0 { top } else { bottom };
+    EmittedPhoton {
+        ray: Ray::new(plot.point(sampler.next_2d(), y), dir),
+        power,
+        surface: None,
+        carried: 1.0,
+        normal: None,
     }
 }
 

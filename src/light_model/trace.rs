@@ -64,6 +64,12 @@ pub enum LightTraceError {
     /// Zero photons asked for.
     #[error("at least one photon is needed")]
     NoPhotons,
+    /// Sensors in a periodic scene: a sensor would have to see every copy of the plot.
+    #[error(
+        "sensors are not measured in a periodic scene yet: read the light on a small black \
+         quad (a meter object) instead"
+    )]
+    PeriodicSensors,
     /// A batch that is not one of its count.
     #[error(transparent)]
     NoSuchBatch(#[from] NoSuchBatch),
@@ -526,6 +532,9 @@ impl<'a> Tracer<'a> {
     ) -> Result<Self, LightTraceError> {
         if settings.photons == 0 {
             return Err(LightTraceError::NoPhotons);
+        }
+        if world.field().is_some() && !world.scene.sensors.is_empty() {
+            return Err(LightTraceError::PeriodicSensors);
         }
         let sources = PhotonSources::new(world);
         if sources.sources.is_empty() {

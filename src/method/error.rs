@@ -53,6 +53,13 @@ pub enum MethodError {
          (pathtrace) do"
     )]
     NotInBatches(&'static str),
+    /// Only the light model follows light across the sides of a periodic scene's plot (the
+    /// method named).
+    #[error(
+        "{0} does not model a periodic scene (a plot repeated in x and z): only the light \
+         model (light-trace) does"
+    )]
+    NotPeriodic(&'static str),
     /// A batch that is not one of its count.
     #[error(transparent)]
     NoSuchBatch(#[from] NoSuchBatch),

@@ -87,6 +87,9 @@ pub fn run_render_batch(
     let Method::PathTrace(s) = method else {
         return Err(MethodError::NotInBatches(method.kind().name()));
     };
+    if world.field().is_some() {
+        return Err(MethodError::NotPeriodic(method.kind().name()));
+    }
     let share = batch.share(u64::from(s.samples_per_pixel))?;
     // Within `0..samples_per_pixel`, so within `u32`.
     let samples = share.start as u32..share.end as u32;

@@ -35,6 +35,9 @@ pub fn run(
     cancel: &Cancel,
 ) -> Result<Outcome, MethodError> {
     method.check()?;
+    if world.field().is_some() && !matches!(method, Method::LightTrace(_)) {
+        return Err(MethodError::NotPeriodic(method.kind().name()));
+    }
     let start = Instant::now();
     let mut outcome = match method {
         Method::RayTrace(s) => ray_trace(world, s, progress, cancel)?,

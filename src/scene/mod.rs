@@ -12,6 +12,7 @@ mod mesh;
 mod moving;
 mod object;
 mod open;
+mod periodic;
 pub(crate) mod polygon;
 mod sensor;
 mod tessellate;
@@ -27,6 +28,7 @@ pub use mesh::PolygonMesh;
 pub use moving::{MoveError, Moved};
 pub use object::{AnalyticKind, Object, Shape};
 pub use open::{OpenError, is_mesh_file, open};
+pub use periodic::Periodic;
 pub use sensor::{MAX_SENSORS, Sensor};
 pub use tessellate::{polygon_area, polygon_normal};
 pub use texture::{
@@ -54,6 +56,9 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Measuring points (they neither block nor reflect light).
     pub sensors: Vec<Sensor>,
+    /// The plot that repeats in x and z, for a scene standing for a field; `None` for a
+    /// scene that is all there is.
+    pub periodic: Option<Periodic>,
 }
 
 impl Scene {
@@ -98,6 +103,7 @@ impl Scene {
             objects: Vec::new(),
             lights: Vec::new(),
             sensors: Vec::new(),
+            periodic: None,
         }
     }
 

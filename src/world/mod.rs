@@ -16,6 +16,7 @@ mod light_at_point;
 mod lights;
 pub mod lobes;
 pub mod optics;
+mod periodic;
 mod ray_bench;
 mod scene_geometry;
 mod sky;
@@ -25,6 +26,7 @@ pub use light_at_point::{
     non_surface_irradiance, point_irradiance, sees_light, sees_point, sky_irradiance, sky_share,
 };
 pub use lights::{AreaLight, AreaSample, LightSet};
+pub use periodic::{Field, MAX_CROSSINGS};
 pub use ray_bench::{
     PRIMARY_WIDTH, QueryTiming, RANDOM_RAYS, RayBench, RaySet, RaySetError, bench_rays, ray_set,
 };
@@ -55,6 +57,8 @@ pub struct World {
     kind: AccelKind,
     /// Wall-clock seconds the accelerator took to build.
     build_seconds: f64,
+    /// The plot of a periodic scene with its neighbours' geometry reaching into it.
+    field: Option<Field>,
 }
 
 impl World {
@@ -77,6 +81,10 @@ impl World {
         let accel = kind.build(&geometry);
         let build_seconds = start.elapsed().as_secs_f64();
         let lights = LightSet::new(&scene, &geometry);
+        let field = match scene.periodic {
+            Some(plot) => Some(Field::new(plot, &scene, &geometry)?),
+            None => None,
+        };
         Ok(World {
             scene,
             geometry,
@@ -84,6 +92,7 @@ impl World {
             accel,
             kind,
             build_seconds,
+            field,
         })
     }
 
@@ -174,21 +183,34 @@ impl World {
         World::new(scene, self.kind).map(Some)
     }
 
-    /// The closest surface hit along `ray` (unbounded), described.
+    /// The closest surface hit along `ray` (unbounded), described. In a periodic scene, the
+    /// closest hit in the endless field: the ray starts from its origin moved into the plot
+    /// and wraps from side to side ([`Field`]); the hit point lies in the plot.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
+        if let Some(field) = &self.field {
+            return self.intersect_field(field, ray);
+        }
         self.closest_hit(ray, f32::INFINITY)
             .map(|h| self.geometry.describe(&h, ray))
     }
 
+    /// The plot of a periodic scene as ray queries see it; `None` for a scene that is all
+    /// there is.
+    pub fn field(&self) -> Option<&Field> {
+        self.field.as_ref()
+    }
+
     /// The closest primitive hit along `ray` with `t ∈ (0, t_max]`, not yet described (the
-    /// first stage of intersection: distance and primitive only).
+    /// first stage of intersection: distance and primitive only), among the scene's own
+    /// primitives (in a periodic scene, the plot's geometry as it is, without its copies).
     #[inline]
     pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<PrimHit> {
         self.accel.closest_hit(&self.geometry, ray, t_max)
     }
 
-    /// Whether anything blocks `ray` for `t ∈ (0, t_max]`.
+    /// Whether anything blocks `ray` for `t ∈ (0, t_max]` (in a periodic scene, of the plot's
+    /// own geometry only, as [`Self::closest_hit`]).
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         self.accel.any_hit(&self.geometry, ray, t_max)
@@ -206,8 +228,29 @@ impl World {
     /// definition every solver reports: point 4π·I, spot I times its solid angle
     /// ([`LightKind::power`]), directional E·πR², sky of radiance L 4π²R²·L (the power
     /// entering the entry sphere of radius R from outside), CIE sky πR²·∫L dω over the upper
-    /// hemisphere (the same, from above the horizon only).
+    /// hemisphere (the same, from above the horizon only). In a periodic scene, what these
+    /// send into the plot of area A through its top and bottom: directional E·A·cos θ (θ
+    /// from the downward vertical; nothing from a light going up), sky 2π·A·L (from above
+    /// and from below), CIE sky A times its diffuse horizontal irradiance.
     pub fn light_power(&self, light: &LightKind) -> Rgb {
+        if let Some(field) = &self.field {
+            let area = field.plot.area();
+            match *light {
+                LightKind::Directional {
+                    direction,
+                    irradiance,
+                } => {
+                    let down = (-direction.normalize_or_zero().y).max(0.0);
+                    return irradiance * (area * down);
+                }
+                LightKind::Sky { radiance } => return radiance * (2.0 * PI * area),
+                LightKind::CieSky {
+                    diffuse_horizontal, ..
+                } => return diffuse_horizontal * area,
+                LightKind::Point { .. } | LightKind::Lambertian { .. } | LightKind::Spot { .. } => {
+                }
+            }
+        }
         let (_, radius) = self.entry_sphere();
         match *light {
             LightKind::Sky { radiance } => radiance * (4.0 * PI * PI * radius * radius),

@@ -180,6 +180,14 @@ impl CompiledCieSky {
             self.relative_radiance(sample.direction) / (sample.pdf * self.radiance_integral);
         weight.is_finite().then_some((sample.direction, weight))
     }
+
+    /// A direction as [`Self::sample_arrival`] draws it, with the weight `L(ω)·cos θ / (p(ω)
+    /// · E_dh)` (mean 1 over the draws) that makes the draw exact for light entering through
+    /// a horizontal surface: the top of a periodic plot.
+    pub fn sample_arrival_horizontal(&self, u: [f64; 2]) -> Option<(DVec3, f64)> {
+        let (direction, weight) = self.sample_arrival(u)?;
+        Some((direction, weight * self.radiance_integral * direction.y))
+    }
 }
 
 #[cfg(test)]

@@ -1,12 +1,13 @@
 //! Scenes built into the engine, loaded by name: `cornell`, `cornell-textured`, `spheres`
-//! (or `spheres:N`), `neon`, `canopy` (or `canopy:N`), `blocks` (or `blocks:N`) and
-//! `building` (or `building:N`). Lengths are in metres.
+//! (or `spheres:N`), `neon`, `canopy` (or `canopy:N`), `field` (or `field:N`), `blocks` (or
+//! `blocks:N`) and `building` (or `building:N`). Lengths are in metres.
 
 pub mod blocks;
 pub mod building;
 pub mod canopy;
 pub mod cornell;
 pub mod cornell_textured;
+pub mod field;
 pub mod neon;
 pub mod spectrum;
 pub mod spheres;
@@ -14,7 +15,7 @@ pub mod spheres;
 use super::Scene;
 
 /// The built-in scenes: name and one-line description.
-const NAMES: [(&str, &str); 7] = [
+const NAMES: [(&str, &str); 8] = [
     (
         "cornell",
         "the measured Cornell box (Cornell University data, metres, spectral colours)",
@@ -36,6 +37,10 @@ const NAMES: [(&str, &str); 7] = [
         "canopy:N (default 10000) small leaves under sky and sun, for the light model",
     ),
     (
+        "field",
+        "field:N (default 160000) 5 cm leaves at LAI 1 on a periodic plot: an endless field",
+    ),
+    (
         "blocks",
         "blocks:N (default 1000) small cubes in a closed room under a lamp, for radiosity",
     ),
@@ -51,7 +56,7 @@ pub fn names() -> &'static [(&'static str, &'static str)] {
 }
 
 /// Builds the built-in scene `spec`: a name from [`names`], optionally followed by `:` and a
-/// parameter (`spheres:N`, `canopy:N`, `blocks:N` and `building:N` take one). `None` when `spec` names no built-in scene;
+/// parameter (`spheres:N`, `canopy:N`, `field:N`, `blocks:N` and `building:N` take one). `None` when `spec` names no built-in scene;
 /// `Some(Err)` with a message for a bad parameter.
 pub fn load(spec: &str) -> Option<Result<Scene, String>> {
     let (name, parameter) = match spec.split_once(':') {
@@ -70,6 +75,7 @@ pub fn load(spec: &str) -> Option<Result<Scene, String>> {
         "neon" => no_parameter(|| Ok(neon::scene())),
         "spheres" => spheres::parse_count(parameter).map(spheres::scene),
         "canopy" => canopy::parse_count(parameter).map(canopy::scene),
+        "field" => field::parse_count(parameter).map(field::scene),
         "blocks" => blocks::parse_count(parameter).map(blocks::scene),
         "building" => building::parse_count(parameter).map(building::scene),
         _ => return None,
@@ -111,6 +117,7 @@ mod tests {
                 "spheres",
                 "neon",
                 "canopy",
+                "field",
                 "blocks",
                 "building"
             ]

@@ -10,6 +10,7 @@ use super::lights::build_light;
 use super::locate::toml_error;
 use super::materials::{TextureContext, build_material};
 use super::meshes::{FaceMaterials, MeshCache};
+use super::periodic::build_periodic;
 use super::sensors::build_sensors;
 use super::shapes::build_shape;
 use super::textures::TextureCache;
@@ -73,6 +74,10 @@ pub(super) fn build_scene(
     for (i, entry) in file.sensors.iter().enumerate() {
         let t = Table::new(src, format!("sensors[{i}]"), entry.span());
         build_sensors(&t, i, entry.get_ref(), &mut scene.sensors)?;
+    }
+    if let Some(entry) = &file.periodic {
+        let t = Table::new(src, "periodic", entry.span());
+        scene.periodic = Some(build_periodic(&t, entry.get_ref())?);
     }
     Ok(scene)
 }

@@ -24,6 +24,15 @@ pub(super) struct SceneFile {
     pub lights: Vec<Spanned<LightEntry>>,
     #[serde(default)]
     pub sensors: Vec<Spanned<SensorEntry>>,
+    pub periodic: Option<Spanned<PeriodicEntry>>,
+}
+
+/// `[periodic]`: the plot that repeats in x and z (`x = [x0, x1]`, `z = [z0, z1]`).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct PeriodicEntry {
+    pub x: Option<Spanned<[f32; 2]>>,
+    pub z: Option<Spanned<[f32; 2]>>,
 }
 
 /// `[[sensors]]`: one measuring point, or a grid of them when `edge_u`, `edge_v` and

@@ -12,6 +12,7 @@ mod locate;
 mod materials;
 mod meshes;
 mod mgf_scene;
+mod periodic;
 mod photometry;
 mod sensors;
 mod shapes;
