@@ -6,12 +6,14 @@
 //! recording ([`super::recorded`]).
 
 use super::closed_forms::{
-    enclosure_mean, isotropic_point, lambertian_point, parallel_rectangle, perpendicular_rectangle,
+    beer_beam, beer_uniform_sky, enclosure_mean, isotropic_point, lambertian_point,
+    parallel_rectangle, perpendicular_rectangle,
 };
 use super::recorded;
 use crate::color::{LUMINOUS_EFFICACY, Rgb};
 use crate::scene::builtin::cornell;
-use crate::scene::{Camera, Light, LightKind, Material, Scene, Sensor, Shape};
+use crate::scene::builtin::field::{FieldSpec, field};
+use crate::scene::{Camera, CieSkyType, Light, LightKind, Material, Scene, Sensor, Shape};
 use glam::Vec3;
 use std::f64::consts::PI;
 
@@ -97,6 +99,7 @@ pub fn all(quick: bool) -> Vec<Case> {
     cases.push(furnace_box());
     cases.push(furnace_sphere());
     cases.push(cornell_faces());
+    cases.push(beer_canopy());
     cases
 }
 
@@ -697,6 +700,61 @@ fn cornell_faces() -> Case {
                       light model at 2e8 photons",
         scene,
         checks,
+        flat_mesh_levels: 3,
+    }
+}
+
+/// The built-in field at leaf area index 2 (300,000 leaves of 5 cm with spherical leaf
+/// angles on a periodic plot) with black leaves and ground, under a sun 30° from the zenith
+/// (10,000 lx on a surface facing it) and a sky of uniform luminance (5,000 lx on the open
+/// ground): the ground receives what Beer's law lets through, `E_sun·cos θ·exp(−L/(2 cos θ))
+/// + E_sky·2·E₃(L/2)`. Only the light model follows light across a periodic plot's sides.
+fn beer_canopy() -> Case {
+    let lai = 2.0;
+    let mut s = field(&FieldSpec {
+        leaves: 300_000,
+        lai: lai as f32,
+        ..FieldSpec::default()
+    });
+    for m in &mut s.materials {
+        *m = Material::diffuse(&m.name.clone(), Rgb::BLACK);
+    }
+    let (sun, sky) = (10_000.0, 5_000.0);
+    let zenith = 30f32.to_radians();
+    let toward_sun = Vec3::new(zenith.sin(), zenith.cos(), 0.0);
+    s.lights = vec![
+        Light {
+            name: Some("sun".into()),
+            kind: LightKind::Directional {
+                direction: -toward_sun,
+                irradiance: white(sun),
+            },
+        },
+        Light {
+            name: Some("sky".into()),
+            kind: LightKind::CieSky {
+                sky: CieSkyType::Uniform,
+                sun: toward_sun,
+                diffuse_horizontal: white(sky),
+            },
+        },
+    ];
+    let mu = f64::from(toward_sun.y);
+    let expected = sun * mu * beer_beam(lai, mu) + sky * beer_uniform_sky(lai);
+    let ground = s.objects.len() - 1;
+    Case {
+        name: "beer-canopy".to_string(),
+        description: "A periodic canopy of LAI 2 (spherical leaf angles, black leaves) under \
+                      a sun at 30 degrees and a uniform sky: the ground gets E_sun cos(t) \
+                      exp(-L/(2 cos t)) + E_sky 2 E3(L/2) (Beer's law)",
+        scene: s,
+        checks: vec![Check {
+            label: "E(ground)".into(),
+            quantity: Quantity::Surface(ground),
+            expected,
+            expected_direct: None,
+            expected_error: None,
+        }],
         flat_mesh_levels: 3,
     }
 }

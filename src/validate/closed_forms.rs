@@ -63,6 +63,31 @@ pub fn enclosure_mean(flux: f64, area: f64, rho: f64) -> (f64, f64) {
     (flux / area, flux / (area * (1.0 - rho)))
 }
 
+/// Beer's law for the direct beam: the fraction of a beam arriving at zenith angle θ
+/// (`mu = cos θ`) that passes a homogeneous canopy of leaf area index `lai` with spherical leaf
+/// angles (G = ½) unintercepted, `exp(−lai / (2μ))`.
+pub fn beer_beam(lai: f64, mu: f64) -> f64 {
+    (-0.5 * lai / mu).exp()
+}
+
+/// Beer's law for a sky of uniform radiance: the fraction of its horizontal irradiance that
+/// passes the canopy of [`beer_beam`], `2·∫₀¹ exp(−x/μ)·μ dμ = 2·E₃(x)` with `x = lai/2`, and
+/// `E₃(x) = ½·[e⁻ˣ·(1 − x) + x²·E₁(x)]`, `E₁(x) = −γ − ln x − Σₖ (−x)ᵏ/(k·k!)` (the exponential
+/// integrals; the series converges for the leaf area indices of canopies, to 10⁻¹⁵ in 40
+/// terms for x ≤ 5).
+pub fn beer_uniform_sky(lai: f64) -> f64 {
+    const EULER_GAMMA: f64 = 0.577_215_664_901_532_9;
+    let x = 0.5 * lai;
+    let (mut term, mut sum) = (1.0, 0.0);
+    for k in 1..=60 {
+        term *= -x / f64::from(k);
+        sum += term / f64::from(k);
+    }
+    let e1 = -EULER_GAMMA - x.ln() - sum;
+    let e3 = 0.5 * ((-x).exp() * (1.0 - x) + x * x * e1);
+    2.0 * e3
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -137,5 +162,22 @@ mod tests {
         assert!((parallel_rectangle((-1e9, 1e9), (-1e9, 1e9), 1.0) - 1.0).abs() < 1e-6);
         assert!((perpendicular_rectangle((-1e9, 1e9), (0.0, 1e9), 1.0) - 0.5).abs() < 1e-6);
         assert_eq!(enclosure_mean(6.0, 6.0, 0.5), (1.0, 2.0));
+    }
+
+    #[test]
+    fn beers_law_for_a_uniform_sky_is_twice_e3() {
+        // E₃(0.5) = 0.2216043 and E₃(1) = 0.1096920 (Abramowitz & Stegun, table 5.2).
+        assert!((beer_uniform_sky(1.0) - 2.0 * 0.221_604_3).abs() < 2e-7);
+        assert!((beer_uniform_sky(2.0) - 2.0 * 0.109_692_0).abs() < 2e-7);
+        // Against a midpoint sum of 2·∫ exp(−x/μ)·μ dμ.
+        let n = 200_000;
+        let sum: f64 = (0..n)
+            .map(|i| {
+                let mu = (i as f64 + 0.5) / n as f64;
+                (-1.5 / mu).exp() * mu
+            })
+            .sum();
+        assert!((beer_uniform_sky(3.0) - 2.0 * sum / n as f64).abs() < 1e-9);
+        assert!((beer_beam(2.0, 0.5) - (-2.0f64).exp()).abs() < 1e-15);
     }
 }

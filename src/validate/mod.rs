@@ -105,7 +105,11 @@ pub fn run_suite(
             if cancel.is_requested() {
                 return Ok(rows);
             }
-            let checks: Vec<&Check> = case.checks.iter().filter(|c| applies(c, method)).collect();
+            let checks: Vec<&Check> = case
+                .checks
+                .iter()
+                .filter(|c| applies(&case, c, method))
+                .collect();
             if checks.is_empty() {
                 continue;
             }
@@ -141,8 +145,12 @@ pub fn run_suite(
 /// (the flat ones hold each surface to its own error; both hierarchical ones hold every
 /// measuring patch to 1 % of its own light, `importance.rs`, `shooting.rs`). The light model
 /// reads a point through a sensor: a 2 × 2 cm patch catches a few of millions of photons;
-/// and the recording is its own.
-fn applies(check: &Check, method: MethodKind) -> bool {
+/// and the recording is its own. A periodic scene's checks apply to the light model alone,
+/// the one method that follows light across the plot's sides (they read large surfaces).
+fn applies(case: &Case, check: &Check, method: MethodKind) -> bool {
+    if case.scene.periodic.is_some() {
+        return method == MethodKind::LightTrace;
+    }
     match check.quantity {
         Quantity::Sensor(_) => method.counts_reflections() || check.expected_direct.is_some(),
         Quantity::TotalFlux | Quantity::MeanIlluminance => method.reports_surfaces(),
@@ -207,10 +215,11 @@ fn measured(check: &Check, method: MethodKind, outcome: &Outcome) -> (f64, f64, 
                 return (check.expected, f64::NAN, None);
             };
             let area = power.table().surfaces()[k].area;
+            let se = power.standard_error(k).map(|e| luminous(e) / area);
             (
                 check.expected,
                 luminous(power.balance(k).incident) / area,
-                None,
+                se,
             )
         }
         Quantity::FaceFlux { object, face } => {

@@ -85,6 +85,9 @@ pub struct CompiledCieSky {
     radiance_integral: f64,
     /// The directions light arrives from, drawn in proportion to the unit sky's radiance.
     arrivals: SkyTable,
+    /// The directions light arrives from through a horizontal surface, drawn in proportion
+    /// to the unit sky's radiance times the cosine of the zenith angle.
+    horizontal_arrivals: SkyTable,
 }
 
 impl CompiledCieSky {
@@ -120,6 +123,7 @@ impl CompiledCieSky {
         // The table weighs each direction by `L·cos θ`; dividing by `cos θ` (never 0 at the
         // points it averages) makes the draw proportional to `L`.
         let arrivals = SkyTable::new(TABLE_ROWS, TABLE_COLUMNS, |d| radiance(d) / d.y);
+        let horizontal_arrivals = SkyTable::new(TABLE_ROWS, TABLE_COLUMNS, radiance);
         CompiledCieSky {
             sky_type,
             sun,
@@ -128,6 +132,7 @@ impl CompiledCieSky {
             quadrature,
             radiance_integral,
             arrivals,
+            horizontal_arrivals,
         }
     }
 
@@ -181,12 +186,15 @@ impl CompiledCieSky {
         weight.is_finite().then_some((sample.direction, weight))
     }
 
-    /// A direction as [`Self::sample_arrival`] draws it, with the weight `L(ω)·cos θ / (p(ω)
-    /// · E_dh)` (mean 1 over the draws) that makes the draw exact for light entering through
-    /// a horizontal surface: the top of a periodic plot.
+    /// A direction light arrives from through a horizontal surface (the top of a periodic
+    /// plot), drawn for the uniform numbers `u` with density nearly in proportion to
+    /// `L·cos θ`, and the weight `L(ω)·cos θ / (p(ω) · E_dh)` (about 1, mean 1 over the
+    /// draws) that makes the draw exact; `None` for a black sky.
     pub fn sample_arrival_horizontal(&self, u: [f64; 2]) -> Option<(DVec3, f64)> {
-        let (direction, weight) = self.sample_arrival(u)?;
-        Some((direction, weight * self.radiance_integral * direction.y))
+        let sample = self.horizontal_arrivals.sample(u)?;
+        let d = sample.direction;
+        let weight = self.relative_radiance(d) * d.y / sample.pdf;
+        weight.is_finite().then_some((d, weight))
     }
 }
 
@@ -205,6 +213,26 @@ mod tests {
             assert_eq!(sky.irradiance_on(-DVec3::Y), Rgb64::BLACK);
             assert_eq!(sky.radiance(-Vec3::Y), Rgb::BLACK);
         }
+    }
+
+    #[test]
+    fn arrivals_through_a_horizontal_surface_weigh_about_one_and_average_one() {
+        let sun = direction_from_angles(30.0, 200.0).as_vec3();
+        let sky = CompiledCieSky::new(CieSkyType::ClearLowTurbidity, sun, Rgb::WHITE);
+        let n = 256;
+        let (mut sum, mut largest) = (0.0, 0.0f64);
+        for i in 0..n {
+            for j in 0..n {
+                let u = [(i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64];
+                let (d, w) = sky.sample_arrival_horizontal(u).expect("a bright sky");
+                assert!(d.y > 0.0);
+                sum += w;
+                largest = largest.max((w - 1.0).abs());
+            }
+        }
+        let mean = sum / (n * n) as f64;
+        assert!((mean - 1.0).abs() < 2e-3, "{mean}");
+        assert!(largest < 0.5, "{largest}");
     }
 
     #[test]
