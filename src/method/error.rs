@@ -53,13 +53,20 @@ pub enum MethodError {
          (pathtrace) do"
     )]
     NotInBatches(&'static str),
-    /// Only the light model follows light across the sides of a periodic scene's plot (the
-    /// method named).
+    /// The radiosity methods do not follow light across the sides of a periodic scene's plot
+    /// (the method named).
     #[error(
-        "{0} does not model a periodic scene (a plot repeated in x and z): only the light \
-         model (light-trace) does"
+        "{0} does not model a periodic scene (a plot repeated in x and z): the light model \
+         (light-trace) and the ray tracers do"
     )]
     NotPeriodic(&'static str),
+    /// The ray tracers light a periodic scene by sun and sky only (the method named): they
+    /// sample the plot's own lamps and emitting surfaces, not their copies in every plot.
+    #[error(
+        "{0} lights a periodic scene (a plot repeated in x and z) by directional lights and \
+         skies only; with lamps or emitting surfaces use the light model (light-trace)"
+    )]
+    PeriodicLamps(&'static str),
     /// A batch that is not one of its count.
     #[error(transparent)]
     NoSuchBatch(#[from] NoSuchBatch),

@@ -3,7 +3,7 @@
 //! bit: every pixel's samples are summed in fixed point (`trace::PixelSums`), so the sums
 //! of the batches added are the single run's sums.
 
-use super::run::{empty, path_tracer};
+use super::run::{check_periodic, empty, path_tracer};
 use super::{Method, MethodError, Outcome, PathTraceSettings};
 use crate::choice::Choice;
 use crate::progress::{Cancel, ProgressListener};
@@ -87,9 +87,7 @@ pub fn run_render_batch(
     let Method::PathTrace(s) = method else {
         return Err(MethodError::NotInBatches(method.kind().name()));
     };
-    if world.field().is_some() {
-        return Err(MethodError::NotPeriodic(method.kind().name()));
-    }
+    check_periodic(world, method)?;
     let share = batch.share(u64::from(s.samples_per_pixel))?;
     // Within `0..samples_per_pixel`, so within `u32`.
     let samples = share.start as u32..share.end as u32;

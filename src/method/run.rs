@@ -16,6 +16,7 @@ use crate::radiosity::solve::{
     solve_progressive,
 };
 use crate::sampling::SequenceKind;
+use crate::scene::LightKind;
 use crate::trace::{
     Integrator, PathTracer, ProgressiveSettings, RenderOutput, RenderSettings, SensorSettings,
     StandardRayTracer, render, render_progressive, sensor_readings,
@@ -35,9 +36,7 @@ pub fn run(
     cancel: &Cancel,
 ) -> Result<Outcome, MethodError> {
     method.check()?;
-    if world.field().is_some() && !matches!(method, Method::LightTrace(_)) {
-        return Err(MethodError::NotPeriodic(method.kind().name()));
-    }
+    check_periodic(world, method)?;
     let start = Instant::now();
     let mut outcome = match method {
         Method::RayTrace(s) => ray_trace(world, s, progress, cancel)?,
@@ -50,6 +49,36 @@ pub fn run(
     };
     outcome.seconds = start.elapsed().as_secs_f64();
     Ok(outcome)
+}
+
+/// Whether `method` runs on `world` if its scene is periodic: the light model with any
+/// lights (a plot's lamps light every plot, as their copies do); the ray tracers (images and
+/// sensors) under sun and sky only, since they sample the plot's own lamps and would miss
+/// their copies; the radiosity methods not at all.
+pub(super) fn check_periodic(world: &World, method: &Method) -> Result<(), MethodError> {
+    if world.field().is_none() {
+        return Ok(());
+    }
+    let name = method.kind().name();
+    match method {
+        Method::LightTrace(_) => Ok(()),
+        Method::RayTrace(_) | Method::PathTrace(_) | Method::SensorTrace(_) => {
+            let lamps = !world.lights.area.is_empty()
+                || world
+                    .lights
+                    .delta
+                    .iter()
+                    .any(|l| !matches!(l, LightKind::Directional { .. }));
+            if lamps {
+                Err(MethodError::PeriodicLamps(name))
+            } else {
+                Ok(())
+            }
+        }
+        Method::RadiosityImage(_) | Method::FinalGather(_) | Method::Radiosity(_) => {
+            Err(MethodError::NotPeriodic(name))
+        }
+    }
 }
 
 /// An outcome with nothing in it yet.

@@ -209,10 +209,19 @@ impl World {
         self.accel.closest_hit(&self.geometry, ray, t_max)
     }
 
-    /// Whether anything blocks `ray` for `t ∈ (0, t_max]` (in a periodic scene, of the plot's
-    /// own geometry only, as [`Self::closest_hit`]).
+    /// Whether anything blocks `ray` for `t ∈ (0, t_max]`; in a periodic scene, anything of
+    /// the endless field, the ray wrapping from side to side as in [`Self::intersect`].
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        if let Some(field) = &self.field {
+            return self.occluded_field(field, ray, t_max);
+        }
+        self.accel_any_hit(ray, t_max)
+    }
+
+    /// Whether any of the scene's own primitives blocks `ray` for `t ∈ (0, t_max]`.
+    #[inline]
+    fn accel_any_hit(&self, ray: &Ray, t_max: f32) -> bool {
         self.accel.any_hit(&self.geometry, ray, t_max)
     }
 

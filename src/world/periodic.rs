@@ -8,7 +8,8 @@
 //! once when the world is built, [`Field::new`]) is the hit; with none, the ray continues
 //! from the opposite side. It escapes when it is above all geometry going up or below it
 //! going down, or after [`MAX_CROSSINGS`] crossings (a ray all but horizontal in an empty
-//! layer).
+//! layer). A ray starting above all geometry going down (a camera's, a sun's) skips
+//! straight to the height of the highest geometry.
 
 use super::World;
 use super::scene_geometry::{GeometryError, SceneGeometry, SurfaceHit};
@@ -112,6 +113,68 @@ impl Field {
         self.copies.len()
     }
 
+    /// Where `ray` starts in the plot — its origin moved into it by whole periods, then,
+    /// if above all geometry going down (or below it going up), moved along the ray to the
+    /// height of the highest (lowest) geometry, since it meets nothing before — and how far
+    /// it was moved along the ray; `None` when it goes away from all geometry.
+    fn start(&self, ray: &Ray) -> Option<(Vec3, f32)> {
+        let origin = self.plot.wrap(ray.origin);
+        let level = if origin.y > self.top {
+            self.top
+        } else if origin.y < self.bottom {
+            self.bottom
+        } else {
+            return Some((origin, 0.0));
+        };
+        let t = (level - origin.y) / ray.dir.y;
+        if !(t.is_finite() && t > 0.0) {
+            return None;
+        }
+        let mut entry = self.plot.wrap(origin + ray.dir * t);
+        entry.y = level;
+        Some((entry, t))
+    }
+
+    /// The shifts of the copies of the geometry that the segment of length `length` from
+    /// `origin` (in the plot) along `dir` may meet: those reaching into the part of the plot
+    /// it crosses.
+    fn reaching(&self, origin: Vec3, dir: Vec3, length: f32) -> impl Iterator<Item = Vec3> + '_ {
+        let end = if length.is_finite() {
+            origin + dir * length
+        } else {
+            origin
+        };
+        let (x0, x1) = (origin.x.min(end.x), origin.x.max(end.x));
+        let (z0, z1) = (origin.z.min(end.z), origin.z.max(end.z));
+        self.copies
+            .iter()
+            .filter(move |(_, [rx0, rx1, rz0, rz1])| {
+                !(x1 < *rx0 || x0 > *rx1 || z1 < *rz0 || z0 > *rz1)
+            })
+            .map(|&(shift, _)| shift)
+    }
+
+    /// Where a ray from `origin` along `dir` that leaves the plot through `sides` (x, z) after
+    /// `t_exit` enters it again: on the opposite side, exactly; `None` when it leaves for good
+    /// (a vertical ray, or one above all geometry going up or below it going down).
+    fn cross(&self, origin: Vec3, dir: Vec3, t_exit: f32, sides: [bool; 2]) -> Option<Vec3> {
+        if !t_exit.is_finite() {
+            return None;
+        }
+        let mut p = origin + dir * t_exit;
+        if (p.y > self.top && dir.y >= 0.0) || (p.y < self.bottom && dir.y <= 0.0) {
+            return None;
+        }
+        let enter = |v: f32, d: f32, leaves: bool, [lo, hi]: [f32; 2]| match leaves {
+            true if d > 0.0 => lo,
+            true => hi,
+            false => v.clamp(lo, hi),
+        };
+        p.x = enter(p.x, dir.x, sides[0], self.plot.x);
+        p.z = enter(p.z, dir.z, sides[1], self.plot.z);
+        Some(p)
+    }
+
     /// The distance along `ray` (origin in the plot) to where it leaves through a side, and
     /// which sides (x, z) it leaves through there; infinite for a vertical ray.
     fn exit(&self, ray: &Ray) -> (f32, [bool; 2]) {
@@ -132,29 +195,50 @@ impl Field {
 }
 
 impl World {
+    /// Whether anything blocks `ray` for `t ∈ (0, t_max]` in the endless field of a periodic
+    /// scene, the ray wrapping from side to side as in [`Self::intersect_field`].
+    pub(super) fn occluded_field(&self, field: &Field, ray: &Ray, t_max: f32) -> bool {
+        let dir = ray.dir;
+        let Some((mut origin, skipped)) = field.start(ray) else {
+            return false;
+        };
+        let mut left = t_max - skipped;
+        for _ in 0..MAX_CROSSINGS {
+            if left <= 0.0 {
+                return false;
+            }
+            let segment = Ray::new(origin, dir);
+            let (t_exit, sides) = field.exit(&segment);
+            let limit = t_exit.min(left);
+            if field
+                .reaching(origin, dir, limit)
+                .any(|shift| self.accel_any_hit(&Ray::new(origin - shift, dir), limit))
+            {
+                return true;
+            }
+            if t_exit >= left {
+                return false;
+            }
+            match field.cross(origin, dir, t_exit, sides) {
+                Some(next) => origin = next,
+                None => return false,
+            }
+            left -= t_exit;
+        }
+        false
+    }
+
     /// The closest hit along `ray` in the endless field of a periodic scene; the hit point is
     /// in the plot and `t` the distance travelled to it over every crossing.
     pub(super) fn intersect_field(&self, field: &Field, ray: &Ray) -> Option<SurfaceHit> {
-        let mut origin = field.plot.wrap(ray.origin);
         let dir = ray.dir;
-        let mut travelled = 0.0;
+        let (mut origin, mut travelled) = field.start(ray)?;
         for _ in 0..MAX_CROSSINGS {
             let segment = Ray::new(origin, dir);
             let (t_exit, sides) = field.exit(&segment);
             let mut t_max = t_exit;
             let mut best = None;
-            // The segment's extent across the plot: copies reaching elsewhere are passed by.
-            let end = if t_exit.is_finite() {
-                origin + dir * t_exit
-            } else {
-                origin
-            };
-            let (x0, x1) = (origin.x.min(end.x), origin.x.max(end.x));
-            let (z0, z1) = (origin.z.min(end.z), origin.z.max(end.z));
-            for &(shift, [rx0, rx1, rz0, rz1]) in &field.copies {
-                if x1 < rx0 || x0 > rx1 || z1 < rz0 || z0 > rz1 {
-                    continue;
-                }
+            for shift in field.reaching(origin, dir, t_exit) {
                 let shifted = Ray::new(origin - shift, dir);
                 if let Some(hit) = self.closest_hit(&shifted, t_max) {
                     t_max = hit.t;
@@ -167,22 +251,10 @@ impl World {
                 surface.t += travelled;
                 return Some(surface);
             }
-            if !t_exit.is_finite() {
-                return None;
+            match field.cross(origin, dir, t_exit, sides) {
+                Some(next) => origin = next,
+                None => return None,
             }
-            let mut p = origin + dir * t_exit;
-            if (p.y > field.top && dir.y >= 0.0) || (p.y < field.bottom && dir.y <= 0.0) {
-                return None;
-            }
-            // Enter the neighbouring plot through the opposite side, exactly on it.
-            let enter = |v: f32, d: f32, leaves: bool, [lo, hi]: [f32; 2]| match leaves {
-                true if d > 0.0 => lo,
-                true => hi,
-                false => v.clamp(lo, hi),
-            };
-            p.x = enter(p.x, dir.x, sides[0], field.plot.x);
-            p.z = enter(p.z, dir.z, sides[1], field.plot.z);
-            origin = p;
             travelled += t_exit;
         }
         None
