@@ -22,6 +22,19 @@ pub struct Camera {
 }
 
 impl Camera {
+    /// A 640 × 480 camera at `position` looking at `look_at` (scene units), y up, with a
+    /// vertical field of view of `fov_degrees`: how the built-in scenes frame themselves.
+    pub fn landscape(position: Vec3, look_at: Vec3, fov_degrees: f32) -> Camera {
+        Camera {
+            position,
+            look_at,
+            up: Vec3::Y,
+            fov_degrees,
+            width: 640,
+            height: 480,
+        }
+    }
+
     /// The same camera rendering at another resolution (field of view kept vertical).
     pub fn with_resolution(&self, width: u32, height: u32) -> Camera {
         Camera {

@@ -99,14 +99,7 @@ pub fn scene(blocks: usize) -> Scene {
             colours[k % colours.len()],
         );
     }
-    scene.camera = Camera {
-        position: Vec3::new(0.15, 1.6, 0.15),
-        look_at: Vec3::new(2.4, 1.2, 2.6),
-        up: Vec3::Y,
-        fov_degrees: 70.0,
-        width: 640,
-        height: 480,
-    };
+    scene.camera = Camera::landscape(Vec3::new(0.15, 1.6, 0.15), Vec3::new(2.4, 1.2, 2.6), 70.0);
     scene
 }
 

@@ -202,14 +202,7 @@ pub fn scene(offices: usize) -> Scene {
         let material = scene.add_material(Material::diffuse(name, reflectance));
         scene.add_object(name, part.shape(), material);
     }
-    scene.camera = Camera {
-        position: Vec3::new(0.2, 1.6, 0.2),
-        look_at: Vec3::new(2.4, 1.0, 3.0),
-        up: Vec3::Y,
-        fov_degrees: 70.0,
-        width: 640,
-        height: 480,
-    };
+    scene.camera = Camera::landscape(Vec3::new(0.2, 1.6, 0.2), Vec3::new(2.4, 1.0, 3.0), 70.0);
     scene
 }
 

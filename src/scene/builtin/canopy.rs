@@ -60,14 +60,11 @@ pub fn scene(leaves: usize) -> Scene {
     });
     let extent = side as f32 * 0.1;
     let centre = Vec3::new(extent / 2.0, 0.2, extent / 2.0);
-    scene.camera = Camera {
-        position: centre + Vec3::new(-0.6 * extent, 0.5 * extent, -0.6 * extent),
-        look_at: centre,
-        up: Vec3::Y,
-        fov_degrees: 45.0,
-        width: 640,
-        height: 480,
-    };
+    scene.camera = Camera::landscape(
+        centre + Vec3::new(-0.6 * extent, 0.5 * extent, -0.6 * extent),
+        centre,
+        45.0,
+    );
     scene
 }
 

@@ -146,14 +146,11 @@ pub fn field(spec: &FieldSpec) -> Scene {
         },
     });
     let centre = Vec3::new(0.5 * side, 0.5 * spec.height, 0.5 * side);
-    scene.camera = Camera {
-        position: centre + Vec3::new(-0.45 * side, 2.0 * spec.height, -0.45 * side),
-        look_at: centre,
-        up: Vec3::Y,
-        fov_degrees: 50.0,
-        width: 640,
-        height: 480,
-    };
+    scene.camera = Camera::landscape(
+        centre + Vec3::new(-0.45 * side, 2.0 * spec.height, -0.45 * side),
+        centre,
+        50.0,
+    );
     scene
 }
 

@@ -102,14 +102,7 @@ fn room_faces() -> [(&'static str, Shape); 6] {
 /// The neon room (see the module documentation).
 pub fn scene() -> Scene {
     let mut scene = Scene::empty("neon");
-    scene.camera = Camera {
-        position: Vec3::new(0.0, 1.2, 1.8),
-        look_at: Vec3::new(0.0, 1.0, -2.0),
-        up: Vec3::Y,
-        fov_degrees: 55.0,
-        width: 640,
-        height: 480,
-    };
+    scene.camera = Camera::landscape(Vec3::new(0.0, 1.2, 1.8), Vec3::new(0.0, 1.0, -2.0), 55.0);
     let wall = scene.add_material(Material::diffuse("wall", Rgb::splat(0.5)));
     let floor = scene.add_material(Material::diffuse("floor", Rgb::splat(0.45)));
     let box_material = scene.add_material(Material::diffuse("box", Rgb::splat(0.6)));
