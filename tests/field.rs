@@ -198,6 +198,32 @@ fn a_leaf_over_the_plots_corner_shades_as_much_as_one_inside_it() {
     let totals = measurement.power.totals();
     assert!((totals.emitted_power.g - 40.0).abs() < 1e-9, "{totals:?}");
     assert!((totals.absorbed_power.g - 40.0).abs() < 1e-9, "{totals:?}");
+    // A uniform sky of radiance 1/π instead sends 4 W into the plot from above — 1 W onto the
+    // leaf (the highest geometry), 3 W past it onto the ground — and 4 W from below onto the
+    // ground's underside (the lowest geometry): leaf 1 W, ground 7 W.
+    let mut scene = corner_leaf();
+    scene.lights = vec![Light {
+        name: None,
+        kind: LightKind::Sky {
+            radiance: Rgb::splat(std::f32::consts::FRAC_1_PI),
+        },
+    }];
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let outcome = run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+    let report = Report::new("corner", outcome.measurement.as_ref().unwrap());
+    let get = |name: &str| report.objects.iter().find(|o| o.name == name).unwrap();
+    let sigma = 8.0 * (0.125f64 * 0.875 / 400_000.0).sqrt();
+    let (leaf, ground) = (get("leaf"), get("ground"));
+    assert!(
+        (leaf.incident_power.g - 1.0).abs() < 3.0 * sigma,
+        "{:?}",
+        leaf.incident_power
+    );
+    assert!(
+        (ground.incident_power.g - 7.0).abs() < 3.0 * sigma,
+        "{:?}",
+        ground.incident_power
+    );
 }
 
 #[test]

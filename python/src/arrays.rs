@@ -1,10 +1,10 @@
 //! Scenes built from arrays (a plant model's organs handed over without files): triangles
 //! grouped into named objects, a diffuse reflectance and translucency per object, and a sun
-//! and a uniform or a CIE standard sky.
+//! and a uniform or a CIE standard sky; optionally a periodic plot (a field).
 
 use glam::Vec3;
 use strahl::scene::{
-    CieSkyType, ENERGY_TOLERANCE, Light, LightKind, Material, PolygonMesh, Scene, Shape,
+    CieSkyType, ENERGY_TOLERANCE, Light, LightKind, Material, Periodic, PolygonMesh, Scene, Shape,
 };
 
 /// What Python hands over, decoded: little-endian `f32` / `u32` arrays.
@@ -31,6 +31,9 @@ pub struct Arrays {
     /// A CIE standard general sky: its type (1–15), the direction toward the sun (above the
     /// horizon) and the diffuse irradiance on an open horizontal surface, W·m⁻².
     pub cie_sky: Option<(u8, [f32; 3], [f32; 3])>,
+    /// The plot `[x₀, x₁, z₀, z₁]` (scene units) that repeats without end in x and z: the
+    /// scene stands for a field of copies of it.
+    pub periodic: Option<[f32; 4]>,
 }
 
 /// `bytes` as little-endian 4-byte words, `width` to a row; an error names `what`.
@@ -61,7 +64,8 @@ where
 }
 
 /// The scene `name` the arrays describe, checked: indices in range, finite vertices,
-/// reflectance and translucency in [0, 1] with ρ + τ ≤ 1.
+/// reflectance and translucency in [0, 1] with ρ + τ ≤ 1, a periodic plot of finite,
+/// non-empty ranges.
 pub fn scene(name: &str, a: Arrays) -> Result<Scene, String> {
     let objects = a.names.len();
     if a.reflectance.len() != objects || a.translucency.len() != objects {
@@ -183,6 +187,10 @@ pub fn scene(name: &str, a: Arrays) -> Result<Scene, String> {
                     .into(),
             },
         });
+    }
+    if let Some([x0, x1, z0, z1]) = a.periodic {
+        let plot = Periodic::new([x0, x1], [z0, z1]).map_err(|e| format!("periodic: {e}"))?;
+        scene.periodic = Some(plot);
     }
     aim_camera(&mut scene, &a.vertices);
     Ok(scene)

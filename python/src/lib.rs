@@ -45,9 +45,11 @@ fn load(py: Python<'_>, name: &str) -> PyResult<Scene> {
 /// direction its light travels, the irradiance facing it in W·m⁻²), a uniform sky
 /// (radiance, W·sr⁻¹·m⁻²) and a CIE standard sky (type 1–15, the direction toward the sun,
 /// the diffuse horizontal irradiance in W·m⁻²). With `per_face`, every triangle is reported
-/// on its own.
+/// on its own. With `periodic` (`x₀, x₁, z₀, z₁`, scene units) the plot `x ∈ [x₀, x₁]`,
+/// `z ∈ [z₀, z₁]` repeats without end in x and z (y up): geometry reaching over a side is
+/// seen through the opposite one; a bad plot raises `ValueError`.
 #[pyfunction]
-#[pyo3(signature = (name, vertices, triangles, object_ids, names, reflectance, translucency, per_face, sun, sky, cie_sky=None))]
+#[pyo3(signature = (name, vertices, triangles, object_ids, names, reflectance, translucency, per_face, sun, sky, cie_sky=None, periodic=None))]
 #[allow(clippy::too_many_arguments)]
 fn scene_from_arrays(
     py: Python<'_>,
@@ -62,6 +64,7 @@ fn scene_from_arrays(
     sun: Option<([f32; 3], [f32; 3])>,
     sky: Option<[f32; 3]>,
     cie_sky: Option<(u8, [f32; 3], [f32; 3])>,
+    periodic: Option<[f32; 4]>,
 ) -> PyResult<Scene> {
     let world = py.detach(|| -> Result<World, String> {
         let float = f32::from_le_bytes;
@@ -83,6 +86,7 @@ fn scene_from_arrays(
             sun,
             sky,
             cie_sky,
+            periodic,
         };
         let scene = arrays::scene(name, given)?;
         World::new(scene, AccelKind::Bvh).map_err(|e| format!("scene '{name}': {e}"))
@@ -365,6 +369,16 @@ impl Scene {
         (0..scene.objects.len())
             .map(|k| scene.object_name(k))
             .collect()
+    }
+
+    /// The plot `(x₀, x₁, z₀, z₁)` (scene units) a periodic scene repeats without end in x
+    /// and z; `None` for a scene that is not periodic.
+    #[getter]
+    fn periodic(&self) -> Option<(f32, f32, f32, f32)> {
+        self.world
+            .scene
+            .periodic
+            .map(|p| (p.x[0], p.x[1], p.z[0], p.z[1]))
     }
 
     /// Runs a method that reports the light on every surface (`light-trace`, `matrix`,

@@ -173,6 +173,12 @@ class Scene:
         """The objects' names, in scene order."""
         return self._scene.objects
 
+    @property
+    def periodic(self) -> Optional[tuple]:
+        """The plot ``(x0, x1, z0, z1)`` (scene units, single precision) that a periodic
+        scene repeats without end in x and z, or None for a scene that is not periodic."""
+        return self._scene.periodic
+
     def solve(
         self,
         method: str = "hierarchical",
@@ -254,9 +260,9 @@ def settings(method: str) -> list:
 
 
 def load(name: str) -> Scene:
-    """Opens a built-in scene by name (``cornell``, ``canopy:300``, ``blocks:216``, …) or a
-    scene file (``.toml``, ``.obj``, ``.gltf``/``.glb``, ``.mgf``). A bad file raises
-    ValueError naming the file, line and field."""
+    """Opens a built-in scene by name (``cornell``, ``canopy:300``, ``blocks:216``,
+    ``field:2000``, …) or a scene file (``.toml``, ``.obj``, ``.gltf``/``.glb``, ``.mgf``).
+    A bad file raises ValueError naming the file, line and field."""
     return Scene(_strahl.load(name), ("load", name))
 
 
@@ -285,6 +291,7 @@ def from_arrays(
     sun=None,
     sky=None,
     cie_sky=None,
+    periodic=None,
     per_face: bool = False,
     name: str = "arrays",
 ) -> Scene:
@@ -300,7 +307,16 @@ def from_arrays(
     general skies (1 overcast … 12 clear … 15), brighter toward the sun (the direction toward
     it, above the horizon: :func:`sun_position` gives it), scaled so that an open horizontal
     surface receives ``diffuse_horizontal`` W/m² (a number or RGB). With ``per_face``
-    every triangle is reported on its own. Surfaces reflect and transmit on both sides."""
+    every triangle is reported on its own. Surfaces reflect and transmit on both sides.
+
+    ``periodic=(x0, x1, z0, z1)`` (scene units, y up) makes the scene a field: the plot
+    x ∈ [x0, x1], z ∈ [z0, z1] repeats without end in x and z, and light leaving through
+    one side enters through the opposite one. Geometry may reach over the plot's sides (at
+    most two periods): what lies beyond a side is seen through the opposite one; a ground is
+    a quad covering the plot. Powers are then per plot. Only the light model
+    (``light-trace``) takes every light in a periodic scene; the ray tracers take sun and
+    sky only, and the radiosity methods refuse it (ValueError). A plot with a range that is
+    empty (x1 ≤ x0 or z1 ≤ z0) or not finite raises ValueError."""
     vertices = np.ascontiguousarray(vertices, dtype="<f4")
     triangles = np.ascontiguousarray(triangles, dtype="<u4")
     object_ids = np.ascontiguousarray(object_ids, dtype="<u4")
@@ -316,6 +332,11 @@ def from_arrays(
     sun_light = None if sun is None else (rgb(sun[0]), rgb(sun[1]))
     sky_light = None if sky is None else rgb(sky)
     cie_light = None if cie_sky is None else (int(cie_sky[0]), rgb(cie_sky[1]), rgb(cie_sky[2]))
+    plot = None
+    if periodic is not None:
+        plot = tuple(float(x) for x in np.asarray(periodic, dtype=float).reshape(-1))
+        if len(plot) != 4:
+            raise ValueError(f"periodic: {len(plot)} numbers, expected four (x0, x1, z0, z1)")
     given = (
         name,
         vertices.tobytes(),
@@ -328,6 +349,7 @@ def from_arrays(
         sun_light,
         sky_light,
         cie_light,
+        plot,
     )
     return Scene(_strahl.scene_from_arrays(*given), ("arrays", given))
 

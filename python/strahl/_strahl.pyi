@@ -9,6 +9,10 @@ class Scene:
     def name(self) -> str: ...
     @property
     def objects(self) -> list[str]: ...
+    @property
+    def periodic(self) -> Optional[Tuple[float, float, float, float]]:
+        """The plot (x0, x1, z0, z1), scene units, a periodic scene repeats in x and z; None
+        for a scene that is not periodic."""
     def solve(
         self,
         method: str,
@@ -67,7 +71,10 @@ def scene_from_arrays(
     sun: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]],
     sky: Optional[Tuple[float, float, float]],
     cie_sky: Optional[Tuple[int, Tuple[float, float, float], Tuple[float, float, float]]] = None,
-) -> Scene: ...
+    periodic: Optional[Tuple[float, float, float, float]] = None,
+) -> Scene:
+    """`periodic`: the plot (x0, x1, z0, z1), scene units, repeated without end in x and z
+    (y up); ValueError unless both ranges are finite with x0 < x1 and z0 < z1."""
 def sun_position(
     year: int, month: int, day: int, hour: int, minute: int, second: float,
     utc_offset_hours: float, latitude_deg: float, longitude_deg: float,

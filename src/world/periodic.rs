@@ -9,7 +9,7 @@
 //! from the opposite side. It escapes when it is above all geometry going up or below it
 //! going down, or after [`MAX_CROSSINGS`] crossings (a ray all but horizontal in an empty
 //! layer). A ray starting above all geometry going down (a camera's, a sun's) skips
-//! straight to the height of the highest geometry.
+//! straight to just above the highest geometry (and one below all going up, to just below).
 
 use super::World;
 use super::scene_geometry::{GeometryError, SceneGeometry, SurfaceHit};
@@ -114,8 +114,8 @@ impl Field {
     }
 
     /// Where `ray` starts in the plot — its origin moved into it by whole periods, then,
-    /// if above all geometry going down (or below it going up), moved along the ray to the
-    /// height of the highest (lowest) geometry, since it meets nothing before — and how far
+    /// if above all geometry going down (or below it going up), moved along the ray to just
+    /// above the highest (below the lowest) geometry, since it meets nothing before — and how far
     /// it was moved along the ray; `None` when it goes away from all geometry.
     fn start(&self, ray: &Ray) -> Option<(Vec3, f32)> {
         let origin = self.plot.wrap(ray.origin);
@@ -130,9 +130,10 @@ impl Field {
         if !(t.is_finite() && t > 0.0) {
             return None;
         }
-        let mut entry = self.plot.wrap(origin + ray.dir * t);
-        entry.y = level;
-        Some((entry, t))
+        // Stop a little short of the level, so that a surface lying at it is still ahead.
+        let margin = 1e-4 * (self.top - self.bottom).max(self.plot.period().max_element());
+        let t = (t - margin / ray.dir.y.abs()).max(0.0);
+        Some((self.plot.wrap(origin + ray.dir * t), t))
     }
 
     /// The shifts of the copies of the geometry that the segment of length `length` from
