@@ -6,7 +6,7 @@ use super::camera::build_camera;
 use super::error::{SceneError, Source};
 use super::fields::Table;
 use super::format::{ObjectEntry, ObjectType, SceneFile};
-use super::lights::build_light;
+use super::lights::build_lights;
 use super::locate::toml_error;
 use super::materials::{TextureContext, build_material};
 use super::meshes::{FaceMaterials, MeshCache};
@@ -69,7 +69,7 @@ pub(super) fn build_scene(
     }
     for (i, entry) in file.lights.iter().enumerate() {
         let t = Table::new(src, format!("lights[{i}]"), entry.span());
-        scene.lights.push(build_light(&t, entry.get_ref())?);
+        scene.lights.extend(build_lights(&t, entry.get_ref())?);
     }
     for (i, entry) in file.sensors.iter().enumerate() {
         let t = Table::new(src, format!("sensors[{i}]"), entry.span());

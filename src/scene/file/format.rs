@@ -228,6 +228,7 @@ pub(super) enum LightType {
     Sky,
     #[serde(rename = "cie_sky")]
     CieSky,
+    Day,
 }
 
 impl LightType {
@@ -240,6 +241,7 @@ impl LightType {
             LightType::Directional => "directional",
             LightType::Sky => "sky",
             LightType::CieSky => "cie_sky",
+            LightType::Day => "day",
         }
     }
 
@@ -299,6 +301,18 @@ impl LightType {
                 "temperature_c",
                 "delta_t_s",
             ],
+            LightType::Day => &[
+                "sky_type",
+                "states",
+                "date",
+                "utc_offset_hours",
+                "latitude_deg",
+                "longitude_deg",
+                "elevation_m",
+                "pressure_mbar",
+                "temperature_c",
+                "delta_t_s",
+            ],
         }
     }
 }
@@ -335,6 +349,16 @@ pub(super) struct LightEntry {
     pub pressure_mbar: Option<Spanned<f64>>,
     pub temperature_c: Option<Spanned<f64>>,
     pub delta_t_s: Option<Spanned<f64>>,
+    pub states: Option<Spanned<Vec<Spanned<DayStateEntry>>>>,
+}
+
+/// One state of a `day` light: `{ time = "HH:MM", direct_normal = …, diffuse_horizontal = … }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct DayStateEntry {
+    pub time: Option<Spanned<String>>,
+    pub direct_normal: Option<Spanned<Triple>>,
+    pub diffuse_horizontal: Option<Spanned<Triple>>,
 }
 
 impl LightEntry {
@@ -371,6 +395,7 @@ impl LightEntry {
             ("pressure_mbar", real(&self.pressure_mbar)),
             ("temperature_c", real(&self.temperature_c)),
             ("delta_t_s", real(&self.delta_t_s)),
+            ("states", self.states.as_ref().map(Spanned::span)),
         ]
         .into_iter()
         .filter_map(|(name, span)| span.map(|span| (name, span)))

@@ -1,18 +1,19 @@
-//! `[[lights]]` entries: point, Lambertian point, spot, directional, sky and CIE sky lights.
+//! `[[lights]]` entries: point, Lambertian point, spot, directional, sky and CIE sky lights,
+//! and a day of sun and sky states (`day.rs`).
 
+use super::day::build_day;
 use super::error::SceneError;
 use super::fields::Table;
 use super::format::{LightEntry, LightType};
 use super::photometry::{self, Photometric};
-use super::sun::sun_toward;
+use super::sun::{cie_sky_type, sun_toward};
 use crate::scene::{Light, LightKind};
-use crate::sky::CieSkyType;
 use glam::Vec3;
 use std::f32::consts::PI;
 use toml::Spanned;
 
-/// The light described by `e`.
-pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneError> {
+/// The lights described by `e`: one, or a day's suns and skies.
+pub(super) fn build_lights(t: &Table<'_>, e: &LightEntry) -> Result<Vec<Light>, SceneError> {
     let kind = *e.kind.get_ref();
     t.only_fields(&e.kind_fields(), kind.fields(), kind.name())?;
     let why = format!("type {}", kind.name());
@@ -89,36 +90,21 @@ pub(super) fn build_light(t: &Table<'_>, e: &LightEntry) -> Result<Light, SceneE
                 &[("luminance_cd_m2", e.luminance_cd_m2.as_ref(), 1.0)],
             )?,
         },
-        LightType::CieSky => {
-            let number = e
-                .sky_type
-                .as_ref()
-                .ok_or_else(|| t.missing("sky_type", why))?;
-            let sky = u8::try_from(*number.get_ref())
-                .ok()
-                .and_then(CieSkyType::from_number)
-                .ok_or_else(|| {
-                    t.error(
-                        number.span(),
-                        "sky_type",
-                        "must be a CIE standard general sky number, 1 to 15",
-                    )
-                })?;
-            LightKind::CieSky {
-                sky,
-                sun: sun_toward(t, e, ("sun_direction", e.sun_direction.as_ref(), true), why)?,
-                diffuse_horizontal: color(
-                    "diffuse_horizontal",
-                    e.diffuse_horizontal.as_ref(),
-                    &[("illuminance_lux", e.illuminance_lux.as_ref(), 1.0)],
-                )?,
-            }
-        }
+        LightType::CieSky => LightKind::CieSky {
+            sky: cie_sky_type(t, e, why)?,
+            sun: sun_toward(t, e, ("sun_direction", e.sun_direction.as_ref(), true), why)?,
+            diffuse_horizontal: color(
+                "diffuse_horizontal",
+                e.diffuse_horizontal.as_ref(),
+                &[("illuminance_lux", e.illuminance_lux.as_ref(), 1.0)],
+            )?,
+        },
+        LightType::Day => return build_day(t, e, why),
     };
-    Ok(Light {
+    Ok(vec![Light {
         name: e.name.clone(),
         kind,
-    })
+    }])
 }
 
 /// The unit axis of a light at `position` aimed by `direction` or `look_at` (exactly one).

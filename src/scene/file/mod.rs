@@ -4,6 +4,7 @@
 mod bare_mesh;
 mod build;
 mod camera;
+mod day;
 mod error;
 mod fields;
 mod format;

@@ -1,11 +1,12 @@
 //! Where the sun is, for a directional light or a CIE sky: given as a vector, or by date,
-//! time and place through NREL's Solar Position Algorithm ([`crate::sky::sun_position`]).
+//! time and place through NREL's Solar Position Algorithm ([`crate::sky::sun_position`]);
+//! and which CIE standard sky a light names.
 
 use super::error::SceneError;
 use super::fields::Table;
 use super::format::LightEntry;
 use super::value::Coords;
-use crate::sky::{LocalTime, Observer, sun_position};
+use crate::sky::{CieSkyType, LocalTime, Observer, sun_position};
 use glam::Vec3;
 use std::ops::Range;
 use toml::Spanned;
@@ -85,17 +86,50 @@ fn dated_fields(e: &LightEntry) -> Vec<(&'static str, Range<usize>)> {
 
 /// The direction toward the sun at the date, time and place `e` gives.
 fn sun_by_date(t: &Table<'_>, e: &LightEntry, why: &str) -> Result<Vec3, SceneError> {
-    let date = e.date.as_ref().ok_or_else(|| t.missing("date", why))?;
     let time = e.time.as_ref().ok_or_else(|| t.missing("time", why))?;
-    let (year, month, day) = parse_date(date.get_ref())
-        .ok_or_else(|| t.error(date.span(), "date", "expected a date \"YYYY-MM-DD\""))?;
-    let (hour, minute, second) = parse_time(time.get_ref()).ok_or_else(|| {
+    let clock = clock_time(t, time)?;
+    let (toward, zenith_deg) = sun_at(t, e, clock, why)?;
+    if zenith_deg.is_nan() || zenith_deg >= 90.0 {
+        return Err(t.error(
+            time.span(),
+            "time",
+            format!(
+                "the sun is {:.2}° below the horizon at this date, time and place (zenith \
+                 {:.2}°): it would give no direct light",
+                zenith_deg - 90.0,
+                zenith_deg
+            ),
+        ));
+    }
+    Ok(toward)
+}
+
+/// Hour, minute and second of the clock time `time` of table `t` (its field `time`).
+pub(super) fn clock_time(
+    t: &Table<'_>,
+    time: &Spanned<String>,
+) -> Result<(u32, u32, f64), SceneError> {
+    parse_time(time.get_ref()).ok_or_else(|| {
         t.error(
             time.span(),
             "time",
             "expected a clock time \"HH:MM\" or \"HH:MM:SS\" (seconds may have a fraction)",
         )
-    })?;
+    })
+}
+
+/// The unit direction toward the sun and its topocentric zenith angle (degrees; 90 or more
+/// below the horizon) at the clock time `(hour, minute, second)` of the date and place `e`
+/// gives.
+pub(super) fn sun_at(
+    t: &Table<'_>,
+    e: &LightEntry,
+    (hour, minute, second): (u32, u32, f64),
+    why: &str,
+) -> Result<(Vec3, f64), SceneError> {
+    let date = e.date.as_ref().ok_or_else(|| t.missing("date", why))?;
+    let (year, month, day) = parse_date(date.get_ref())
+        .ok_or_else(|| t.error(date.span(), "date", "expected a date \"YYYY-MM-DD\""))?;
     let number =
         |name: &str, v: Option<&Spanned<f64>>, range: (f64, f64), default: Option<f64>| match v {
             None => default.ok_or_else(|| t.missing(name, why)),
@@ -156,19 +190,29 @@ fn sun_by_date(t: &Table<'_>, e: &LightEntry, why: &str) -> Result<Vec3, SceneEr
         refraction_deg: REFRACTION_DEG,
     };
     let sun = sun_position(&local, &observer);
-    if sun.zenith_deg.is_nan() || sun.zenith_deg >= 90.0 {
-        return Err(t.error(
-            time.span(),
-            "time",
-            format!(
-                "the sun is {:.2}° below the horizon at this date, time and place (zenith \
-                 {:.2}°): it would give no direct light",
-                sun.zenith_deg - 90.0,
-                sun.zenith_deg
-            ),
-        ));
-    }
-    Ok(sun.direction().as_vec3().normalize())
+    Ok((sun.direction().as_vec3().normalize(), sun.zenith_deg))
+}
+
+/// The CIE standard general sky that `e`'s `sky_type` numbers (1–15), required.
+pub(super) fn cie_sky_type(
+    t: &Table<'_>,
+    e: &LightEntry,
+    why: &str,
+) -> Result<CieSkyType, SceneError> {
+    let number = e
+        .sky_type
+        .as_ref()
+        .ok_or_else(|| t.missing("sky_type", why))?;
+    u8::try_from(*number.get_ref())
+        .ok()
+        .and_then(CieSkyType::from_number)
+        .ok_or_else(|| {
+            t.error(
+                number.span(),
+                "sky_type",
+                "must be a CIE standard general sky number, 1 to 15",
+            )
+        })
 }
 
 /// Year, month and day of `"YYYY-MM-DD"` (a leading `-` for years before 1 AD, astronomical
