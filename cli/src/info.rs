@@ -86,6 +86,17 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         b.min.to_array(),
         b.max.to_array()
     );
+    if let Some(field) = world.field() {
+        let p = field.plot;
+        println!(
+            "periodic    plot x {:?} z {:?}, area {} (square scene units), repeated without \
+             end; {} copies of the geometry reach into it",
+            p.x,
+            p.z,
+            p.area(),
+            field.copies()
+        );
+    }
     let s = world.accel_stats();
     println!(
         "{:<11} built in {:.3} s: {} nodes, {} leaves, depth {}, {} primitive references",

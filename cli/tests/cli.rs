@@ -135,6 +135,28 @@ fn info_and_bench_report_statistics() {
 }
 
 #[test]
+fn a_periodic_field_is_solved_by_the_light_model_and_refused_by_radiosity() {
+    let o = strahl(&["info", "field:100"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("periodic    plot x [0.0, 0.5]"), "{out}");
+    let report = temp("field.json");
+    let args = ["solve", "field:100", "--photons", "20000", "-q", "--report"];
+    let o = strahl(&[&args[..], &[report.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["objects"].as_array().unwrap().len(), 101);
+    let o = strahl(&["solve", "field:100", "--solver", "hierarchical", "-q"]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("does not model a periodic scene"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
 fn per_face_reports_every_face_and_the_faces_add_up_to_their_object() {
     // The same photons, told apart by face or not: the faces of each object add up to it.
     let solve = |name: &str, extra: &[&str]| {
