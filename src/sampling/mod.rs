@@ -10,10 +10,12 @@ mod batch;
 mod fixed;
 pub mod mis;
 mod moments;
+mod packed;
 mod sampler;
 pub mod warp;
 
 pub use batch::{Batch, BatchPart, MergeError, NoSuchBatch, check_batches};
 pub use fixed::{from_fixed, to_fixed};
 pub use moments::Moments;
+pub use packed::{pack, unpack};
 pub use sampler::{Sampler, SequenceKind, hash64};

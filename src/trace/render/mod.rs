@@ -6,7 +6,6 @@
 //! seed and its image position, so images do not depend on the thread count.
 
 pub mod antialias;
-mod packed;
 mod passes;
 mod sums;
 mod tiles;

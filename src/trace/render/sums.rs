@@ -11,10 +11,10 @@
 //! pixel (a progressive render keeps two such images: the finished passes and the pass under
 //! way).
 
-use super::packed::{pack, unpack};
 use crate::color::Rgb;
 use crate::measure::Film;
 use crate::sampling::from_fixed;
+use crate::sampling::{pack, unpack};
 
 /// Fixed-point units per W·sr⁻¹·m⁻².
 const UNITS: f64 = (1u64 << 60) as f64;
@@ -134,7 +134,7 @@ impl PixelSums {
 }
 
 /// [`PixelSums`] as they are serialized: the size, the samples per pixel, and the sums
-/// packed into one string (`packed.rs`: red, green, blue of each pixel in turn, row-major).
+/// packed into one string (`sampling::pack`: red, green, blue of each pixel in turn, row-major).
 #[derive(serde::Serialize, serde::Deserialize)]
 struct PackedSums {
     width: u32,

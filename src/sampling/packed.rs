@@ -1,11 +1,12 @@
-//! Integers packed into one string, so that a render's per-pixel sums travel in JSON in a
-//! few bytes each rather than as long decimal numbers: every value a zigzag LEB128 varint
+//! Integers packed into one string, so that the fixed-point sums of a batch (a render's
+//! per-pixel sums, the light model's tallies) travel in JSON in a few bytes each rather than
+//! as long decimal numbers: every value a zigzag LEB128 varint
 //! (seven bits a byte, low bits first, the sign in the lowest bit, so a magnitude below
 //! 2⁶³ takes at most 9 bytes and any `i128` at most 19), the bytes in standard base64
 //! (RFC 4648, padded).
 
 /// `values` as one base64 string of zigzag varints.
-pub(super) fn pack(values: impl Iterator<Item = i128>) -> String {
+pub fn pack(values: impl Iterator<Item = i128>) -> String {
     let mut bytes = Vec::new();
     for v in values {
         let mut z = ((v << 1) ^ (v >> 127)) as u128;
@@ -19,7 +20,7 @@ pub(super) fn pack(values: impl Iterator<Item = i128>) -> String {
 }
 
 /// The values [`pack`] made of `text`; `None` when it is not such a string.
-pub(super) fn unpack(text: &str) -> Option<Vec<i128>> {
+pub fn unpack(text: &str) -> Option<Vec<i128>> {
     let bytes = base64::decode(text).ok()?;
     let mut values = Vec::new();
     let (mut z, mut shift) = (0u128, 0u32);
