@@ -249,7 +249,7 @@ mod tests {
         assert_eq!(back.sensors[1].squares, [i128::MAX, 0, i128::MIN]);
         assert_eq!((back.escaped, back.truncated_paths), ([-7, 8, 9], 12));
         let short = json.replace("\"entries\":3", "\"entries\":4");
-        let error = serde_json::from_str::<Tally>(&short).err().expect("refused");
+        let error = serde_json::from_str::<Tally>(&short).expect_err("refused");
         assert!(error.to_string().contains("sums for 4 entries"), "{error}");
     }
 }
