@@ -245,7 +245,10 @@ mod tests {
         let json = serde_json::to_string(&tally).unwrap();
         let back: Tally = serde_json::from_str(&json).unwrap();
         assert_eq!(serde_json::to_string(&back).unwrap(), json);
-        assert_eq!(back.entries[2].incident_squares, tally.entries[2].incident_squares);
+        assert_eq!(
+            back.entries[2].incident_squares,
+            tally.entries[2].incident_squares
+        );
         assert_eq!(back.sensors[1].squares, [i128::MAX, 0, i128::MIN]);
         assert_eq!((back.escaped, back.truncated_paths), ([-7, 8, 9], 12));
         let short = json.replace("\"entries\":3", "\"entries\":4");
