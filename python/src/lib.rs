@@ -232,11 +232,20 @@ fn method(kind: &str, seed: u64, settings: &[(String, Bound<'_, PyAny>)]) -> PyR
     Ok(method)
 }
 
-/// A Python value (a bool, an int or anything with `__index__`, a float, a str) as a
-/// setting's value.
+/// A Python value (a bool or numpy's, an int or anything with `__index__`, a float, a str)
+/// as a setting's value.
 fn setting_value(name: &str, value: &Bound<'_, PyAny>) -> PyResult<SettingValue> {
     if let Ok(b) = value.cast::<PyBool>() {
         return Ok(SettingValue::Bool(b.is_true()));
+    }
+    // numpy's bool scalar (`numpy.bool_`, from a mask or a comparison) is neither a Python
+    // bool nor an integer: known by its dtype's kind.
+    let numpy_bool = value
+        .getattr("dtype")
+        .and_then(|dtype| dtype.getattr("kind"))
+        .is_ok_and(|kind| kind.extract::<String>().is_ok_and(|k| k == "b"));
+    if numpy_bool {
+        return Ok(SettingValue::Bool(value.is_truthy()?));
     }
     if value.is_instance_of::<PyString>() {
         return Ok(SettingValue::Text(value.extract()?));

@@ -238,6 +238,13 @@ def test_every_setting_is_a_keyword_and_gives_what_the_command_line_gives(tmp_pa
     key = lambda rows: [(r["name"], r["absorbed_power"]) for r in rows]
     assert key(by_python) == key(by_cli)
     assert key(by_python) != key(default)
+    # numpy's bools (from masks and comparisons) are switches as Python's are.
+    by_numpy = strahl.load("cornell").solve(
+        "hierarchical", error=np.float64(1e-3), min_area=1e-4, link_samples=np.int64(4),
+        clustering=np.False_, max_rounds=5, oracle="bfa", surface_gather=0.02,
+        mesh_size="levels:1",
+    ).report["objects"]
+    assert key(by_numpy) == key(by_cli)
 
 
 def test_per_triangle_results_of_whole_objects_sum_to_the_objects():
