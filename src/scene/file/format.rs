@@ -246,76 +246,49 @@ impl LightType {
     }
 
     /// The fields this type accepts besides `type` and `name`.
-    pub fn fields(self) -> &'static [&'static str] {
+    pub fn fields(self) -> Vec<&'static str> {
+        let amount = ["intensity", "intensity_cd", "flux_lm", "color"];
+        let aimed = [&["position", "direction", "look_at"][..], &amount[..]].concat();
         match self {
-            LightType::Point => &["position", "intensity", "intensity_cd", "flux_lm", "color"],
-            LightType::Lambertian => &[
-                "position",
-                "direction",
-                "look_at",
-                "intensity",
-                "intensity_cd",
-                "flux_lm",
-                "color",
-            ],
-            LightType::Spot => &[
-                "position",
-                "direction",
-                "look_at",
-                "intensity",
-                "intensity_cd",
-                "flux_lm",
-                "color",
-                "inner_degrees",
-                "outer_degrees",
-            ],
-            LightType::Directional => &[
-                "direction",
-                "irradiance",
-                "illuminance_lux",
-                "color",
-                "date",
-                "time",
-                "utc_offset_hours",
-                "latitude_deg",
-                "longitude_deg",
-                "elevation_m",
-                "pressure_mbar",
-                "temperature_c",
-                "delta_t_s",
-            ],
-            LightType::Sky => &["radiance", "luminance_cd_m2", "color"],
-            LightType::CieSky => &[
-                "sky_type",
-                "sun_direction",
-                "diffuse_horizontal",
-                "illuminance_lux",
-                "color",
-                "date",
-                "time",
-                "utc_offset_hours",
-                "latitude_deg",
-                "longitude_deg",
-                "elevation_m",
-                "pressure_mbar",
-                "temperature_c",
-                "delta_t_s",
-            ],
-            LightType::Day => &[
-                "sky_type",
-                "states",
-                "date",
-                "utc_offset_hours",
-                "latitude_deg",
-                "longitude_deg",
-                "elevation_m",
-                "pressure_mbar",
-                "temperature_c",
-                "delta_t_s",
-            ],
+            LightType::Point => [&["position"][..], &amount[..]].concat(),
+            LightType::Lambertian => aimed,
+            LightType::Spot => [&aimed[..], &["inner_degrees", "outer_degrees"][..]].concat(),
+            LightType::Directional => dated(
+                &["direction", "irradiance", "illuminance_lux", "color"],
+                true,
+            ),
+            LightType::Sky => vec!["radiance", "luminance_cd_m2", "color"],
+            LightType::CieSky => dated(
+                &[
+                    "sky_type",
+                    "sun_direction",
+                    "diffuse_horizontal",
+                    "illuminance_lux",
+                    "color",
+                ],
+                true,
+            ),
+            LightType::Day => dated(&["sky_type", "states"], false),
         }
     }
 }
+
+/// `fields` and the fields that place the sun by date and site, `time` among them if asked.
+fn dated(fields: &[&'static str], time: bool) -> Vec<&'static str> {
+    let time: &[&str] = if time { &["date", "time"] } else { &["date"] };
+    [fields, time, &SITE[..]].concat()
+}
+
+/// The fields that place the sun at a site, besides its date and time.
+const SITE: [&str; 7] = [
+    "utc_offset_hours",
+    "latitude_deg",
+    "longitude_deg",
+    "elevation_m",
+    "pressure_mbar",
+    "temperature_c",
+    "delta_t_s",
+];
 
 /// `[[lights]]`: the fields of every light type.
 #[derive(Debug, Deserialize)]

@@ -15,7 +15,7 @@ use toml::Spanned;
 /// The lights described by `e`: one, or a day's suns and skies.
 pub(super) fn build_lights(t: &Table<'_>, e: &LightEntry) -> Result<Vec<Light>, SceneError> {
     let kind = *e.kind.get_ref();
-    t.only_fields(&e.kind_fields(), kind.fields(), kind.name())?;
+    t.only_fields(&e.kind_fields(), &kind.fields(), kind.name())?;
     let why = format!("type {}", kind.name());
     let why = why.as_str();
     // The light's amount, radiometric (`name`) or photometric (`photometric`, each with the
