@@ -40,14 +40,19 @@ pub struct Field {
 }
 
 impl Field {
-    /// The field of `plot` over `geometry`; refused when some geometry is unbounded (an
-    /// infinite plane would be in every copy at once: a ground is a quad the plot's size) or
-    /// reaches more than two periods beyond the plot.
+    /// The field of `plot` over `geometry`; refused when the plot is empty or not finite,
+    /// when some geometry is unbounded (an infinite plane would be in every copy at once: a
+    /// ground is a quad the plot's size) or reaches more than two periods beyond the plot.
     pub fn new(
         plot: Periodic,
         scene: &Scene,
         geometry: &SceneGeometry,
     ) -> Result<Field, GeometryError> {
+        // A plot built in code bypasses the file's check: an empty period would divide by 0.
+        let plot = Periodic::new(plot.x, plot.z).map_err(|reason| GeometryError::Degenerate {
+            object: "the periodic plot".into(),
+            reason,
+        })?;
         for prim in 0..geometry.len() as u32 {
             let b = PrimitiveSet::bounds(geometry, prim);
             if !(b.min.is_finite() && b.max.is_finite()) {
@@ -334,5 +339,12 @@ mod tests {
         scene.periodic = Some(Periodic::new([0.0, 0.1], [0.0, 0.1]).unwrap());
         let e = World::new(scene, AccelKind::Bvh).err().expect("refused");
         assert!(e.to_string().contains("plots"), "{e}");
+        let mut scene = straddling().scene.clone();
+        scene.periodic = Some(Periodic {
+            x: [0.0, 0.0],
+            z: [0.0, 1.0],
+        });
+        let e = World::new(scene, AccelKind::Bvh).err().expect("refused");
+        assert!(e.to_string().contains("x range"), "{e}");
     }
 }
