@@ -11,7 +11,10 @@ use strahl::light_model::LightTraceSettings;
 use strahl::method::{Method, run};
 use strahl::progress::{Cancel, NoProgress};
 use strahl::report::Report;
-use strahl::scene::{LightKind, LocalTime, Observer, load_str, sun_position};
+use strahl::scene::{
+    DEFAULT_DELTA_T_S, LightKind, LocalTime, Observer, STANDARD_PRESSURE_MBAR,
+    STANDARD_TEMPERATURE_C, SUNRISE_REFRACTION_DEG, load_str, sun_position,
+};
 use strahl::world::World;
 
 /// Berlin on the summer solstice: a night state, morning, noon and afternoon.
@@ -70,15 +73,15 @@ fn sun(time: &str) -> (glam::DVec3, f64) {
         second: 0.0,
         utc_offset_hours: 2.0,
         delta_ut1_s: 0.0,
-        delta_t_s: 69.0,
+        delta_t_s: DEFAULT_DELTA_T_S,
     };
     let observer = Observer {
         latitude_deg: 52.52,
         longitude_deg: 13.40,
         elevation_m: 0.0,
-        pressure_mbar: 1013.25,
-        temperature_c: 15.0,
-        refraction_deg: 0.5667,
+        pressure_mbar: STANDARD_PRESSURE_MBAR,
+        temperature_c: STANDARD_TEMPERATURE_C,
+        refraction_deg: SUNRISE_REFRACTION_DEG,
     };
     let p = sun_position(&local, &observer);
     (p.direction(), p.zenith_deg.to_radians().cos())

@@ -160,7 +160,7 @@ fn sun_position(
         elevation_m,
         pressure_mbar,
         temperature_c,
-        refraction_deg: 0.5667,
+        refraction_deg: strahl::scene::SUNRISE_REFRACTION_DEG,
     };
     let sun = strahl::scene::sun_position(&time, &observer);
     Ok((

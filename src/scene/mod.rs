@@ -22,7 +22,10 @@ pub use camera::{Camera, CameraRays};
 pub use file::{LoadOptions, SceneError, load, load_mesh_file, load_str, load_str_with, load_with};
 pub use light::{Incidence, Light, LightKind};
 // What a CIE sky and a sun placed by date name (for front ends building scenes in code).
-pub use crate::sky::{CieSkyType, LocalTime, Observer, SunPosition, sun_position};
+pub use crate::sky::{
+    CieSkyType, DEFAULT_DELTA_T_S, LocalTime, Observer, STANDARD_PRESSURE_MBAR,
+    STANDARD_TEMPERATURE_C, SUNRISE_REFRACTION_DEG, SunPosition, sun_position,
+};
 pub use material::{ENERGY_TOLERANCE, Lobe, MAX_COLOUR, Material, MaterialId};
 pub use mesh::PolygonMesh;
 pub use moving::{MoveError, Moved};

@@ -23,5 +23,8 @@ mod table;
 
 pub use cie::{CieParameters, CieSky, CieSkyType, relative_luminance};
 pub use direction::{angles_from_direction, direction_from_angles};
-pub use sun::{LocalTime, Observer, SOLAR_CONSTANT, SunPosition, sun_position};
+pub use sun::{
+    DEFAULT_DELTA_T_S, LocalTime, Observer, SOLAR_CONSTANT, STANDARD_PRESSURE_MBAR,
+    STANDARD_TEMPERATURE_C, SUNRISE_REFRACTION_DEG, SunPosition, sun_position,
+};
 pub use table::{SkySample, SkyTable};

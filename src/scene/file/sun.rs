@@ -6,19 +6,13 @@ use super::error::SceneError;
 use super::fields::Table;
 use super::format::LightEntry;
 use super::value::Coords;
-use crate::sky::{CieSkyType, LocalTime, Observer, sun_position};
+use crate::sky::{
+    CieSkyType, DEFAULT_DELTA_T_S, LocalTime, Observer, STANDARD_PRESSURE_MBAR,
+    STANDARD_TEMPERATURE_C, SUNRISE_REFRACTION_DEG, sun_position,
+};
 use glam::Vec3;
 use std::ops::Range;
 use toml::Spanned;
-
-/// ΔT = TT − UT1 in seconds when `delta_t_s` is not given (its value from 2017 to 2025).
-const DEFAULT_DELTA_T_S: f64 = 69.0;
-/// Pressure in millibars when `pressure_mbar` is not given (the standard atmosphere).
-const DEFAULT_PRESSURE_MBAR: f64 = 1013.25;
-/// Temperature in °C when `temperature_c` is not given (the standard atmosphere).
-const DEFAULT_TEMPERATURE_C: f64 = 15.0;
-/// Atmospheric refraction at sunrise and sunset, degrees (NREL's usual value).
-const REFRACTION_DEG: f64 = 0.5667;
 
 /// The unit direction toward the sun of the light `e`: from the vector field `vector`
 /// (name, value, and whether it points toward the sun or along the light) or from the date
@@ -179,15 +173,15 @@ pub(super) fn sun_at(
             "pressure_mbar",
             e.pressure_mbar.as_ref(),
             (1.0, 2000.0),
-            Some(DEFAULT_PRESSURE_MBAR),
+            Some(STANDARD_PRESSURE_MBAR),
         )?,
         temperature_c: number(
             "temperature_c",
             e.temperature_c.as_ref(),
             (-100.0, 100.0),
-            Some(DEFAULT_TEMPERATURE_C),
+            Some(STANDARD_TEMPERATURE_C),
         )?,
-        refraction_deg: REFRACTION_DEG,
+        refraction_deg: SUNRISE_REFRACTION_DEG,
     };
     let sun = sun_position(&local, &observer);
     Ok((sun.direction().as_vec3().normalize(), sun.zenith_deg))

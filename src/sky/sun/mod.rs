@@ -56,6 +56,15 @@ impl LocalTime {
     }
 }
 
+/// ΔT = TT − UT1, seconds, to assume when none is given (its value from 2017 to 2025).
+pub const DEFAULT_DELTA_T_S: f64 = 69.0;
+/// Air pressure to assume when none is given, millibars (the standard atmosphere).
+pub const STANDARD_PRESSURE_MBAR: f64 = 1013.25;
+/// Air temperature to assume when none is given, °C (the standard atmosphere).
+pub const STANDARD_TEMPERATURE_C: f64 = 15.0;
+/// Atmospheric refraction at sunrise and sunset, degrees (NREL's usual value).
+pub const SUNRISE_REFRACTION_DEG: f64 = 0.5667;
+
 /// Where the Sun is seen from, and the air it is seen through.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Observer {
