@@ -151,6 +151,26 @@ fn run_method(
         .map_err(radiosity::method_error)
 }
 
+/// [`run_method`] and, for a scene with wavelength bands, the bands' figures
+/// ([`strahl::method::run_with_bands`]).
+fn run_measuring(
+    world: &std::sync::Arc<strahl::method::World>,
+    method: &strahl::method::Method,
+    label: &str,
+    quiet: bool,
+    threads: usize,
+) -> anyhow::Result<(
+    strahl::method::Outcome,
+    Option<strahl::method::BandMeasurement>,
+)> {
+    let bar = progress::Bar::new(label, quiet);
+    let cancel = progress::cancel_flag();
+    with_threads(threads, || {
+        strahl::method::run_with_bands(world, method, &bar, cancel)
+    })?
+    .map_err(radiosity::method_error)
+}
+
 /// Runs `f` on a rayon pool of `threads` threads (0 = one per core), at most
 /// [`THREADS_PER_CORE`] per core ([`useful_threads`]).
 fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> anyhow::Result<T> {

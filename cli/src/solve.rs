@@ -6,7 +6,7 @@ use super::choice::{choice, choice_among};
 use super::limits::LimitArgs;
 use super::merge::PartialFile;
 use super::radiosity::{self, RadiosityArgs, SurfaceGatherArgs, method_error, print_convergence};
-use super::run_method;
+use super::run_measuring;
 use super::tone::ToneArgs;
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -190,9 +190,16 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     }
     let world = Arc::new(world);
     if let (Some(batch), Some(path)) = (args.batch, &args.partial) {
+        if world.scene.spectral.is_some() {
+            bail!(
+                "'{}' has wavelength bands: its bands are not split into batches yet; solve it \
+                 in one run",
+                args.scene
+            );
+        }
         return solve_batch(args, &world, &method, batch, path);
     }
-    let outcome = run_method(&world, &method, "solving", args.quiet, args.threads)?;
+    let (outcome, bands) = run_measuring(&world, &method, "solving", args.quiet, args.threads)?;
     match &outcome.radiosity {
         Some(solved) => {
             radiosity::finish_solve(
@@ -235,7 +242,15 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     let measured = outcome
         .measurement
         .context("the solver measured no surfaces")?;
-    let report = Report::new(&name, &measured);
+    let mut report = Report::new(&name, &measured);
+    match (&bands, &world.scene.spectral) {
+        (Some(bands), _) => report = report.with_bands(bands),
+        (None, Some(spectral)) => eprintln!(
+            "bands interrupted: the report holds the RGB figures only, none of the {} bands",
+            spectral.bands.len()
+        ),
+        (None, None) => {}
+    }
     if let Some((entry, field)) = report.first_non_finite() {
         anyhow::bail!(
             "the {} solution has a non-finite {field} for {entry}: a numerical failure, so no \

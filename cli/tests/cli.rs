@@ -157,6 +157,55 @@ fn a_periodic_field_is_solved_by_the_light_model_and_refused_by_radiosity() {
 }
 
 #[test]
+fn the_plant_example_reports_its_bands_in_json_and_csv() {
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/plant-bands/plant.toml"
+    );
+    let json_path = temp("plant.json");
+    let args = ["solve", scene, "--photons", "50000", "-q", "--report"];
+    let o = strahl(&[&args[..], &[json_path.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+    let bands = json["bands"].as_array().unwrap();
+    let names: Vec<&str> = bands.iter().map(|b| b["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["PAR", "red", "far-red", "NIR"]);
+    // Every leaf absorbs most of its PAR and little of its near infrared, as its spectra say.
+    for (par, nir) in bands[0]["objects"].as_array().unwrap()[1..]
+        .iter()
+        .zip(&bands[3]["objects"].as_array().unwrap()[1..])
+    {
+        let share = |o: &serde_json::Value| {
+            o["absorbed_power"].as_f64().unwrap() / o["incident_power"].as_f64().unwrap()
+        };
+        assert!(share(par) > 0.8 && share(nir) < 0.3, "{par} {nir}");
+        assert!(par["photon_irradiance_umol_m2_s"].as_f64().unwrap() > 0.0);
+    }
+    assert_eq!(json["red_far_red"]["objects"].as_array().unwrap().len(), 10);
+    let csv_path = temp("plant.csv");
+    let args = ["solve", scene, "--photons", "50000", "-q", "--report"];
+    let o = strahl(&[&args[..], &[csv_path.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(&csv_path).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.contains("PAR_photon_irradiance_umol_m2_s") && header.ends_with("red_far_red"),
+        "{header}"
+    );
+    let o = strahl(&[
+        "solve",
+        scene,
+        "--batch",
+        "1/2",
+        "--partial",
+        "p.json",
+        "-q",
+    ]);
+    assert!(!o.status.success() && stderr(&o).contains("not split into batches"));
+}
+
+#[test]
 fn per_face_reports_every_face_and_the_faces_add_up_to_their_object() {
     // The same photons, told apart by face or not: the faces of each object add up to it.
     let solve = |name: &str, extra: &[&str]| {

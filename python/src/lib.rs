@@ -394,7 +394,8 @@ impl Scene {
     /// `progressive`, `hierarchical`, `hierarchical-shooting`) with `settings` (name, value)
     /// and returns its report as JSON (the `strahl solve --report` file). `per_face` reports
     /// every face of every object on its own, `diffuse_only` drops the materials'
-    /// non-diffuse lobes (`strahl solve --per-face --diffuse-only`).
+    /// non-diffuse lobes (`strahl solve --per-face --diffuse-only`). A scene with
+    /// `[[bands]]` adds its bands' figures (`bands`, `red_far_red`), by the same method.
     /// With `export` (a `.glb`, `.gltf` or `.ply` path) a radiosity solver's solution is
     /// also written as a mesh with radiosity vertex colours (`strahl solve --export`).
     #[pyo3(signature = (method, *, seed=0, threads=0, settings=Vec::new(), per_face=false, diffuse_only=false, export=None, progress=None))]
@@ -428,7 +429,11 @@ impl Scene {
             ExportFormat::from_path(path).map_err(|e| PyValueError::new_err(e.to_string()))?;
         }
         let world = self.variant(py, per_face, diffuse_only)?;
-        let outcome = run(&world, py, &method, threads, progress)?;
+        // The scene's wavelength bands, when it has any, by the same method.
+        let (outcome, bands) = run_with(py, threads, progress, |listener, cancel| {
+            strahl::method::run_with_bands(&world, &method, listener, cancel)
+                .map_err(|e| e.to_string())
+        })?;
         if let (Some(path), Some(solved)) = (&export, &outcome.radiosity) {
             py.detach(|| {
                 let lightmaps = ExportFormat::from_path(path)?.carries_lightmaps();
@@ -440,7 +445,10 @@ impl Scene {
         let measured = outcome
             .measurement
             .ok_or_else(|| PyRuntimeError::new_err("the method measured no surfaces"))?;
-        let report = Report::new(&world.scene.name, &measured);
+        let mut report = Report::new(&world.scene.name, &measured);
+        if let Some(bands) = &bands {
+            report = report.with_bands(bands);
+        }
         serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
     }
 

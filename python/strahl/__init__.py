@@ -23,7 +23,38 @@ import numpy as np
 
 from . import _strahl
 
-__all__ = ["load", "from_arrays", "settings", "sun_position", "Scene", "Result", "SunPosition"]
+__all__ = ["load", "from_arrays", "settings", "sun_position", "Scene", "Result", "Band", "SunPosition"]
+
+
+@dataclass(frozen=True)
+class Band:
+    """The light in one wavelength band of a scene with ``[[bands]]``, one row per reported
+    surface (as in :class:`Result`) and per sensor."""
+
+    name: str
+    """The band's name."""
+    from_nm: float
+    """Shortest wavelength, nm."""
+    to_nm: float
+    """Longest wavelength, nm."""
+    incident_w: np.ndarray
+    """Power arriving on each surface in the band, W, shape (n,)."""
+    absorbed_w: np.ndarray
+    """Power absorbed by each surface in the band, W, shape (n,)."""
+    irradiance_w_m2: np.ndarray
+    """Mean irradiance in the band, W/m², shape (n,) (NaN where the area is not known)."""
+    incident_umol_s: np.ndarray
+    """Photon flux arriving, µmol/s, shape (n,)."""
+    absorbed_umol_s: np.ndarray
+    """Photon flux absorbed, µmol/s, shape (n,)."""
+    photon_irradiance_umol_m2_s: np.ndarray
+    """Mean photon irradiance, µmol m⁻² s⁻¹ (PPFD in a 400–700 nm band), shape (n,)."""
+    incident_w_sigma: np.ndarray
+    """Standard error of the incident power, W, shape (n,) (NaN where the method has none)."""
+    sensor_irradiance_w_m2: np.ndarray
+    """Irradiance at each sensor in the band, W/m², shape (s,)."""
+    sensor_photon_irradiance_umol_m2_s: np.ndarray
+    """Photon irradiance at each sensor, µmol m⁻² s⁻¹, shape (s,)."""
 
 
 @dataclass(frozen=True)
@@ -68,6 +99,12 @@ class Result:
     """Irradiance at each sensor, W/m², shape (s, 3)."""
     report: dict = field(repr=False)
     """The whole report, as `strahl solve --report FILE.json` writes it."""
+    bands: dict = field(default_factory=dict)
+    """For a scene with ``[[bands]]``: each band's :class:`Band` by its name, in the scene's
+    order; empty otherwise."""
+    red_far_red: Optional[np.ndarray] = None
+    """The red : far-red ratio of the photon irradiance per surface, shape (n,) (NaN where
+    there is no far red), for scenes with bands named ``red`` and ``far-red``; else None."""
 
     def report_json(self) -> str:
         """The report as JSON text."""
@@ -116,7 +153,28 @@ class Result:
             indirect_lux=weighted(self.indirect_lux),
             incident_w_sigma=np.full((k, 3), np.nan),
             lux_sigma=np.full(k, np.nan),
+            bands={
+                name: replace(
+                    b,
+                    incident_w=total(b.incident_w),
+                    absorbed_w=total(b.absorbed_w),
+                    irradiance_w_m2=per_area(total(b.incident_w)),
+                    incident_umol_s=total(b.incident_umol_s),
+                    absorbed_umol_s=total(b.absorbed_umol_s),
+                    photon_irradiance_umol_m2_s=per_area(total(b.incident_umol_s)),
+                    incident_w_sigma=np.full(k, np.nan),
+                )
+                for name, b in self.bands.items()
+            },
+            red_far_red=None if self.red_far_red is None else _ratio(self.bands, order, total),
         )
+
+
+def _ratio(bands: dict, order: list, total) -> np.ndarray:
+    """The red : far-red ratio of the summed photon flux of bands named red and far-red."""
+    pick = lambda names: next(b for n, b in bands.items() if n.lower() in names)
+    red, far = total(pick({"red"}).incident_umol_s), total(pick({"far-red", "far_red"}).incident_umol_s)
+    return np.divide(red, far, out=np.full(len(order), np.nan), where=far > 0)
 
 
 def _result(report_json: str) -> Result:
@@ -130,7 +188,33 @@ def _result(report_json: str) -> Result:
         return np.array([np.nan if row.get(key) is None else row[key] for row in rows], dtype=float)
 
     sensors = report.get("sensors", [])
+
+    def band(b):
+        def column(entries, key):
+            return np.array([np.nan if e.get(key) is None else e[key] for e in entries], dtype=float)
+
+        objects, band_sensors = b["objects"], b.get("sensors", [])
+        return Band(
+            name=b["name"],
+            from_nm=b["from_nm"],
+            to_nm=b["to_nm"],
+            incident_w=column(objects, "incident_power"),
+            absorbed_w=column(objects, "absorbed_power"),
+            irradiance_w_m2=column(objects, "irradiance"),
+            incident_umol_s=column(objects, "incident_photons_umol_s"),
+            absorbed_umol_s=column(objects, "absorbed_photons_umol_s"),
+            photon_irradiance_umol_m2_s=column(objects, "photon_irradiance_umol_m2_s"),
+            incident_w_sigma=column(objects, "incident_power_standard_error"),
+            sensor_irradiance_w_m2=column(band_sensors, "irradiance"),
+            sensor_photon_irradiance_umol_m2_s=column(band_sensors, "photon_irradiance_umol_m2_s"),
+        )
+
+    ratio = report.get("red_far_red")
     return Result(
+        bands={b["name"]: band(b) for b in report.get("bands", [])},
+        red_far_red=None
+        if ratio is None
+        else np.array([np.nan if r is None else r for r in ratio["objects"]], dtype=float),
         sensor_names=[r["name"] for r in sensors],
         sensor_lux=np.array([r["illuminance_lux"] for r in sensors], dtype=float),
         sensor_irradiance_w_m2=np.array([r["irradiance"] for r in sensors], dtype=float).reshape(-1, 3),

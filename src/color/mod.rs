@@ -6,8 +6,10 @@
 //! curve ([`linear_to_srgb`], [`srgb_to_linear`]) is applied only when writing 8-bit images
 //! and undone when reading 8-bit textures.
 
+mod spectrum;
 mod srgb;
 
+pub use spectrum::{Band, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError};
 pub use srgb::{linear_to_srgb, srgb_to_linear};
 
 use serde::{Deserialize, Serialize};

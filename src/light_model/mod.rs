@@ -40,5 +40,5 @@ mod trace;
 
 pub use trace::{
     LightTraceError, LightTraceOutput, LightTracePartial, LightTraceSettings, merge_light_batches,
-    trace_light, trace_light_batch,
+    trace_light, trace_light_batch, trace_light_groups,
 };

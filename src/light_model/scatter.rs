@@ -4,7 +4,11 @@
 //!
 //! The lobe k is chosen with probability `pₖ = Σ_c Φ_c·wₖ_c / Σ_c Φ_c` (Φ the photon's RGB
 //! power, wₖ the lobe's RGB weight) and the photon continues with `Φ·wₖ/pₖ`; with probability
-//! `1 − Σₖ pₖ` it is absorbed (Russian roulette by the material's albedo). The channel sum
+//! `1 − Σₖ pₖ` it is absorbed (Russian roulette by the material's albedo). A photon carrying
+//! several groups' powers (one path for several relit worlds, `trace.rs`) chooses by the sums
+//! over the groups' channels, `pₖ = Σ_g Σ_c Φᵍ_c·wᵍₖ_c / Σ_g Σ_c Φᵍ_c`, each group's power
+//! continuing with `Φᵍ·wᵍₖ/pₖ`; the groups differ only in their lobes' weights, so the
+//! direction is drawn once. The channel sum
 //! of the power is kept by every choice except the Phong lobe, whose sampled direction
 //! carries the factor `(s+2)/(s+1)·cos θ` (normalised lobe over its sampling density).
 //! Diffuse directions are cosine-distributed about the geometric normal (reversed for the
@@ -19,29 +23,27 @@ use crate::world::lobes::{Lobe, LocalView};
 use crate::world::{SurfaceHit, SurfaceMaterial};
 use glam::Vec3;
 
-/// A photon leaving a surface.
-#[derive(Clone, Copy, Debug)]
-pub struct Scattered {
-    /// Unit direction away from the surface.
-    pub dir: Vec3,
-    /// Power it carries on, W per channel.
-    pub power: Rgb64,
-}
-
-/// The fate of a photon of power `power` (W per channel) arriving along the unit direction
-/// `dir` at `hit`: `None` when absorbed.
+/// The fate of a photon arriving along the unit direction `dir` at `hit` and carrying, for
+/// each of the scenes `scenes` (one geometry, other materials), the power `powers[g]` (W per
+/// channel): the unit direction it leaves in, `powers` then holding what it carries on; `None`
+/// when absorbed. `materials` is scratch space (it holds the scenes' materials at `hit`).
 pub fn scatter_photon(
-    scene: &Scene,
+    scenes: &[&Scene],
     hit: &SurfaceHit,
     dir: Vec3,
-    power: Rgb64,
+    powers: &mut [Rgb64],
+    materials: &mut Vec<SurfaceMaterial>,
     sampler: &mut Sampler,
-) -> Option<Scattered> {
-    let m = SurfaceMaterial::at(scene, hit);
-    if m.is_black_from(hit.front_face) {
+) -> Option<Vec3> {
+    materials.clear();
+    materials.extend(scenes.iter().map(|scene| SurfaceMaterial::at(scene, hit)));
+    if materials.iter().all(|m| m.is_black_from(hit.front_face)) {
         return None;
     }
-    let total: f64 = power.to_array().iter().sum();
+    let total: f64 = powers
+        .iter()
+        .map(|p| p.to_array().iter().sum::<f64>())
+        .sum();
     if total <= 0.0 {
         return None;
     }
@@ -52,33 +54,37 @@ pub fn scatter_photon(
         wo: -dir,
         front_face: hit.front_face,
     };
-    let choice =
-        |w: Rgb| (power.r * w.r as f64 + power.g * w.g as f64 + power.b * w.b as f64) / total;
+    let weighted =
+        |power: &Rgb64, w: Rgb| power.r * w.r as f64 + power.g * w.g as f64 + power.b * w.b as f64;
     let u = sampler.next_1d() as f64;
     let mut cumulative = 0.0;
     let mut chosen = None;
     for lobe in Lobe::ALL {
-        let w = lobe.weight(&m);
-        let p = choice(w);
+        let p = powers
+            .iter()
+            .zip(materials.iter())
+            .map(|(power, m)| weighted(power, lobe.weight(m)))
+            .sum::<f64>()
+            / total;
         cumulative += p;
         if p > 0.0 && u < cumulative {
-            chosen = Some((lobe, w, p));
+            chosen = Some((lobe, p));
             break;
         }
     }
-    let (lobe, w, p) = chosen?;
+    let (lobe, p) = chosen?;
     let u2 = sampler.next_2d();
-    let (out, factor) = lobe.sample_photon(&m, &view, u2, sampler)?;
+    let (out, factor) = lobe.sample_photon(&materials[0], &view, u2, sampler)?;
     let ng = view.ng;
     let transmitted = lobe.transmits() && out.dot(ng) < 0.0;
     if (out.dot(ng) <= 0.0) != transmitted {
         return None;
     }
     let scale = factor as f64 / p;
-    Some(Scattered {
-        dir: out,
-        power: power * w.to_f64() * scale,
-    })
+    for (power, m) in powers.iter_mut().zip(materials.iter()) {
+        *power = *power * lobe.weight(m).to_f64() * scale;
+    }
+    Some(out)
 }
 
 #[cfg(test)]
@@ -89,6 +95,19 @@ mod tests {
     use crate::world::SceneGeometry;
 
     /// The hit of a ray coming straight down onto an upward unit quad with material `m`.
+    /// Where a photon of `power` arriving along `dir` at `hit` of `scene` goes, and with what.
+    fn scatter(
+        scene: &Scene,
+        hit: &SurfaceHit,
+        dir: Vec3,
+        power: Rgb64,
+        sampler: &mut Sampler,
+    ) -> Option<(Vec3, Rgb64)> {
+        let mut powers = [power];
+        let out = scatter_photon(&[scene], hit, dir, &mut powers, &mut Vec::new(), sampler)?;
+        Some((out, powers[0]))
+    }
+
     fn hit_on_quad(m: Material) -> (Scene, SurfaceHit) {
         let mut scene = Scene::empty("q");
         let id = scene.add_material(m);
@@ -122,11 +141,11 @@ mod tests {
         let mut sum_sq = [0.0f64; 3];
         for i in 0..n {
             let mut s = Sampler::new(SequenceKind::Random, 3, i, 0);
-            if let Some(out) = scatter_photon(&scene, &hit, -Vec3::Y, Rgb64::WHITE, &mut s) {
-                assert!(out.dir.y > 0.0);
+            if let Some((dir, power)) = scatter(&scene, &hit, -Vec3::Y, Rgb64::WHITE, &mut s) {
+                assert!(dir.y > 0.0);
                 for c in 0..3 {
-                    sum[c] += out.power[c];
-                    sum_sq[c] += out.power[c] * out.power[c];
+                    sum[c] += power[c];
+                    sum_sq[c] += power[c] * power[c];
                 }
             }
         }
@@ -163,12 +182,12 @@ mod tests {
         let (mut back, mut through, mut cos_through) = (0.0, 0.0, 0.0);
         for i in 0..n {
             let mut s = Sampler::new(SequenceKind::Random, 3, i, 0);
-            if let Some(out) = scatter_photon(&scene, &hit, -Vec3::Y, Rgb64::WHITE, &mut s) {
-                if out.dir.y > 0.0 {
-                    back += out.power.g;
+            if let Some((dir, power)) = scatter(&scene, &hit, -Vec3::Y, Rgb64::WHITE, &mut s) {
+                if dir.y > 0.0 {
+                    back += power.g;
                 } else {
-                    through += out.power.g;
-                    cos_through += f64::from(-out.dir.y) * out.power.g;
+                    through += power.g;
+                    cos_through += f64::from(-dir.y) * power.g;
                 }
             }
         }
@@ -195,13 +214,13 @@ mod tests {
         let mut reflected = 0;
         for i in 0..n {
             let mut s = Sampler::new(SequenceKind::Random, 5, i, 0);
-            let out =
-                scatter_photon(&scene, &hit, -Vec3::Y, Rgb64::new(1.0, 2.0, 3.0), &mut s).unwrap();
-            assert!((out.power.r - 1.0).abs() < 1e-12 && (out.power.b - 3.0).abs() < 1e-12);
-            if out.dir.y > 0.0 {
+            let (dir, power) =
+                scatter(&scene, &hit, -Vec3::Y, Rgb64::new(1.0, 2.0, 3.0), &mut s).unwrap();
+            assert!((power.r - 1.0).abs() < 1e-12 && (power.b - 3.0).abs() < 1e-12);
+            if dir.y > 0.0 {
                 reflected += 1;
             } else {
-                assert!((out.dir + Vec3::Y).length() < 1e-5);
+                assert!((dir + Vec3::Y).length() < 1e-5);
             }
         }
         // F = 0.04 at normal incidence; binomial σ = √(0.04·0.96/n) = 6.2e-4.

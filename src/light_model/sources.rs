@@ -132,8 +132,18 @@ pub struct PhotonSources {
 }
 
 impl PhotonSources {
-    /// The sources of `world`'s lights.
+    /// The sources of `world`'s lights with power.
     pub fn new(world: &World) -> Self {
+        Self::build(world, false)
+    }
+
+    /// The sources of all `world`'s lights, dark ones too: the same list, light for light,
+    /// for every world of one geometry and the same lights in other strengths.
+    pub fn all(world: &World) -> Self {
+        Self::build(world, true)
+    }
+
+    fn build(world: &World, keep_dark: bool) -> Self {
         let (center, radius) = world.entry_sphere();
         let mut sources = Vec::new();
         for (index, light) in world.lights.area.iter().enumerate() {
@@ -238,7 +248,9 @@ impl PhotonSources {
                 });
             }
         }
-        sources.retain(|s| s.power.is_finite() && s.power.max_channel() > 0.0);
+        if !keep_dark {
+            sources.retain(|s| s.power.is_finite() && s.power.max_channel() > 0.0);
+        }
         let parallel = sources.iter().any(|s| {
             matches!(
                 s.kind,

@@ -1,5 +1,12 @@
 //! A light-tracing run: photons from every source traced in parallel batches into fixed-point
 //! tallies, merged into the power per reported surface.
+//!
+//! Groups. A run may trace several groups at once ([`trace_light_groups`]): worlds of one
+//! geometry with other materials and lights (the band groups of a scene with wavelength
+//! bands). Each photon then follows one path for all of them, carrying each group's power: its
+//! source is drawn by the groups' summed power, and at every surface the lobe by the groups'
+//! summed weighted power (`scatter.rs`), each group's power divided by the probability of what
+//! was drawn, so every group's figures are unbiased and the path is traced once.
 
 use super::scatter::scatter_photon;
 use super::sensors::{connect_emission, connect_reflection, delta_light_direct};
@@ -13,8 +20,10 @@ use crate::sampling::{
     Batch, BatchPart, MergeError, NoSuchBatch, Sampler, SequenceKind, check_batches, from_fixed,
     to_fixed,
 };
-use crate::world::World;
+use crate::scene::Scene;
+use crate::world::{SurfaceMaterial, World};
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Fixed-point units of the total emitted power (largest channel).
@@ -64,6 +73,12 @@ pub enum LightTraceError {
     /// Zero photons asked for.
     #[error("at least one photon is needed")]
     NoPhotons,
+    /// Groups that are not one geometry relit without emitting surfaces.
+    #[error(
+        "the groups of a light-tracing run must share one compiled geometry and light it by \
+         lights, not emitting surfaces"
+    )]
+    UnsharedGroups,
     /// Sensors in a periodic scene: a sensor would have to see every copy of the plot.
     #[error(
         "sensors are not measured in a periodic scene yet: read the light on a small black \
@@ -165,42 +180,82 @@ impl LightTraceOutput {
     }
 }
 
+/// One group a run traces: a world's materials and lights (on the run's geometry) with the
+/// fixed-point scale of its tally.
+struct Group<'a> {
+    world: &'a World,
+    /// Each source's power in this group, W per channel; `None` for a run of one group, whose
+    /// photons carry their source's own power.
+    powers: GroupPowers,
+    /// Fixed-point units per watt.
+    scale: f64,
+    /// The largest channel of the group's total source power, W (1 when it has none).
+    largest_channel: f64,
+    /// The reference irradiance of sensor tallies, W·m⁻²: the total power over the square
+    /// of the bounding sphere's radius.
+    sensor_reference: f64,
+}
+
+impl Group<'_> {
+    fn quantize(&self, p: Rgb64) -> Fixed {
+        p.to_array().map(|c| to_fixed(c * self.scale))
+    }
+
+    /// Share of the total emitted power (largest channel) per watt.
+    fn share_per_watt(&self) -> f64 {
+        self.scale / FIXED_POINT_TOTAL
+    }
+
+    fn watts(&self, q: Fixed) -> Rgb64 {
+        Rgb64::from(q.map(|c| from_fixed(c) / self.scale))
+    }
+}
+
 /// Everything a worker needs to trace photon `i`.
 struct Tracer<'a> {
+    /// The first group's world: the geometry every group shares, and the sources' shapes.
     world: &'a World,
+    /// The sources photons are drawn from (for several groups, with their summed power).
     sources: PhotonSources,
+    groups: Vec<Group<'a>>,
+    /// The groups' scenes, in order, for scattering.
+    scenes: Vec<&'a Scene>,
     /// Cumulative power fractions of the sources (last = 1).
     cdf: Vec<f64>,
     /// Photons per source over the whole run.
     counts: Vec<u64>,
     table: &'a SurfaceTable,
-    /// Fixed-point units per watt.
-    scale: f64,
-    /// The largest channel of the sources' total power, W.
-    largest_channel: f64,
-    /// The reference irradiance of sensor tallies, W·m⁻²: the total power over the square
-    /// of the bounding sphere's radius.
-    sensor_reference: f64,
     settings: LightTraceSettings,
 }
 
-/// A worker's tally and the scratch space of the photon it traces.
+/// A worker's tallies (one per group) and the scratch space of the photon it traces.
 #[derive(Clone)]
 struct Worker {
-    tally: Tally,
-    /// The current photon's hits: report entry and incident power as a share of the total
-    /// emitted power (largest channel).
-    hits: Vec<(usize, [f64; 3])>,
-    /// The current photon's irradiance at each sensor, direct and indirect, W·m⁻².
-    sensor_light: Vec<[Rgb64; 2]>,
+    tallies: Vec<Tally>,
+    /// Per group, the current photon's hits: report entry and incident power as a share of
+    /// the group's total emitted power (largest channel).
+    hits: Vec<Vec<(usize, [f64; 3])>>,
+    /// Per group, the current photon's irradiance at each sensor, direct and indirect, W·m⁻².
+    sensor_light: Vec<Vec<[Rgb64; 2]>>,
+    /// Per group, the photon's power in fixed point, and what goes on after a hit.
+    q: Vec<Fixed>,
+    q_out: Vec<Fixed>,
+    /// Per group, the photon's power at a hit, W.
+    powers: Vec<Rgb64>,
+    /// Per group, the material at a hit (scratch space of scattering).
+    materials: Vec<SurfaceMaterial>,
 }
 
 impl Worker {
-    fn new(entries: usize, sensors: usize) -> Self {
+    fn new(groups: usize, entries: usize, sensors: usize) -> Self {
         Worker {
-            tally: Tally::new(entries, sensors),
-            hits: Vec::new(),
-            sensor_light: vec![[Rgb64::BLACK; 2]; sensors],
+            tallies: vec![Tally::new(entries, sensors); groups],
+            hits: vec![Vec::new(); groups],
+            sensor_light: vec![vec![[Rgb64::BLACK; 2]; sensors]; groups],
+            q: Vec::with_capacity(groups),
+            q_out: Vec::with_capacity(groups),
+            powers: Vec::with_capacity(groups),
+            materials: Vec::with_capacity(groups),
         }
     }
 }
@@ -225,103 +280,130 @@ impl Tracer<'_> {
             .min(self.cdf.len() - 1)
     }
 
-    fn quantize(&self, p: Rgb64) -> Fixed {
-        p.to_array().map(|c| to_fixed(c * self.scale))
-    }
-
-    /// Share of the total emitted power (largest channel) per watt.
-    fn share_per_watt(&self) -> f64 {
-        self.scale / FIXED_POINT_TOTAL
-    }
-
-    fn watts(&self, q: Fixed) -> Rgb64 {
-        Rgb64::from(q.map(|c| from_fixed(c) / self.scale))
-    }
-
     fn trace_photon(&self, index: u64, worker: &mut Worker) {
         let world = self.world;
         let mut sampler = Sampler::new(SequenceKind::Random, self.settings.seed, index, 0);
         let source = self.source_of(index);
         let photon = self.sources.emit(world, source, &mut sampler);
         let count = self.counts[source] as f64;
-        let share = photon.power.to_f64().map(|c| c / count);
-        let emitted = self.quantize(share);
-        let mut q = self.quantize(share.map(|c| c * photon.carried));
-        let sensing = !worker.sensor_light.is_empty();
-        let tally = &mut worker.tally;
-        match photon.surface {
-            Some((object, face)) => {
-                let e = self.table.entry(object, face);
-                add_fixed(&mut tally.entries[e].emitted, emitted);
-                if sensing && let Some(n) = photon.normal {
-                    let light = (&mut worker.sensor_light[..], 0);
-                    connect_emission(world, (photon.ray.origin, n), self.watts(q), light);
+        // What the photon carries of its source's power (1 but for a CIE sky's weighted
+        // draws, and the same in every channel), for the groups' shares.
+        let weight = photon.power.max_channel() / self.sources.sources[source].power.max_channel();
+        let sensing = !world.scene.sensors.is_empty();
+        worker.q.clear();
+        for (g, group) in self.groups.iter().enumerate() {
+            let power = match &group.powers {
+                None => photon.power,
+                Some(powers) => powers[source] * weight,
+            };
+            let share = power.to_f64().map(|c| c / count);
+            let emitted = group.quantize(share);
+            let q = group.quantize(share.map(|c| c * photon.carried));
+            let tally = &mut worker.tallies[g];
+            match photon.surface {
+                Some((object, face)) => {
+                    let e = self.table.entry(object, face);
+                    add_fixed(&mut tally.entries[e].emitted, emitted);
+                    if sensing && let Some(n) = photon.normal {
+                        let light = (&mut worker.sensor_light[g][..], 0);
+                        connect_emission(
+                            group.world,
+                            (photon.ray.origin, n),
+                            group.watts(q),
+                            light,
+                        );
+                    }
                 }
+                None => add_fixed(&mut tally.light_emission, emitted),
             }
-            None => add_fixed(&mut tally.light_emission, emitted),
+            add_fixed(&mut tally.escaped, [0, 1, 2].map(|c| emitted[c] - q[c]));
+            worker.q.push(q);
+            worker.hits[g].clear();
         }
-        add_fixed(&mut tally.escaped, [0, 1, 2].map(|c| emitted[c] - q[c]));
-        worker.hits.clear();
         let mut ray = photon.ray;
         let mut bounces = 0;
         loop {
-            tally.rays += 1;
+            worker.tallies[0].rays += 1;
             let Some(hit) = world.intersect(&ray) else {
-                add_fixed(&mut tally.escaped, q);
-                tally.escaped_photons += 1;
+                for (tally, q) in worker.tallies.iter_mut().zip(&worker.q) {
+                    add_fixed(&mut tally.escaped, *q);
+                }
+                worker.tallies[0].escaped_photons += 1;
                 break;
             };
             let entry_index = self.table.entry(hit.object, hit.face);
-            let power = self.watts(q);
-            worker.hits.push((
-                entry_index,
-                power.to_array().map(|c| c * self.share_per_watt()),
-            ));
-            let entry = &mut tally.entries[entry_index];
-            add_fixed(&mut entry.incident, q);
-            if bounces == 0 {
-                add_fixed(&mut entry.direct, q);
-            }
-            if sensing {
-                let light = (&mut worker.sensor_light[..], 1);
-                connect_reflection(world, (&hit, ray.dir), power, light);
+            worker.powers.clear();
+            for (g, group) in self.groups.iter().enumerate() {
+                let q = worker.q[g];
+                let power = group.watts(q);
+                worker.hits[g].push((
+                    entry_index,
+                    power.to_array().map(|c| c * group.share_per_watt()),
+                ));
+                let entry = &mut worker.tallies[g].entries[entry_index];
+                add_fixed(&mut entry.incident, q);
+                if bounces == 0 {
+                    add_fixed(&mut entry.direct, q);
+                }
+                if sensing {
+                    let light = (&mut worker.sensor_light[g][..], 1);
+                    connect_reflection(group.world, (&hit, ray.dir), power, light);
+                }
+                worker.powers.push(power);
             }
             let scattered = if bounces < self.settings.max_bounces {
-                scatter_photon(&world.scene, &hit, ray.dir, power, &mut sampler)
+                let (powers, materials) = (&mut worker.powers, &mut worker.materials);
+                scatter_photon(&self.scenes, &hit, ray.dir, powers, materials, &mut sampler)
             } else {
-                tally.truncated_paths += 1;
+                worker.tallies[0].truncated_paths += 1;
                 None
             };
-            let out = scattered.map(|s| (s.dir, self.quantize(s.power)));
-            match out {
-                Some((dir, q_out)) if q_out != [0; 3] => {
-                    add_fixed(&mut entry.absorbed, [0, 1, 2].map(|c| q[c] - q_out[c]));
-                    add_fixed(&mut entry.reflected, q_out);
-                    q = q_out;
+            worker.q_out.clear();
+            if scattered.is_some() {
+                let out = self.groups.iter().zip(&worker.powers);
+                worker
+                    .q_out
+                    .extend(out.map(|(group, &p)| group.quantize(p)));
+            }
+            match scattered {
+                Some(dir) if worker.q_out.iter().any(|q| *q != [0; 3]) => {
+                    for (g, tally) in worker.tallies.iter_mut().enumerate() {
+                        let entry = &mut tally.entries[entry_index];
+                        let (q, q_out) = (worker.q[g], worker.q_out[g]);
+                        add_fixed(&mut entry.absorbed, [0, 1, 2].map(|c| q[c] - q_out[c]));
+                        add_fixed(&mut entry.reflected, q_out);
+                    }
+                    std::mem::swap(&mut worker.q, &mut worker.q_out);
                     ray = spawn_ray(hit.p, hit.ng, dir);
                     bounces += 1;
                 }
                 _ => {
-                    add_fixed(&mut entry.absorbed, q);
+                    for (tally, q) in worker.tallies.iter_mut().zip(&worker.q) {
+                        add_fixed(&mut tally.entries[entry_index].absorbed, *q);
+                    }
                     break;
                 }
             }
         }
-        self.add_squares(worker);
+        for g in 0..self.groups.len() {
+            self.add_squares(g, worker);
+        }
     }
 
     /// Adds the squares of what the photon just traced brought to each surface it hit (its
-    /// hits summed per surface) and to each sensor, and moves its sensor light into the
-    /// tally.
-    fn add_squares(&self, worker: &mut Worker) {
-        let hits = &mut worker.hits;
+    /// hits summed per surface) and to each sensor in group `g`, and moves its sensor light
+    /// into the group's tally.
+    fn add_squares(&self, g: usize, worker: &mut Worker) {
+        let group = &self.groups[g];
+        let tally = &mut worker.tallies[g];
+        let hits = &mut worker.hits[g];
         let add = |a: [f64; 3], b: [f64; 3]| [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
         let all = hits.iter().fold([0.0; 3], |a, &(_, x)| add(a, x));
         let indirect = match hits.first() {
             Some(&(_, first)) => [0, 1, 2].map(|c| all[c] - first[c]),
             None => all,
         };
-        for (squares, total) in worker.tally.total_squares.iter_mut().zip([all, indirect]) {
+        for (squares, total) in tally.total_squares.iter_mut().zip([all, indirect]) {
             add_fixed_saturating(squares, total.map(square));
         }
         // Per surface: the photon's hits summed (in hit order, so the same for any thread).
@@ -329,16 +411,12 @@ impl Tracer<'_> {
         for run in hits.chunk_by(|a, b| a.0 == b.0) {
             let total = run.iter().fold([0.0; 3], |a, &(_, x)| add(a, x));
             add_fixed_saturating(
-                &mut worker.tally.entries[run[0].0].incident_squares,
+                &mut tally.entries[run[0].0].incident_squares,
                 total.map(square),
             );
         }
-        let sensor_scale = FIXED_POINT_TOTAL / self.sensor_reference;
-        for (light, fixed) in worker
-            .sensor_light
-            .iter_mut()
-            .zip(&mut worker.tally.sensors)
-        {
+        let sensor_scale = FIXED_POINT_TOTAL / group.sensor_reference;
+        for (light, fixed) in worker.sensor_light[g].iter_mut().zip(&mut tally.sensors) {
             let [direct, indirect] = *light;
             if direct.max_channel() <= 0.0 && indirect.max_channel() <= 0.0 {
                 continue;
@@ -353,33 +431,34 @@ impl Tracer<'_> {
             );
             let squares = (direct + indirect)
                 .to_array()
-                .map(|c| square(c / self.sensor_reference));
+                .map(|c| square(c / group.sensor_reference));
             add_fixed_saturating(&mut fixed.squares, squares);
             *light = [Rgb64::BLACK; 2];
         }
     }
 
-    /// The reading of sensor `k` from its tally over `traced` photons: the photons' direct and
-    /// indirect irradiance, the direct irradiance `delta` of the non-surface lights added, and
-    /// the standard error; everything of the photons multiplied by `factor` (to scale a
-    /// partial run to its full size).
+    /// The reading of sensor `k` from its tally in group `group` over `traced` photons: the
+    /// photons' direct and indirect irradiance, the direct irradiance `delta` of the
+    /// non-surface lights added, and the standard error; everything of the photons multiplied
+    /// by `factor` (to scale a partial run to its full size).
     fn sensor_reading(
         &self,
+        group: &Group<'_>,
         k: usize,
         fixed: &FixedSensor,
         delta: Rgb64,
         traced: u64,
         factor: f64,
     ) -> SensorReading {
-        let per_unit = self.sensor_reference / FIXED_POINT_TOTAL;
+        let per_unit = group.sensor_reference / FIXED_POINT_TOTAL;
         let irradiance = |q: Fixed| Rgb64::from(q.map(|c| from_fixed(c) * per_unit));
         let (direct, indirect) = (irradiance(fixed.direct), irradiance(fixed.indirect));
         let sum = direct + indirect;
         let squares = Rgb64::from(fixed.squares.map(|c| {
-            from_fixed(c) / FIXED_POINT_SQUARE * self.sensor_reference * self.sensor_reference
+            from_fixed(c) / FIXED_POINT_SQUARE * group.sensor_reference * group.sensor_reference
         }));
         SensorReading {
-            sensor: self.world.scene.sensors[k].clone(),
+            sensor: group.world.scene.sensors[k].clone(),
             direct: delta + direct * factor,
             indirect: indirect * factor,
             standard_error: Some(standard_error(sum, squares, traced) * factor),
@@ -396,6 +475,48 @@ fn standard_error(sum: Rgb64, squares: Rgb64, n: u64) -> Rgb64 {
             .max(0.0)
             .sqrt()
     }))
+}
+
+/// Each source's power in one group, W per channel (`None`: the sources' own).
+type GroupPowers = Option<Vec<Rgb>>;
+
+/// The sources of several groups' worlds: each world's sources, dark ones kept so that the
+/// lists align (the same lights in the same order), summed into the sources photons are drawn
+/// from, those with no power in any group left out; and each group's power per source kept.
+/// Refuses worlds that do not share one geometry, or that have emitting surfaces (whose
+/// photons' power is not their source's times one number).
+fn grouped_sources(
+    worlds: &[&World],
+) -> Result<(PhotonSources, Vec<GroupPowers>), LightTraceError> {
+    let shared = worlds
+        .iter()
+        .all(|w| Arc::ptr_eq(&w.geometry, &worlds[0].geometry) && w.lights.area.is_empty());
+    if !shared {
+        return Err(LightTraceError::UnsharedGroups);
+    }
+    let all: Vec<PhotonSources> = worlds.iter().map(|w| PhotonSources::all(w)).collect();
+    let n = all[0].sources.len();
+    if all.iter().any(|s| s.sources.len() != n) {
+        return Err(LightTraceError::UnsharedGroups);
+    }
+    let summed = |i: usize| all.iter().map(|s| s.sources[i].power).sum::<Rgb>();
+    let kept: Vec<usize> = (0..n)
+        .filter(|&i| summed(i).is_finite() && summed(i).max_channel() > 0.0)
+        .collect();
+    let mut sources = all[0].clone();
+    sources.sources = kept
+        .iter()
+        .map(|&i| {
+            let mut source = all[0].sources[i].clone();
+            source.power = summed(i);
+            source
+        })
+        .collect();
+    let powers = all
+        .iter()
+        .map(|s| Some(kept.iter().map(|&i| s.sources[i].power).collect()))
+        .collect();
+    Ok((sources, powers))
 }
 
 /// Photons per source for a run of `photons`: how many photon indices fall in each source's
@@ -455,11 +576,30 @@ pub fn trace_light(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<LightTraceOutput, LightTraceError> {
+    let mut outputs = trace_light_groups(&[world], settings, progress, cancel)?;
+    Ok(outputs.remove(0))
+}
+
+/// Traces `settings.photons` photons through the groups `worlds` at once: worlds of one
+/// geometry (made by [`World::relit`]) with other materials and lights, and no emitting
+/// surfaces when there are several. Each photon follows one path for every group (see the
+/// module's documentation); one output per group, in order, each with the run's rays and
+/// photon counts. One world gives exactly [`trace_light`]'s output.
+pub fn trace_light_groups(
+    worlds: &[&World],
+    settings: &LightTraceSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Vec<LightTraceOutput>, LightTraceError> {
     let start = Instant::now();
+    let world = worlds.first().ok_or(LightTraceError::UnsharedGroups)?;
     let table = SurfaceTable::new(&world.scene, &world.geometry);
-    let tracer = Tracer::new(world, settings, &table)?;
-    let (tally, done) = tracer.trace(0..settings.photons, progress, cancel);
-    Ok(tracer.output(&tally, done, start.elapsed().as_secs_f64()))
+    let tracer = Tracer::new(worlds, settings, &table)?;
+    let (tallies, done) = tracer.trace(0..settings.photons, progress, cancel);
+    let seconds = start.elapsed().as_secs_f64();
+    Ok((0..worlds.len())
+        .map(|g| tracer.output(g, &tallies, done, seconds))
+        .collect())
 }
 
 /// Traces batch `batch.index` of `batch.count` of the photons of `settings` (the photons
@@ -475,8 +615,9 @@ pub fn trace_light_batch(
     let photons = batch.share(settings.photons)?;
     let start = Instant::now();
     let table = SurfaceTable::new(&world.scene, &world.geometry);
-    let tracer = Tracer::new(world, settings, &table)?;
-    let (tally, traced) = tracer.trace(photons, progress, cancel);
+    let tracer = Tracer::new(&[world], settings, &table)?;
+    let (mut tallies, traced) = tracer.trace(photons, progress, cancel);
+    let tally = tallies.remove(0);
     Ok(LightTracePartial {
         scene_digest: format!("{:016x}", world.scene.digest()),
         settings: settings.clone(),
@@ -509,7 +650,7 @@ pub fn merge_light_batches(
     )?;
     let first = &partials[0];
     let table = SurfaceTable::new(&world.scene, &world.geometry);
-    let tracer = Tracer::new(world, &first.settings, &table)?;
+    let tracer = Tracer::new(&[world], &first.settings, &table)?;
     let mut sum = Tally::new(table.len(), world.scene.sensors.len());
     for p in partials {
         if p.tally.entries.len() != sum.entries.len() || p.tally.sensors.len() != sum.sensors.len()
@@ -520,23 +661,29 @@ pub fn merge_light_batches(
     }
     let traced = partials.iter().map(|p| p.photons_traced).sum();
     let seconds = partials.iter().map(|p| p.seconds).sum();
-    Ok(tracer.output(&sum, traced, seconds))
+    Ok(tracer.output(0, &[sum], traced, seconds))
 }
 
 impl<'a> Tracer<'a> {
-    /// The tracer of `settings` on `world`, tallying into `table`'s entries.
+    /// The tracer of `settings` on the groups `worlds` (one or more), tallying into `table`'s
+    /// entries.
     fn new(
-        world: &'a World,
+        worlds: &[&'a World],
         settings: &LightTraceSettings,
         table: &'a SurfaceTable,
     ) -> Result<Self, LightTraceError> {
         if settings.photons == 0 {
             return Err(LightTraceError::NoPhotons);
         }
+        let world = worlds[0];
         if world.field().is_some() && !world.scene.sensors.is_empty() {
             return Err(LightTraceError::PeriodicSensors);
         }
-        let sources = PhotonSources::new(world);
+        let (sources, group_powers) = if worlds.len() == 1 {
+            (PhotonSources::new(world), vec![None])
+        } else {
+            grouped_sources(worlds)?
+        };
         if sources.sources.is_empty() {
             return Err(LightTraceError::NoLights);
         }
@@ -557,21 +704,35 @@ impl<'a> Tracer<'a> {
             *last = 1.0;
         }
         let counts = photons_per_source(&cdf, settings.photons);
-        let largest_channel = sources
-            .sources
-            .iter()
-            .map(|s| s.power)
-            .sum::<Rgb>()
-            .max_channel() as f64;
         let radius = f64::from(world.entry_sphere().1);
+        let groups = worlds
+            .iter()
+            .zip(group_powers)
+            .map(|(&world, powers)| {
+                let total: Rgb = match &powers {
+                    None => sources.sources.iter().map(|s| s.power).sum(),
+                    Some(p) => p.iter().copied().sum(),
+                };
+                let largest = match total.max_channel() as f64 {
+                    l if l > 0.0 && l.is_finite() => l,
+                    _ => 1.0,
+                };
+                Group {
+                    world,
+                    powers,
+                    scale: FIXED_POINT_TOTAL / largest,
+                    largest_channel: largest,
+                    sensor_reference: largest / (radius * radius),
+                }
+            })
+            .collect();
         Ok(Tracer {
             world,
             cdf,
             counts,
             table,
-            scale: FIXED_POINT_TOTAL / largest_channel,
-            largest_channel,
-            sensor_reference: largest_channel / (radius * radius),
+            scenes: worlds.iter().map(|w| &w.scene).collect(),
+            groups,
             settings: settings.clone(),
             sources,
         })
@@ -584,13 +745,14 @@ impl<'a> Tracer<'a> {
         photons: std::ops::Range<u64>,
         progress: &dyn ProgressListener,
         cancel: &Cancel,
-    ) -> (Tally, u64) {
+    ) -> (Vec<Tally>, u64) {
         let workers = rayon::current_num_threads().max(1) * 4;
         let sensors = self.world.scene.sensors.len();
+        let groups = self.groups.len();
         let per_tally = self.table.len().max(1) * std::mem::size_of::<FixedBalance>()
             + sensors * std::mem::size_of::<FixedSensor>();
-        let slots = workers.min(TALLY_BUDGET / per_tally).max(1);
-        let mut workers = vec![Worker::new(self.table.len(), sensors); slots];
+        let slots = workers.min(TALLY_BUDGET / (per_tally * groups)).max(1);
+        let mut workers = vec![Worker::new(groups, self.table.len(), sensors); slots];
         let asked = photons.end - photons.start;
         let batch = asked.div_ceil(BATCHES).clamp(MIN_BATCH, MAX_BATCH);
         progress.start(asked);
@@ -612,27 +774,31 @@ impl<'a> Tracer<'a> {
             done = end;
         }
         progress.finish();
-        let mut sum = Tally::new(self.table.len(), sensors);
+        let mut sums = vec![Tally::new(self.table.len(), sensors); groups];
         for w in &workers {
-            sum.merge(&w.tally);
+            for (sum, tally) in sums.iter_mut().zip(&w.tallies) {
+                sum.merge(tally);
+            }
         }
-        (sum, done - photons.start)
+        (sums, done - photons.start)
     }
 
-    /// The output of the run whose photons, `done` of them, left `sum`, in `seconds`; scaled
-    /// to the photons asked for when fewer were traced.
-    fn output(&self, sum: &Tally, done: u64, seconds: f64) -> LightTraceOutput {
+    /// The output of group `g` of the run whose photons, `done` of them, left the groups'
+    /// tallies `sums` (the run's counts in the first), in `seconds`; scaled to the photons
+    /// asked for when fewer were traced.
+    fn output(&self, g: usize, sums: &[Tally], done: u64, seconds: f64) -> LightTraceOutput {
         let settings = &self.settings;
-        let largest_channel = self.largest_channel;
+        let (group, sum, counted) = (&self.groups[g], &sums[g], &sums[0]);
+        let largest_channel = group.largest_channel;
         let mut power = SurfacePower::new(self.table.clone());
         let mut errors = Vec::with_capacity(self.table.len());
         for (e, b) in sum.entries.iter().enumerate() {
             let out = power.balance_mut(e);
-            out.incident = self.watts(b.incident);
-            out.direct = Some(self.watts(b.direct));
-            out.absorbed = self.watts(b.absorbed);
-            out.emitted = self.watts(b.emitted);
-            out.reflected = self.watts(b.reflected);
+            out.incident = group.watts(b.incident);
+            out.direct = Some(group.watts(b.direct));
+            out.absorbed = group.watts(b.absorbed);
+            out.emitted = group.watts(b.emitted);
+            out.reflected = group.watts(b.reflected);
             let squares =
                 Rgb64::from(b.incident_squares.map(|c| {
                     from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel
@@ -650,33 +816,33 @@ impl<'a> Tracer<'a> {
                 Rgb64::from(sum.total_squares[k].map(|c| {
                     from_fixed(c) / FIXED_POINT_SQUARE * largest_channel * largest_channel
                 }));
-            standard_error(self.watts(totals[k]), squares, done)
+            standard_error(group.watts(totals[k]), squares, done)
         });
         power.set_total_standard_errors(incident_error, indirect_error);
-        power.add_light_emission(self.watts(sum.light_emission));
-        power.add_escaped(self.watts(sum.escaped));
+        power.add_light_emission(group.watts(sum.light_emission));
+        power.add_escaped(group.watts(sum.escaped));
         let factor = if done > 0 && done < settings.photons {
             settings.photons as f64 / done as f64
         } else {
             1.0
         };
         power.scale(factor);
-        let delta = delta_light_direct(self.world);
+        let delta = delta_light_direct(group.world);
         let sensors = sum
             .sensors
             .iter()
             .zip(delta)
             .enumerate()
-            .map(|(k, (fixed, delta))| self.sensor_reading(k, fixed, delta, done, factor))
+            .map(|(k, (fixed, delta))| self.sensor_reading(group, k, fixed, delta, done, factor))
             .collect();
         LightTraceOutput {
             power,
             sensors,
             photons: settings.photons,
             photons_traced: done,
-            rays: sum.rays,
-            escaped_photons: sum.escaped_photons,
-            truncated_paths: sum.truncated_paths,
+            rays: counted.rays,
+            escaped_photons: counted.escaped_photons,
+            truncated_paths: counted.truncated_paths,
             unsampled_sources: self.counts.iter().filter(|&&c| c == 0).count(),
             sources: self.counts.len(),
             seconds,

@@ -5,6 +5,7 @@
 //! [`Stats`], with the process's peak memory; a solver's [`Measurement`] holds its surface
 //! power, sensor readings and statistics together.
 
+mod bands;
 mod film;
 mod lit_mesh;
 mod measurement;
@@ -16,6 +17,7 @@ mod surface_power;
 mod surfaces;
 mod value_image;
 
+pub use bands::{BandFigures, BandMeasurement, BandValues, GroupMeasurement, SensorBand};
 pub use film::Film;
 pub use lit_mesh::{LightmappedSurface, LitMesh};
 pub use measurement::Measurement;

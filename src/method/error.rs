@@ -3,6 +3,8 @@
 use crate::light_model::LightTraceError;
 use crate::radiosity::solve::SolveError;
 use crate::sampling::{MergeError, NoSuchBatch};
+use crate::scene::SpectralError;
+use crate::world::GeometryError;
 
 /// A setting outside its range, named as the command line names it (`min-area`,
 /// `time-limit`): displays as `min-area must lie between 0 and 1 (got 0)`.
@@ -76,4 +78,10 @@ pub enum MethodError {
     /// A radiosity solver refused the scene.
     #[error(transparent)]
     Radiosity(#[from] SolveError),
+    /// The scene's bands cannot be solved (boxed: the error names materials and bands).
+    #[error(transparent)]
+    Bands(#[from] Box<SpectralError>),
+    /// A band's scene could not be compiled.
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
 }

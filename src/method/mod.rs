@@ -27,6 +27,7 @@
 //! assert!((by_radiosity / by_photons - 1.0).abs() < 0.02, "{by_radiosity} {by_photons}");
 //! ```
 
+mod bands;
 mod batches;
 mod error;
 mod kind;
@@ -36,6 +37,7 @@ mod render_batches;
 mod run;
 mod settings;
 
+pub use bands::run_with_bands;
 pub use batches::{merge_batches, run_batch};
 pub use error::{MethodError, SettingError};
 pub use kind::MethodKind;
@@ -60,8 +62,9 @@ pub use crate::choice::{Choice, UnknownName};
 pub use crate::color::{LUMINOUS_EFFICACY, Rgb64};
 pub use crate::geometry::Ray;
 pub use crate::measure::{
-    Film, LitMesh, Measurement, Photometric, RoundSolution, SensorReading, ValueImage,
-    peak_resident_bytes, resident_bytes, usable_memory_bytes,
+    BandFigures, BandMeasurement, BandValues, Film, LitMesh, Measurement, Photometric,
+    RoundSolution, SensorBand, SensorReading, ValueImage, peak_resident_bytes, resident_bytes,
+    usable_memory_bytes,
 };
 pub use crate::progress::{Cancel, NoProgress, ProgressListener};
 pub use crate::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, RefinePass};

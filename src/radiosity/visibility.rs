@@ -320,7 +320,7 @@ impl Visibility {
         let mut clusters: Vec<Cluster> = Vec::new();
         let mut bounds_of = Vec::with_capacity(geometry.len());
         for prim in 0..geometry.len() as u32 {
-            let b = PrimitiveSet::bounds(geometry, prim);
+            let b = PrimitiveSet::bounds(geometry.as_ref(), prim);
             let bounds = Bounds {
                 min: b.min.as_dvec3(),
                 max: b.max.as_dvec3(),

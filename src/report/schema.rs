@@ -31,8 +31,9 @@
 //! (infinite planes) have no area: `area`, `irradiance`, `radiosity` and `illuminance_lux`
 //! are then `null`.
 
+use super::bands::{BandReport, RedFarRedReport, band_reports, red_far_red};
 use crate::color::{LUMINOUS_EFFICACY, Rgb64};
-use crate::measure::{Measurement, PowerBalance, SensorReading, Stats, Totals};
+use crate::measure::{BandMeasurement, Measurement, PowerBalance, SensorReading, Stats, Totals};
 use serde::{Deserialize, Serialize};
 
 /// A complete report.
@@ -54,6 +55,13 @@ pub struct Report {
     /// One entry per sensor of the scene, in scene order (absent when there is none).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorReport>,
+    /// Per wavelength band of the scene, in its order (absent for a scene in RGB only;
+    /// `super::bands`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub bands: Vec<BandReport>,
+    /// The red : far-red ratio, when the scene has bands named red and far-red.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub red_far_red: Option<RedFarRedReport>,
 }
 
 /// The reading of one point sensor.
@@ -237,7 +245,25 @@ impl Report {
             objects,
             totals: power.totals(),
             sensors: measured.sensors.iter().map(SensorReport::new).collect(),
+            bands: Vec::new(),
+            red_far_red: None,
         }
+    }
+
+    /// This report with the figures of `bands` (measured on the same scene by the same
+    /// method): a band per entry of `bands`, and the red : far-red ratio where bands named
+    /// `red` and `far-red` (or `far_red`, any case) exist.
+    pub fn with_bands(mut self, bands: &BandMeasurement) -> Report {
+        let objects: Vec<_> = self
+            .objects
+            .iter()
+            .map(|o| (o.name.as_str(), o.face, o.area))
+            .collect();
+        let sensors: Vec<&str> = self.sensors.iter().map(|s| s.name.as_str()).collect();
+        let reports = band_reports(bands, &objects, &sensors);
+        self.red_far_red = red_far_red(&reports);
+        self.bands = reports;
+        self
     }
 
     /// The first non-finite figure, as `(entry, field)` (`entry` is an object's name or
@@ -268,6 +294,9 @@ impl Report {
             if !finite(&s.irradiance) || !s.illuminance_lux.is_finite() {
                 return Some((s.name.clone(), "sensor irradiance"));
             }
+        }
+        if let Some(found) = super::bands::first_non_finite(&self.bands) {
+            return Some(found);
         }
         let t = &self.totals;
         [
@@ -320,6 +349,8 @@ mod tests {
             objects: vec![ObjectReport::new("a".into(), None, (1.0, 1), &fine, None)],
             totals: Totals::default(),
             sensors: Vec::new(),
+            bands: Vec::new(),
+            red_far_red: None,
         };
         assert_eq!(report.first_non_finite(), None);
         report.totals.escaped_power = Rgb64::new(0.0, f64::NEG_INFINITY, 0.0);
@@ -362,6 +393,8 @@ mod tests {
             )],
             totals: Totals::default(),
             sensors: Vec::new(),
+            bands: Vec::new(),
+            red_far_red: None,
         };
         let text = serde_json::to_string(&report).unwrap();
         assert!(text.contains("\"stats\":{\"seconds\":1.5,\"rays\":10,\"photons\":7}"));

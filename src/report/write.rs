@@ -8,9 +8,16 @@
 //! area; no direct split or standard error from the solver). The scene name, solver, units,
 //! statistics and totals are in the JSON form only.
 //!
+//! A scene with bands adds, per band, the columns `<band>_incident_power`,
+//! `<band>_absorbed_power` (W), `<band>_irradiance` (W·m⁻²), `<band>_incident_photons_umol_s`,
+//! `<band>_absorbed_photons_umol_s` and `<band>_photon_irradiance_umol_m2_s`, then
+//! `red_far_red` where the scene has red and far-red bands.
+//!
 //! When the scene has sensors, a second file next to it, named `<stem>.sensors.csv`, has one
 //! row per sensor: `name, x, y, z, nx, ny, nz, illuminance_lux, direct_illuminance_lux,
-//! indirect_illuminance_lux, standard_error_lux, irradiance_{r,g,b}` (irradiance in W·m⁻²).
+//! indirect_illuminance_lux, standard_error_lux, irradiance_{r,g,b}` (irradiance in W·m⁻²),
+//! and per band `<band>_irradiance` and `<band>_photon_irradiance_umol_m2_s`, then
+//! `red_far_red`.
 
 use super::schema::Report;
 use crate::atomic_file::AtomicFile;
@@ -121,23 +128,39 @@ pub fn sensors_csv_path(path: &Path) -> std::path::PathBuf {
 /// Writes one CSV row per sensor of `report` to `out`.
 fn write_sensors_csv(report: &Report, out: impl Write) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
-    w.write_record([
-        "name",
-        "x",
-        "y",
-        "z",
-        "nx",
-        "ny",
-        "nz",
-        "illuminance_lux",
-        "direct_illuminance_lux",
-        "indirect_illuminance_lux",
-        "standard_error_lux",
-        "irradiance_r",
-        "irradiance_g",
-        "irradiance_b",
-    ])?;
-    for s in &report.sensors {
+    w.write_record(
+        [
+            "name",
+            "x",
+            "y",
+            "z",
+            "nx",
+            "ny",
+            "nz",
+            "illuminance_lux",
+            "direct_illuminance_lux",
+            "indirect_illuminance_lux",
+            "standard_error_lux",
+            "irradiance_r",
+            "irradiance_g",
+            "irradiance_b",
+        ]
+        .map(String::from)
+        .into_iter()
+        .chain(report.bands.iter().flat_map(|b| {
+            [
+                format!("{}_irradiance", b.name),
+                format!("{}_photon_irradiance_umol_m2_s", b.name),
+            ]
+        }))
+        .chain(
+            report
+                .red_far_red
+                .as_ref()
+                .map(|_| "red_far_red".to_string()),
+        ),
+    )?;
+    for (k, s) in report.sensors.iter().enumerate() {
         let mut row = vec![s.name.clone()];
         row.extend(s.position.iter().chain(&s.normal).map(|v| v.to_string()));
         row.extend(
@@ -154,13 +177,20 @@ fn write_sensors_csv(report: &Report, out: impl Write) -> Result<(), csv::Error>
                 .unwrap_or_default(),
         );
         row.extend(s.irradiance.to_array().map(|v| v.to_string()));
+        for b in &report.bands {
+            let f = &b.sensors[k];
+            row.extend([f.irradiance, f.photon_irradiance_umol_m2_s].map(|v| v.to_string()));
+        }
+        if let Some(ratio) = &report.red_far_red {
+            row.push(ratio.sensors[k].map(|v| v.to_string()).unwrap_or_default());
+        }
         w.write_record(&row)?;
     }
     w.flush()?;
     Ok(())
 }
 
-/// Column names of the CSV form.
+/// Column names of the CSV form of a report without bands.
 pub(crate) fn csv_header() -> Vec<String> {
     let mut h = vec![
         "name".to_string(),
@@ -188,17 +218,34 @@ pub(crate) fn csv_header() -> Vec<String> {
     h
 }
 
+/// The columns each band adds to an object's row, after its name and an underscore.
+const BAND_COLUMNS: [&str; 6] = [
+    "incident_power",
+    "absorbed_power",
+    "irradiance",
+    "incident_photons_umol_s",
+    "absorbed_photons_umol_s",
+    "photon_irradiance_umol_m2_s",
+];
+
 /// Writes the CSV form of `report` to `out`.
 fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
-    w.write_record(csv_header())?;
+    let mut header = csv_header();
+    for b in &report.bands {
+        header.extend(BAND_COLUMNS.map(|c| format!("{}_{c}", b.name)));
+    }
+    if report.red_far_red.is_some() {
+        header.push("red_far_red".into());
+    }
+    w.write_record(header)?;
     let num = |v: f64| v.to_string();
     let opt = |v: Option<f64>| v.map(num).unwrap_or_default();
     let rgb = |row: &mut Vec<String>, v: Option<Rgb64>| match v {
         Some(c) => row.extend(c.to_array().map(num)),
         None => row.extend([String::new(), String::new(), String::new()]),
     };
-    for o in &report.objects {
+    for (e, o) in report.objects.iter().enumerate() {
         let mut row = vec![
             o.name.clone(),
             o.face.map(|f| f.to_string()).unwrap_or_default(),
@@ -220,6 +267,22 @@ fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
         row.push(opt(o.direct_illuminance_lux));
         row.push(opt(o.indirect_illuminance_lux));
         row.push(opt(o.illuminance_standard_error_lux));
+        for b in &report.bands {
+            let f = &b.objects[e];
+            row.extend([
+                num(f.incident_power),
+                num(f.absorbed_power),
+                opt(f.irradiance),
+            ]);
+            row.extend([
+                num(f.incident_photons_umol_s),
+                num(f.absorbed_photons_umol_s),
+                opt(f.photon_irradiance_umol_m2_s),
+            ]);
+        }
+        if let Some(ratio) = &report.red_far_red {
+            row.push(opt(ratio.objects[e]));
+        }
         w.write_record(&row)?;
     }
     w.flush()?;
@@ -248,6 +311,8 @@ mod tests {
             ],
             totals: Totals::default(),
             sensors: Vec::new(),
+            bands: Vec::new(),
+            red_far_red: None,
         }
     }
 

@@ -181,6 +181,22 @@ impl LightKind {
         }
     }
 
+    /// The light's strength, whatever its unit: the intensity of point, Lambertian and spot
+    /// lights (W·sr⁻¹), a directional light's irradiance (W·m⁻²), a uniform sky's radiance
+    /// (W·sr⁻¹·m⁻²), a CIE sky's diffuse horizontal irradiance (W·m⁻²).
+    pub fn strength_mut(&mut self) -> &mut Rgb {
+        match self {
+            LightKind::Point { intensity, .. }
+            | LightKind::Lambertian { intensity, .. }
+            | LightKind::Spot { intensity, .. } => intensity,
+            LightKind::Directional { irradiance, .. } => irradiance,
+            LightKind::Sky { radiance } => radiance,
+            LightKind::CieSky {
+                diffuse_horizontal, ..
+            } => diffuse_horizontal,
+        }
+    }
+
     /// Whether this is a sky (uniform or CIE): light from every unblocked direction at
     /// infinity rather than from a point or along one direction.
     pub fn is_sky(&self) -> bool {

@@ -15,9 +15,11 @@ mod open;
 mod periodic;
 pub(crate) mod polygon;
 mod sensor;
+mod spectral;
 mod tessellate;
 mod texture;
 
+pub use crate::color::{Band, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError};
 pub use camera::{Camera, CameraRays};
 pub use file::{LoadOptions, SceneError, load, load_mesh_file, load_str, load_str_with, load_with};
 pub use light::{Incidence, Light, LightKind};
@@ -33,6 +35,9 @@ pub use object::{AnalyticKind, Object, Shape};
 pub use open::{OpenError, is_mesh_file, open};
 pub use periodic::Periodic;
 pub use sensor::{MAX_SENSORS, Sensor};
+pub use spectral::{
+    BandChannel, BandGroup, BandQuantity, MaterialSpectra, PhotonFactor, Spectral, SpectralError,
+};
 pub use tessellate::{polygon_area, polygon_normal};
 pub use texture::{
     ALPHA_CUTOFF, ColorSpace, Coverage, MAX_TEXELS, MAX_TEXTURE_SIDE, TexelStats, Texture,
@@ -62,6 +67,9 @@ pub struct Scene {
     /// The plot that repeats in x and z, for a scene standing for a field; `None` for a
     /// scene that is all there is.
     pub periodic: Option<Periodic>,
+    /// The wavelength bands the scene reports light in, with its lights' and materials'
+    /// spectra; `None` for a scene in RGB only.
+    pub spectral: Option<Spectral>,
 }
 
 impl Scene {
@@ -107,6 +115,7 @@ impl Scene {
             lights: Vec::new(),
             sensors: Vec::new(),
             periodic: None,
+            spectral: None,
         }
     }
 

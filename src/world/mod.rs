@@ -41,48 +41,55 @@ use crate::scene::{LightKind, Material, Scene, Shape};
 use glam::Vec3;
 use std::borrow::Cow;
 use std::f32::consts::PI;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// A scene with everything needed to answer ray queries.
 pub struct World {
     /// The scene it was built from.
     pub scene: Scene,
-    /// World-space primitives.
-    pub geometry: SceneGeometry,
+    /// World-space primitives (shared with the worlds [`World::relit`] makes).
+    pub geometry: Arc<SceneGeometry>,
     /// The lights.
     pub lights: LightSet,
     /// The accelerator over `geometry`.
-    accel: Box<dyn Accelerator<SceneGeometry>>,
+    accel: Arc<dyn Accelerator<SceneGeometry>>,
     /// Which accelerator.
     kind: AccelKind,
     /// Wall-clock seconds the accelerator took to build.
     build_seconds: f64,
     /// The plot of a periodic scene with its neighbours' geometry reaching into it.
-    field: Option<Field>,
+    field: Option<Arc<Field>>,
+}
+
+/// Refuses a material of `scene` that scatters more than it receives (scene files check
+/// this with the file's place; scenes built in code meet it here).
+fn check_energy(scene: &Scene) -> Result<(), GeometryError> {
+    let creates_light = scene.materials.iter().find_map(|m| {
+        let sum = m.albedo_bound();
+        (sum.is_nan() || sum > 1.0 + crate::scene::ENERGY_TOLERANCE).then_some((m, sum))
+    });
+    match creates_light {
+        Some((m, sum)) => Err(GeometryError::CreatesLight {
+            material: m.name.clone(),
+            sum,
+        }),
+        None => Ok(()),
+    }
 }
 
 impl World {
     /// Flattens `scene` and builds the accelerator `kind` over it; refuses a degenerate shape
     /// and a material that scatters more than it receives.
     pub fn new(scene: Scene, kind: AccelKind) -> Result<World, GeometryError> {
-        // Scene files check this with the file's place; scenes built in code meet it here.
-        let creates_light = scene.materials.iter().find_map(|m| {
-            let sum = m.albedo_bound();
-            (sum.is_nan() || sum > 1.0 + crate::scene::ENERGY_TOLERANCE).then_some((m, sum))
-        });
-        if let Some((m, sum)) = creates_light {
-            return Err(GeometryError::CreatesLight {
-                material: m.name.clone(),
-                sum,
-            });
-        }
-        let geometry = SceneGeometry::new(&scene)?;
+        check_energy(&scene)?;
+        let geometry = Arc::new(SceneGeometry::new(&scene)?);
         let start = Instant::now();
-        let accel = kind.build(&geometry);
+        let accel = Arc::from(kind.build(geometry.as_ref()));
         let build_seconds = start.elapsed().as_secs_f64();
         let lights = LightSet::new(&scene, &geometry);
         let field = match scene.periodic {
-            Some(plot) => Some(Field::new(plot, &scene, &geometry)?),
+            Some(plot) => Some(Arc::new(Field::new(plot, &scene, &geometry)?)),
             None => None,
         };
         Ok(World {
@@ -93,6 +100,28 @@ impl World {
             kind,
             build_seconds,
             field,
+        })
+    }
+
+    /// The world of `scene`, the same geometry as this world's scene with other materials
+    /// and lights (a band of a scene with bands, [`crate::scene::Scene::band_groups`]): its
+    /// primitives, accelerator and periodic field are this world's, shared, not built again.
+    /// Refuses a scene whose objects or plot differ, and what [`World::new`] refuses of
+    /// materials.
+    pub fn relit(&self, scene: Scene) -> Result<World, GeometryError> {
+        if scene.objects != self.scene.objects || scene.periodic != self.scene.periodic {
+            return Err(GeometryError::NotRelit);
+        }
+        check_energy(&scene)?;
+        let lights = LightSet::new(&scene, &self.geometry);
+        Ok(World {
+            scene,
+            geometry: Arc::clone(&self.geometry),
+            lights,
+            accel: Arc::clone(&self.accel),
+            kind: self.kind,
+            build_seconds: 0.0,
+            field: self.field.clone(),
         })
     }
 
@@ -198,7 +227,7 @@ impl World {
     /// The plot of a periodic scene as ray queries see it; `None` for a scene that is all
     /// there is.
     pub fn field(&self) -> Option<&Field> {
-        self.field.as_ref()
+        self.field.as_deref()
     }
 
     /// The closest primitive hit along `ray` with `t ∈ (0, t_max]`, not yet described (the

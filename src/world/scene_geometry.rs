@@ -81,6 +81,9 @@ pub enum GeometryError {
         /// The largest per-channel sum of its lobe weights.
         sum: f32,
     },
+    /// A scene given to [`super::World::relit`] whose objects or plot are not the world's.
+    #[error("a relit world must have the same objects and plot as the world it comes from")]
+    NotRelit,
 }
 
 /// The scene's geometry in world space, ready for ray queries.

@@ -13,6 +13,7 @@ use super::meshes::{FaceMaterials, MeshCache};
 use super::periodic::build_periodic;
 use super::sensors::build_sensors;
 use super::shapes::build_shape;
+use super::spectra::{build_spectral, build_spectrum};
 use super::textures::TextureCache;
 use super::transform::build_transform;
 use crate::scene::{Material, MaterialId, Object, Scene, Shape};
@@ -67,9 +68,16 @@ pub(super) fn build_scene(
         let object = build_object(&t, entry.get_ref(), &mut context, &mut scene)?;
         scene.objects.push(object);
     }
+    let mut light_spectra = Vec::new();
     for (i, entry) in file.lights.iter().enumerate() {
         let t = Table::new(src, format!("lights[{i}]"), entry.span());
-        scene.lights.extend(build_lights(&t, entry.get_ref())?);
+        let lights = build_lights(&t, entry.get_ref())?;
+        let spectrum = entry.get_ref().spectrum.as_ref();
+        let spectrum = spectrum
+            .map(|v| build_spectrum(&t, "spectrum", v, base_dir))
+            .transpose()?;
+        light_spectra.extend(lights.iter().map(|_| (i, spectrum.clone())));
+        scene.lights.extend(lights);
     }
     for (i, entry) in file.sensors.iter().enumerate() {
         let t = Table::new(src, format!("sensors[{i}]"), entry.span());
@@ -79,6 +87,7 @@ pub(super) fn build_scene(
         let t = Table::new(src, "periodic", entry.span());
         scene.periodic = Some(build_periodic(&t, entry.get_ref())?);
     }
+    scene.spectral = build_spectral(src, &file, base_dir, &mut scene, light_spectra)?;
     Ok(scene)
 }
 

@@ -25,6 +25,16 @@ pub(super) struct SceneFile {
     #[serde(default)]
     pub sensors: Vec<Spanned<SensorEntry>>,
     pub periodic: Option<Spanned<PeriodicEntry>>,
+    #[serde(default)]
+    pub bands: Vec<Spanned<BandEntry>>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct BandEntry {
+    pub name: Option<Spanned<String>>,
+    pub from_nm: Option<Spanned<f64>>,
+    pub to_nm: Option<Spanned<f64>>,
 }
 
 /// `[periodic]`: the plot that repeats in x and z (`x = [x0, x1]`, `z = [z0, z1]`).
@@ -79,6 +89,8 @@ pub(super) struct MaterialEntry {
     pub ior: Option<Spanned<f32>>,
     pub alpha_texture: Option<Spanned<TextureEntry>>,
     pub one_sided: Option<bool>,
+    pub diffuse_spectrum: Option<Spanned<toml::Value>>,
+    pub translucency_spectrum: Option<Spanned<toml::Value>>,
 }
 
 /// The `type` of an object.
@@ -247,17 +259,23 @@ impl LightType {
 
     /// The fields this type accepts besides `type` and `name`.
     pub fn fields(self) -> Vec<&'static str> {
-        let amount = ["intensity", "intensity_cd", "flux_lm", "color"];
+        let amount = ["intensity", "intensity_cd", "flux_lm", "color", "spectrum"];
         let aimed = [&["position", "direction", "look_at"][..], &amount[..]].concat();
         match self {
             LightType::Point => [&["position"][..], &amount[..]].concat(),
             LightType::Lambertian => aimed,
             LightType::Spot => [&aimed[..], &["inner_degrees", "outer_degrees"][..]].concat(),
             LightType::Directional => dated(
-                &["direction", "irradiance", "illuminance_lux", "color"],
+                &[
+                    "direction",
+                    "irradiance",
+                    "illuminance_lux",
+                    "color",
+                    "spectrum",
+                ],
                 true,
             ),
-            LightType::Sky => vec!["radiance", "luminance_cd_m2", "color"],
+            LightType::Sky => vec!["radiance", "luminance_cd_m2", "color", "spectrum"],
             LightType::CieSky => dated(
                 &[
                     "sky_type",
@@ -265,10 +283,11 @@ impl LightType {
                     "diffuse_horizontal",
                     "illuminance_lux",
                     "color",
+                    "spectrum",
                 ],
                 true,
             ),
-            LightType::Day => dated(&["sky_type", "states"], false),
+            LightType::Day => dated(&["sky_type", "states", "spectrum"], false),
         }
     }
 }
@@ -323,6 +342,7 @@ pub(super) struct LightEntry {
     pub temperature_c: Option<Spanned<f64>>,
     pub delta_t_s: Option<Spanned<f64>>,
     pub states: Option<Spanned<Vec<Spanned<DayStateEntry>>>>,
+    pub spectrum: Option<Spanned<toml::Value>>,
 }
 
 /// One state of a `day` light: `{ time = "HH:MM", direct_normal = …, diffuse_horizontal = … }`.
@@ -369,6 +389,7 @@ impl LightEntry {
             ("temperature_c", real(&self.temperature_c)),
             ("delta_t_s", real(&self.delta_t_s)),
             ("states", self.states.as_ref().map(Spanned::span)),
+            ("spectrum", self.spectrum.as_ref().map(Spanned::span)),
         ]
         .into_iter()
         .filter_map(|(name, span)| span.map(|span| (name, span)))

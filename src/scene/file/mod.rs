@@ -17,6 +17,7 @@ mod periodic;
 mod photometry;
 mod sensors;
 mod shapes;
+mod spectra;
 mod sun;
 mod textures;
 mod transform;
