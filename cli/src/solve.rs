@@ -190,13 +190,6 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     }
     let world = Arc::new(world);
     if let (Some(batch), Some(path)) = (args.batch, &args.partial) {
-        if world.scene.spectral.is_some() {
-            bail!(
-                "'{}' has wavelength bands: its bands are not split into batches yet; solve it \
-                 in one run",
-                args.scene
-            );
-        }
         return solve_batch(args, &world, &method, batch, path);
     }
     let (outcome, bands) = run_measuring(&world, &method, "solving", args.quiet, args.threads)?;

@@ -6,8 +6,10 @@ and 4.566 09 µmol per joule: tests/bands.rs derives both)."""
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import strahl
+import strahl.distributed
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "plant-bands" / "plant.toml"
 
@@ -50,6 +52,11 @@ def test_the_plant_example_gives_every_leaf_its_bands():
     assert result.red_far_red.shape == (n,) and np.all(result.red_far_red[leaves] > 0)
     summed = result.by_object()
     assert np.allclose(summed.bands["PAR"].absorbed_umol_s, par.absorbed_umol_s)
+
+
+def test_a_scene_with_bands_is_not_split_into_batches():
+    with pytest.raises(ValueError, match="not split into batches"):
+        strahl.distributed.trace_batch(strahl.load(str(EXAMPLE)), 0, 2, photons=1000)
 
 
 def test_a_black_square_receives_the_par_of_a_black_body(tmp_path):

@@ -11,8 +11,9 @@ use crate::progress::{Cancel, ProgressListener};
 use crate::sampling::Batch;
 use crate::world::World;
 
-/// Batch `batch` of `method`'s run on `world` (the light model; other methods refuse):
-/// what [`merge_batches`] needs of it. `progress` hears the batch's photons.
+/// Batch `batch` of `method`'s run on `world` (the light model; other methods refuse, as do
+/// scenes with wavelength bands): what [`merge_batches`] needs of it. `progress` hears the
+/// batch's photons.
 pub fn run_batch(
     world: &World,
     method: &Method,
@@ -24,6 +25,9 @@ pub fn run_batch(
     let Method::LightTrace(settings) = method else {
         return Err(MethodError::NotInBatches(method.kind().name()));
     };
+    if world.scene.spectral.is_some() {
+        return Err(MethodError::BandsInBatches);
+    }
     progress.phase("photons");
     Ok(trace_light_batch(world, settings, batch, progress, cancel)?)
 }

@@ -55,6 +55,9 @@ pub enum MethodError {
          (pathtrace) do"
     )]
     NotInBatches(&'static str),
+    /// A scene with wavelength bands: its bands are not split into batches.
+    #[error("a scene with wavelength bands is not split into batches yet: solve it in one run")]
+    BandsInBatches,
     /// The radiosity methods do not follow light across the sides of a periodic scene's plot
     /// (the method named).
     #[error(
