@@ -242,6 +242,9 @@ struct Worker {
     q_out: Vec<Fixed>,
     /// Per group, the photon's power at a hit, W.
     powers: Vec<Rgb64>,
+    /// Per group, the power the photon carries, W, when there are several groups (one group
+    /// reads it back from its fixed-point tally units, as a run of one world always has).
+    carried: Vec<Rgb64>,
     /// Per group, the material at a hit (scratch space of scattering).
     materials: Vec<SurfaceMaterial>,
 }
@@ -255,6 +258,7 @@ impl Worker {
             q: Vec::with_capacity(groups),
             q_out: Vec::with_capacity(groups),
             powers: Vec::with_capacity(groups),
+            carried: Vec::with_capacity(groups),
             materials: Vec::with_capacity(groups),
         }
     }
@@ -290,7 +294,9 @@ impl Tracer<'_> {
         // draws, and the same in every channel), for the groups' shares.
         let weight = photon.power.max_channel() / self.sources.sources[source].power.max_channel();
         let sensing = !world.scene.sensors.is_empty();
+        let single = self.groups.len() == 1;
         worker.q.clear();
+        worker.carried.clear();
         for (g, group) in self.groups.iter().enumerate() {
             let power = match &group.powers {
                 None => photon.power,
@@ -298,7 +304,8 @@ impl Tracer<'_> {
             };
             let share = power.to_f64().map(|c| c / count);
             let emitted = group.quantize(share);
-            let q = group.quantize(share.map(|c| c * photon.carried));
+            let carried = share.map(|c| c * photon.carried);
+            let q = group.quantize(carried);
             let tally = &mut worker.tallies[g];
             match photon.surface {
                 Some((object, face)) => {
@@ -318,6 +325,7 @@ impl Tracer<'_> {
             }
             add_fixed(&mut tally.escaped, [0, 1, 2].map(|c| emitted[c] - q[c]));
             worker.q.push(q);
+            worker.carried.push(carried);
             worker.hits[g].clear();
         }
         let mut ray = photon.ray;
@@ -335,7 +343,11 @@ impl Tracer<'_> {
             worker.powers.clear();
             for (g, group) in self.groups.iter().enumerate() {
                 let q = worker.q[g];
-                let power = group.watts(q);
+                let power = if single {
+                    group.watts(q)
+                } else {
+                    worker.carried[g]
+                };
                 worker.hits[g].push((
                     entry_index,
                     power.to_array().map(|c| c * group.share_per_watt()),
@@ -374,6 +386,9 @@ impl Tracer<'_> {
                         add_fixed(&mut entry.reflected, q_out);
                     }
                     std::mem::swap(&mut worker.q, &mut worker.q_out);
+                    if !single {
+                        worker.carried.copy_from_slice(&worker.powers);
+                    }
                     ray = spawn_ray(hit.p, hit.ng, dir);
                     bounces += 1;
                 }
