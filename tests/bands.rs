@@ -11,7 +11,7 @@ use std::path::Path;
 use std::sync::Arc;
 use strahl::method::{
     AccelKind, Cancel, LightTraceSettings, Method, NoProgress, RadiositySettings, SolverKind,
-    World, run_with_bands,
+    World, run_with_parts,
 };
 use strahl::report::Report;
 use strahl::scene::{BandQuantity, load_str};
@@ -106,8 +106,8 @@ spectrum = {{ blackbody_k = {SUN_K} }}
 fn solve(text: &str, method: &Method) -> Report {
     let scene = load_str(text, "bands.toml", Path::new(".")).unwrap();
     let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
-    let (outcome, bands) = run_with_bands(&world, method, &NoProgress, &Cancel::new()).unwrap();
-    let bands = bands.unwrap();
+    let (outcome, parts) = run_with_parts(&world, method, &NoProgress, &Cancel::new()).unwrap();
+    let bands = parts.bands.unwrap();
     Report::new("bands", outcome.measurement.as_ref().unwrap()).with_bands(&bands)
 }
 
@@ -362,7 +362,7 @@ normal = [0, 1, 0]
     for group in groups {
         let world = Arc::new(World::new(group.scene, AccelKind::Bvh).unwrap());
         let (outcome, _) =
-            run_with_bands(&world, &photons(2), &NoProgress, &Cancel::new()).unwrap();
+            run_with_parts(&world, &photons(2), &NoProgress, &Cancel::new()).unwrap();
         let alone = outcome.measurement.unwrap();
         for (c, channel) in group.channels.iter().enumerate() {
             let band = &shared.bands[channel.band];

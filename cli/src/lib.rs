@@ -151,22 +151,19 @@ fn run_method(
         .map_err(radiosity::method_error)
 }
 
-/// [`run_method`] and, for a scene with wavelength bands, the bands' figures
-/// ([`strahl::method::run_with_bands`]).
+/// [`run_method`] and the scene's parts: its wavelength bands' figures and its day's states
+/// ([`strahl::method::run_with_parts`]).
 fn run_measuring(
     world: &std::sync::Arc<strahl::method::World>,
     method: &strahl::method::Method,
     label: &str,
     quiet: bool,
     threads: usize,
-) -> anyhow::Result<(
-    strahl::method::Outcome,
-    Option<strahl::method::BandMeasurement>,
-)> {
+) -> anyhow::Result<(strahl::method::Outcome, strahl::method::Parts)> {
     let bar = progress::Bar::new(label, quiet);
     let cancel = progress::cancel_flag();
     with_threads(threads, || {
-        strahl::method::run_with_bands(world, method, &bar, cancel)
+        strahl::method::run_with_parts(world, method, &bar, cancel)
     })?
     .map_err(radiosity::method_error)
 }

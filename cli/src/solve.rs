@@ -192,7 +192,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     if let (Some(batch), Some(path)) = (args.batch, &args.partial) {
         return solve_batch(args, &world, &method, batch, path);
     }
-    let (outcome, bands) = run_measuring(&world, &method, "solving", args.quiet, args.threads)?;
+    let (outcome, parts) = run_measuring(&world, &method, "solving", args.quiet, args.threads)?;
     match &outcome.radiosity {
         Some(solved) => {
             radiosity::finish_solve(
@@ -236,7 +236,8 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         .measurement
         .context("the solver measured no surfaces")?;
     let mut report = Report::new(&name, &measured);
-    match (&bands, &world.scene.spectral) {
+    report = report.with_states(&parts.states);
+    match (&parts.bands, &world.scene.spectral) {
         (Some(bands), _) => report = report.with_bands(bands),
         (None, Some(spectral)) => eprintln!(
             "bands interrupted: the report holds the RGB figures only, none of the {} bands",

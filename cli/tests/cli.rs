@@ -206,6 +206,56 @@ fn the_plant_example_reports_its_bands_in_json_and_csv() {
 }
 
 #[test]
+fn a_day_reports_each_state_alone() {
+    let scene = temp("day.toml");
+    std::fs::write(
+        &scene,
+        r#"
+[materials.black]
+diffuse = 0
+
+[[objects]]
+type = "quad"
+name = "plate"
+material = "black"
+vertices = [[0, 0, 1], [1, 0, 1], [1, 0, 0], [0, 0, 0]]
+
+[[lights]]
+type = "day"
+sky_type = 12
+date = "2026-06-21"
+utc_offset_hours = 2
+latitude_deg = 52.52
+longitude_deg = 13.40
+states = [
+  { time = "09:00", direct_normal = 500, diffuse_horizontal = 100 },
+  { time = "13:15", direct_normal = 800, diffuse_horizontal = 150 },
+]
+"#,
+    )
+    .unwrap();
+    let report = temp("day.json");
+    let args = [
+        "solve",
+        scene.to_str().unwrap(),
+        "--solver",
+        "matrix",
+        "-q",
+        "--report",
+    ];
+    let o = strahl(&[&args[..], &[report.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let states = json["states"].as_array().unwrap();
+    assert_eq!(states.len(), 2);
+    let plate = |v: &serde_json::Value| v["objects"][0]["incident_power"][1].as_f64().unwrap();
+    let mean = json["objects"][0]["incident_power"][1].as_f64().unwrap();
+    assert_eq!(states[1]["time"], "13:15");
+    assert!(((plate(&states[0]) + plate(&states[1])) / 2.0 / mean - 1.0).abs() < 1e-6);
+}
+
+#[test]
 fn per_face_reports_every_face_and_the_faces_add_up_to_their_object() {
     // The same photons, told apart by face or not: the faces of each object add up to it.
     let solve = |name: &str, extra: &[&str]| {

@@ -395,7 +395,8 @@ impl Scene {
     /// and returns its report as JSON (the `strahl solve --report` file). `per_face` reports
     /// every face of every object on its own, `diffuse_only` drops the materials'
     /// non-diffuse lobes (`strahl solve --per-face --diffuse-only`). A scene with
-    /// `[[bands]]` adds its bands' figures (`bands`, `red_far_red`), by the same method.
+    /// `[[bands]]` adds its bands' figures (`bands`, `red_far_red`), a scene with a `day` light
+    /// each state's (`states`), by the same method.
     /// With `export` (a `.glb`, `.gltf` or `.ply` path) a radiosity solver's solution is
     /// also written as a mesh with radiosity vertex colours (`strahl solve --export`).
     #[pyo3(signature = (method, *, seed=0, threads=0, settings=Vec::new(), per_face=false, diffuse_only=false, export=None, progress=None))]
@@ -430,8 +431,8 @@ impl Scene {
         }
         let world = self.variant(py, per_face, diffuse_only)?;
         // The scene's wavelength bands, when it has any, by the same method.
-        let (outcome, bands) = run_with(py, threads, progress, |listener, cancel| {
-            strahl::method::run_with_bands(&world, &method, listener, cancel)
+        let (outcome, parts) = run_with(py, threads, progress, |listener, cancel| {
+            strahl::method::run_with_parts(&world, &method, listener, cancel)
                 .map_err(|e| e.to_string())
         })?;
         if let (Some(path), Some(solved)) = (&export, &outcome.radiosity) {
@@ -445,8 +446,8 @@ impl Scene {
         let measured = outcome
             .measurement
             .ok_or_else(|| PyRuntimeError::new_err("the method measured no surfaces"))?;
-        let mut report = Report::new(&world.scene.name, &measured);
-        if let Some(bands) = &bands {
+        let mut report = Report::new(&world.scene.name, &measured).with_states(&parts.states);
+        if let Some(bands) = &parts.bands {
             report = report.with_bands(bands);
         }
         serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))

@@ -23,7 +23,22 @@ import numpy as np
 
 from . import _strahl
 
-__all__ = ["load", "from_arrays", "settings", "sun_position", "Scene", "Result", "Band", "SunPosition"]
+__all__ = ["load", "from_arrays", "settings", "sun_position", "Scene", "Result", "Band", "State", "SunPosition"]
+
+
+@dataclass(frozen=True)
+class State:
+    """One state of a scene's ``day`` light alone (its sun and sky at full strength), one row
+    per reported surface as in :class:`Result`."""
+
+    time: str
+    """The state's clock time as the scene gives it."""
+    incident_w: np.ndarray
+    """Power arriving on each surface, W, shape (n, 3)."""
+    absorbed_w: np.ndarray
+    """Power absorbed by each surface, W, shape (n, 3)."""
+    irradiance_w_m2: np.ndarray
+    """Mean irradiance on each surface, W/m², shape (n, 3) (NaN where not known)."""
 
 
 @dataclass(frozen=True)
@@ -103,6 +118,9 @@ class Result:
     """For a scene with ``[[bands]]``: each band's :class:`Band` by its name, in the scene's
     order; empty otherwise."""
     red_far_red: Optional[np.ndarray] = None
+    states: list = field(default_factory=list)
+    """For a scene with a ``day`` light: each state alone, a :class:`State` each, in order
+    (the other figures are the mean over them); empty otherwise."""
     """The red : far-red ratio of the photon irradiance per surface, shape (n,) (NaN where
     there is no far red), for scenes with bands named ``red`` and ``far-red``; else None."""
 
@@ -167,6 +185,15 @@ class Result:
                 for name, b in self.bands.items()
             },
             red_far_red=None if self.red_far_red is None else _ratio(self.bands, order, total),
+            states=[
+                replace(
+                    st,
+                    incident_w=total(st.incident_w),
+                    absorbed_w=total(st.absorbed_w),
+                    irradiance_w_m2=per_area(total(st.incident_w)),
+                )
+                for st in self.states
+            ],
         )
 
 
@@ -210,7 +237,20 @@ def _result(report_json: str) -> Result:
         )
 
     ratio = report.get("red_far_red")
+
+    def state(st):
+        def triple(key):
+            return np.array([o.get(key) or [np.nan] * 3 for o in st["objects"]], dtype=float).reshape(-1, 3)
+
+        return State(
+            time=st["time"],
+            incident_w=triple("incident_power"),
+            absorbed_w=triple("absorbed_power"),
+            irradiance_w_m2=triple("irradiance"),
+        )
+
     return Result(
+        states=[state(st) for st in report.get("states", [])],
         bands={b["name"]: band(b) for b in report.get("bands", [])},
         red_far_red=None
         if ratio is None

@@ -67,3 +67,39 @@ def test_a_black_square_receives_the_par_of_a_black_body(tmp_path):
     assert abs(par.incident_w[0] / (1000 * 0.366_659_443) - 1) < 1e-5
     assert abs(par.photon_irradiance_umol_m2_s[0] / (1000 * 0.366_659_443 * 4.566_089_469) - 1) < 1e-5
     assert result.red_far_red is None
+
+
+DAY = """
+[materials.black]
+diffuse = 0
+
+[[objects]]
+type = "quad"
+name = "plate"
+material = "black"
+vertices = [[0, 0, 1], [1, 0, 1], [1, 0, 0], [0, 0, 0]]
+
+[[lights]]
+type = "day"
+sky_type = 12
+date = "2026-06-21"
+utc_offset_hours = 2
+latitude_deg = 52.52
+longitude_deg = 13.40
+states = [
+  { time = "02:30", direct_normal = 0, diffuse_horizontal = 0 },
+  { time = "13:15", direct_normal = 800, diffuse_horizontal = 150 },
+]
+"""
+
+
+def test_each_state_of_a_day_comes_back_alone(tmp_path):
+    path = tmp_path / "day.toml"
+    path.write_text(DAY)
+    result = strahl.load(str(path)).solve("matrix")
+    assert [s.time for s in result.states] == ["02:30", "13:15"]
+    night, noon = result.states
+    assert night.incident_w[0, 1] == 0
+    # The day's figure is the mean of its two states (the solve is linear in the lights).
+    assert abs(noon.incident_w[0, 1] / 2 / result.incident_w[0, 1] - 1) < 1e-6
+    assert result.by_object().states[1].incident_w.shape == (1, 3)

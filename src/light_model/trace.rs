@@ -6,7 +6,10 @@
 //! bands). Each photon then follows one path for all of them, carrying each group's power: its
 //! source is drawn by the groups' summed power, and at every surface the lobe by the groups'
 //! summed weighted power (`scatter.rs`), each group's power divided by the probability of what
-//! was drawn, so every group's figures are unbiased and the path is traced once.
+//! was drawn, so every group's figures are unbiased and the path is traced once. A photon is
+//! tallied only for the groups its source lights (a day's state: the state whose sun or sky
+//! sent it; a band group: every one the light shines in), since it carries nothing for the
+//! others along its whole path.
 
 use super::scatter::scatter_photon;
 use super::sensors::{connect_emission, connect_reflection, delta_light_direct};
@@ -237,15 +240,17 @@ struct Worker {
     hits: Vec<Vec<(usize, [f64; 3])>>,
     /// Per group, the current photon's irradiance at each sensor, direct and indirect, W·m⁻².
     sensor_light: Vec<Vec<[Rgb64; 2]>>,
-    /// Per group, the photon's power in fixed point, and what goes on after a hit.
+    /// The groups the current photon carries light for (all, for one group).
+    active: Vec<usize>,
+    /// Per active group, the photon's power in fixed point, and what goes on after a hit.
     q: Vec<Fixed>,
     q_out: Vec<Fixed>,
-    /// Per group, the photon's power at a hit, W.
+    /// Per active group, the photon's power at a hit, W.
     powers: Vec<Rgb64>,
-    /// Per group, the power the photon carries, W, when there are several groups (one group
-    /// reads it back from its fixed-point tally units, as a run of one world always has).
+    /// Per active group, the power the photon carries, W, when there are several groups (one
+    /// group reads it back from its fixed-point tally units, as a run of one world always has).
     carried: Vec<Rgb64>,
-    /// Per group, the material at a hit (scratch space of scattering).
+    /// Per active group, the material at a hit (scratch space of scattering).
     materials: Vec<SurfaceMaterial>,
 }
 
@@ -255,6 +260,7 @@ impl Worker {
             tallies: vec![Tally::new(entries, sensors); groups],
             hits: vec![Vec::new(); groups],
             sensor_light: vec![vec![[Rgb64::BLACK; 2]; sensors]; groups],
+            active: Vec::with_capacity(groups),
             q: Vec::with_capacity(groups),
             q_out: Vec::with_capacity(groups),
             powers: Vec::with_capacity(groups),
@@ -295,6 +301,9 @@ impl Tracer<'_> {
         let weight = photon.power.max_channel() / self.sources.sources[source].power.max_channel();
         let sensing = !world.scene.sensors.is_empty();
         let single = self.groups.len() == 1;
+        // The groups the photon brings light to (of several, those its source lights): a
+        // group it carries nothing for stays so along the whole path and is left alone.
+        worker.active.clear();
         worker.q.clear();
         worker.carried.clear();
         for (g, group) in self.groups.iter().enumerate() {
@@ -302,6 +311,9 @@ impl Tracer<'_> {
                 None => photon.power,
                 Some(powers) => powers[source] * weight,
             };
+            if !single && power.max_channel() <= 0.0 {
+                continue;
+            }
             let share = power.to_f64().map(|c| c / count);
             let emitted = group.quantize(share);
             let carried = share.map(|c| c * photon.carried);
@@ -324,29 +336,39 @@ impl Tracer<'_> {
                 None => add_fixed(&mut tally.light_emission, emitted),
             }
             add_fixed(&mut tally.escaped, [0, 1, 2].map(|c| emitted[c] - q[c]));
+            worker.active.push(g);
             worker.q.push(q);
             worker.carried.push(carried);
             worker.hits[g].clear();
         }
+        // The active groups' scenes, for scattering.
+        let some_scenes: Vec<&Scene>;
+        let scenes = if worker.active.len() == self.groups.len() {
+            &self.scenes[..]
+        } else {
+            some_scenes = worker.active.iter().map(|&g| self.scenes[g]).collect();
+            &some_scenes[..]
+        };
         let mut ray = photon.ray;
         let mut bounces = 0;
         loop {
             worker.tallies[0].rays += 1;
             let Some(hit) = world.intersect(&ray) else {
-                for (tally, q) in worker.tallies.iter_mut().zip(&worker.q) {
-                    add_fixed(&mut tally.escaped, *q);
+                for (&g, q) in worker.active.iter().zip(&worker.q) {
+                    add_fixed(&mut worker.tallies[g].escaped, *q);
                 }
                 worker.tallies[0].escaped_photons += 1;
                 break;
             };
             let entry_index = self.table.entry(hit.object, hit.face);
             worker.powers.clear();
-            for (g, group) in self.groups.iter().enumerate() {
-                let q = worker.q[g];
+            for (k, &g) in worker.active.iter().enumerate() {
+                let group = &self.groups[g];
+                let q = worker.q[k];
                 let power = if single {
                     group.watts(q)
                 } else {
-                    worker.carried[g]
+                    worker.carried[k]
                 };
                 worker.hits[g].push((
                     entry_index,
@@ -365,23 +387,23 @@ impl Tracer<'_> {
             }
             let scattered = if bounces < self.settings.max_bounces {
                 let (powers, materials) = (&mut worker.powers, &mut worker.materials);
-                scatter_photon(&self.scenes, &hit, ray.dir, powers, materials, &mut sampler)
+                scatter_photon(scenes, &hit, ray.dir, powers, materials, &mut sampler)
             } else {
                 worker.tallies[0].truncated_paths += 1;
                 None
             };
             worker.q_out.clear();
             if scattered.is_some() {
-                let out = self.groups.iter().zip(&worker.powers);
+                let out = worker.active.iter().zip(&worker.powers);
                 worker
                     .q_out
-                    .extend(out.map(|(group, &p)| group.quantize(p)));
+                    .extend(out.map(|(&g, &p)| self.groups[g].quantize(p)));
             }
             match scattered {
                 Some(dir) if worker.q_out.iter().any(|q| *q != [0; 3]) => {
-                    for (g, tally) in worker.tallies.iter_mut().enumerate() {
-                        let entry = &mut tally.entries[entry_index];
-                        let (q, q_out) = (worker.q[g], worker.q_out[g]);
+                    for (k, &g) in worker.active.iter().enumerate() {
+                        let entry = &mut worker.tallies[g].entries[entry_index];
+                        let (q, q_out) = (worker.q[k], worker.q_out[k]);
                         add_fixed(&mut entry.absorbed, [0, 1, 2].map(|c| q[c] - q_out[c]));
                         add_fixed(&mut entry.reflected, q_out);
                     }
@@ -393,15 +415,15 @@ impl Tracer<'_> {
                     bounces += 1;
                 }
                 _ => {
-                    for (tally, q) in worker.tallies.iter_mut().zip(&worker.q) {
-                        add_fixed(&mut tally.entries[entry_index].absorbed, *q);
+                    for (&g, q) in worker.active.iter().zip(&worker.q) {
+                        add_fixed(&mut worker.tallies[g].entries[entry_index].absorbed, *q);
                     }
                     break;
                 }
             }
         }
-        for g in 0..self.groups.len() {
-            self.add_squares(g, worker);
+        for k in 0..worker.active.len() {
+            self.add_squares(worker.active[k], worker);
         }
     }
 

@@ -27,22 +27,22 @@
 //! assert!((by_radiosity / by_photons - 1.0).abs() < 0.02, "{by_radiosity} {by_photons}");
 //! ```
 
-mod bands;
 mod batches;
 mod error;
 mod kind;
 mod named;
 mod outcome;
+mod parts;
 mod render_batches;
 mod run;
 mod settings;
 
-pub use bands::run_with_bands;
 pub use batches::{merge_batches, run_batch};
 pub use error::{MethodError, SettingError};
 pub use kind::MethodKind;
 pub use named::SettingValue;
 pub use outcome::{Outcome, SolvedRadiosity};
+pub use parts::{Parts, run_with_parts};
 pub use render_batches::{
     RenderBatchSettings, RenderPartial, merge_render_batches, run_render_batch,
 };

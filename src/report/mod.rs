@@ -10,5 +10,5 @@ mod write;
 
 pub use bands::{BandObjectReport, BandReport, BandSensorReport, RedFarRedReport};
 pub use export::{ExportError, ExportFormat, export_lit_mesh};
-pub use schema::{ObjectReport, Report, SensorReport, Units};
+pub use schema::{ObjectReport, Report, SensorReport, StateReport, Units};
 pub use write::{ReportError, ReportFormat, sensors_csv_path, write_report};

@@ -33,7 +33,10 @@
 
 use super::bands::{BandReport, RedFarRedReport, band_reports, red_far_red};
 use crate::color::{LUMINOUS_EFFICACY, Rgb64};
-use crate::measure::{BandMeasurement, Measurement, PowerBalance, SensorReading, Stats, Totals};
+use crate::measure::{
+    BandMeasurement, Measurement, PowerBalance, SensorReading, StateMeasurement, Stats,
+    SurfacePower, Totals,
+};
 use serde::{Deserialize, Serialize};
 
 /// A complete report.
@@ -62,6 +65,23 @@ pub struct Report {
     /// The red : far-red ratio, when the scene has bands named red and far-red.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub red_far_red: Option<RedFarRedReport>,
+    /// Each state of the scene's day alone, in order (absent without a day): the figures
+    /// above are the mean over the states.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub states: Vec<StateReport>,
+}
+
+/// The figures of one state of a day, the state alone (its sun and sky at full strength):
+/// objects and sensors as the report's, in the same order.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StateReport {
+    /// The state's clock time as the scene gives it.
+    pub time: String,
+    /// One entry per report object.
+    pub objects: Vec<ObjectReport>,
+    /// One entry per sensor (absent when there is none).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<SensorReport>,
 }
 
 /// The reading of one point sensor.
@@ -218,25 +238,30 @@ impl ObjectReport {
     }
 }
 
+/// One report entry per surface of `power`'s table.
+fn objects_of(power: &SurfacePower) -> Vec<ObjectReport> {
+    power
+        .table()
+        .surfaces()
+        .iter()
+        .enumerate()
+        .map(|(e, s)| {
+            ObjectReport::new(
+                s.name.clone(),
+                s.face,
+                (s.area, s.parts),
+                power.balance(e),
+                power.standard_error(e),
+            )
+        })
+        .collect()
+}
+
 impl Report {
     /// The report of scene `scene` from what a solver measured on it, in metres and watts.
     pub fn new(scene: &str, measured: &Measurement) -> Self {
         let power = &measured.power;
-        let objects = power
-            .table()
-            .surfaces()
-            .iter()
-            .enumerate()
-            .map(|(e, s)| {
-                ObjectReport::new(
-                    s.name.clone(),
-                    s.face,
-                    (s.area, s.parts),
-                    power.balance(e),
-                    power.standard_error(e),
-                )
-            })
-            .collect();
+        let objects = objects_of(power);
         Report {
             scene: scene.to_string(),
             solver: measured.solver.to_string(),
@@ -247,7 +272,22 @@ impl Report {
             sensors: measured.sensors.iter().map(SensorReport::new).collect(),
             bands: Vec::new(),
             red_far_red: None,
+            states: Vec::new(),
         }
+    }
+
+    /// This report with the figures of each state of the scene's day (measured on the same
+    /// scene by the same method).
+    pub fn with_states(mut self, states: &[StateMeasurement]) -> Report {
+        self.states = states
+            .iter()
+            .map(|state| StateReport {
+                time: state.time.clone(),
+                objects: state.power.as_ref().map_or_else(Vec::new, objects_of),
+                sensors: state.sensors.iter().map(SensorReport::new).collect(),
+            })
+            .collect();
+        self
     }
 
     /// This report with the figures of `bands` (measured on the same scene by the same
@@ -351,6 +391,7 @@ mod tests {
             sensors: Vec::new(),
             bands: Vec::new(),
             red_far_red: None,
+            states: Vec::new(),
         };
         assert_eq!(report.first_non_finite(), None);
         report.totals.escaped_power = Rgb64::new(0.0, f64::NEG_INFINITY, 0.0);
@@ -395,6 +436,7 @@ mod tests {
             sensors: Vec::new(),
             bands: Vec::new(),
             red_far_red: None,
+            states: Vec::new(),
         };
         let text = serde_json::to_string(&report).unwrap();
         assert!(text.contains("\"stats\":{\"seconds\":1.5,\"rays\":10,\"photons\":7}"));

@@ -313,6 +313,7 @@ mod tests {
             sensors: Vec::new(),
             bands: Vec::new(),
             red_far_red: None,
+            states: Vec::new(),
         }
     }
 

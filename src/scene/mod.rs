@@ -4,6 +4,7 @@
 
 pub mod builtin;
 mod camera;
+mod day;
 mod file;
 pub mod import;
 mod light;
@@ -21,6 +22,7 @@ mod texture;
 
 pub use crate::color::{Band, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError};
 pub use camera::{Camera, CameraRays};
+pub use day::{Day, DayState};
 pub use file::{LoadOptions, SceneError, load, load_mesh_file, load_str, load_str_with, load_with};
 pub use light::{Incidence, Light, LightKind};
 // What a CIE sky and a sun placed by date name (for front ends building scenes in code).
@@ -70,6 +72,9 @@ pub struct Scene {
     /// The wavelength bands the scene reports light in, with its lights' and materials'
     /// spectra; `None` for a scene in RGB only.
     pub spectral: Option<Spectral>,
+    /// The day of sun and sky states among the lights (a `day` light), to solve state by
+    /// state; `None` without one.
+    pub day: Option<Day>,
 }
 
 impl Scene {
@@ -116,6 +121,7 @@ impl Scene {
             sensors: Vec::new(),
             periodic: None,
             spectral: None,
+            day: None,
         }
     }
 

@@ -71,7 +71,19 @@ pub(super) fn build_scene(
     let mut light_spectra = Vec::new();
     for (i, entry) in file.lights.iter().enumerate() {
         let t = Table::new(src, format!("lights[{i}]"), entry.span());
-        let lights = build_lights(&t, entry.get_ref())?;
+        let (lights, day) = build_lights(&t, entry.get_ref())?;
+        if let Some(mut day) = day {
+            if scene.day.is_some() {
+                return Err(t.table_error(
+                    "a scene holds one day light (its states may be as many as you like)",
+                ));
+            }
+            let first = scene.lights.len();
+            for state in &mut day.states {
+                state.lights.iter_mut().for_each(|i| *i += first);
+            }
+            scene.day = Some(day);
+        }
         let spectrum = entry.get_ref().spectrum.as_ref();
         let spectrum = spectrum
             .map(|v| build_spectrum(&t, "spectrum", v, base_dir))

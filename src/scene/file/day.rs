@@ -7,18 +7,18 @@ use super::error::SceneError;
 use super::fields::Table;
 use super::format::LightEntry;
 use super::sun::{cie_sky_type, clock_time, sun_at};
-use crate::scene::{Light, LightKind};
+use crate::scene::{Day, DayState, Light, LightKind};
 
 /// The lights of the day `e`: for every state whose sun is above the horizon, a directional
 /// light (its `direct_normal` irradiance over the number of states) and the CIE sky of
 /// `sky_type` (its `diffuse_horizontal` over the number of states), named `<name> <time>
 /// sun` and `<name> <time> sky`; a state with the sun below the horizon adds nothing but
-/// counts in the mean.
+/// counts in the mean. With them the [`Day`]: each state's lights, by index into the list.
 pub(super) fn build_day(
     t: &Table<'_>,
     e: &LightEntry,
     why: &str,
-) -> Result<Vec<Light>, SceneError> {
+) -> Result<(Vec<Light>, Day), SceneError> {
     let sky = cie_sky_type(t, e, why)?;
     let states = e.states.as_ref().ok_or_else(|| t.missing("states", why))?;
     if states.get_ref().is_empty() {
@@ -27,6 +27,10 @@ pub(super) fn build_day(
     let share = 1.0 / states.get_ref().len() as f32;
     let name = e.name.clone().unwrap_or_else(|| "day".to_string());
     let mut lights = Vec::new();
+    let mut day = Day {
+        name: name.clone(),
+        states: Vec::with_capacity(states.get_ref().len()),
+    };
     for (i, state) in states.get_ref().iter().enumerate() {
         let s = Table::new(t.src, t.field(&format!("states[{i}]")), state.span());
         let entry = state.get_ref();
@@ -42,10 +46,17 @@ pub(super) fn build_day(
         let direct = irradiance("direct_normal", entry.direct_normal.as_ref())?;
         let diffuse = irradiance("diffuse_horizontal", entry.diffuse_horizontal.as_ref())?;
         let (toward, zenith_deg) = sun_at(t, e, clock, why)?;
+        let at = time.get_ref();
+        day.states.push(DayState {
+            time: at.clone(),
+            lights: Vec::new(),
+        });
         if zenith_deg.is_nan() || zenith_deg >= 90.0 {
             continue;
         }
-        let at = time.get_ref();
+        if let Some(state) = day.states.last_mut() {
+            state.lights = vec![lights.len(), lights.len() + 1];
+        }
         lights.push(Light {
             name: Some(format!("{name} {at} sun")),
             kind: LightKind::Directional {
@@ -62,5 +73,5 @@ pub(super) fn build_day(
             },
         });
     }
-    Ok(lights)
+    Ok((lights, day))
 }

@@ -7,13 +7,17 @@ use super::fields::Table;
 use super::format::{LightEntry, LightType};
 use super::photometry::{self, Photometric};
 use super::sun::{cie_sky_type, sun_toward};
-use crate::scene::{Light, LightKind};
+use crate::scene::{Day, Light, LightKind};
 use glam::Vec3;
 use std::f32::consts::PI;
 use toml::Spanned;
 
-/// The lights described by `e`: one, or a day's suns and skies.
-pub(super) fn build_lights(t: &Table<'_>, e: &LightEntry) -> Result<Vec<Light>, SceneError> {
+/// The lights described by `e`: one, or a day's suns and skies with the [`Day`] that tells
+/// its states apart (its light indices into the returned list).
+pub(super) fn build_lights(
+    t: &Table<'_>,
+    e: &LightEntry,
+) -> Result<(Vec<Light>, Option<Day>), SceneError> {
     let kind = *e.kind.get_ref();
     t.only_fields(&e.kind_fields(), &kind.fields(), kind.name())?;
     let why = format!("type {}", kind.name());
@@ -99,12 +103,16 @@ pub(super) fn build_lights(t: &Table<'_>, e: &LightEntry) -> Result<Vec<Light>, 
                 &[("illuminance_lux", e.illuminance_lux.as_ref(), 1.0)],
             )?,
         },
-        LightType::Day => return build_day(t, e, why),
+        LightType::Day => {
+            let (lights, day) = build_day(t, e, why)?;
+            return Ok((lights, Some(day)));
+        }
     };
-    Ok(vec![Light {
+    let light = Light {
         name: e.name.clone(),
         kind,
-    }])
+    };
+    Ok((vec![light], None))
 }
 
 /// The unit axis of a light at `position` aimed by `direction` or `look_at` (exactly one).
