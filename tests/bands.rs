@@ -297,6 +297,13 @@ fn bad_band_scenes_are_refused_with_their_place() {
         "{}",
         load(&bad_band)
     );
+    // A band without bound would be integrated in pieces without end.
+    let endless = square("diffuse = 0.5", "").replacen("to_nm = 1100", "to_nm = 1e12", 1);
+    assert!(
+        load(&endless).contains("bands[3].to_nm: a wavelength must be a positive number of nm"),
+        "{}",
+        load(&endless)
+    );
     let csv = std::env::temp_dir().join("strahl-bands-bad.csv");
     std::fs::write(&csv, "nm,value\n400,0.1\n500,oops\n").unwrap();
     let from_csv = square(

@@ -9,7 +9,7 @@
 mod spectrum;
 mod srgb;
 
-pub use spectrum::{Band, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError};
+pub use spectrum::{Band, MAX_WAVELENGTH_NM, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError};
 pub use srgb::{linear_to_srgb, srgb_to_linear};
 
 use serde::{Deserialize, Serialize};

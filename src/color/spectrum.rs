@@ -22,6 +22,11 @@ const STEFAN_BOLTZMANN: f64 = 5.670_374_419e-8;
 /// wavelength in nm. A joule of light at λ nm is `λ / MOLAR_PHOTON_ENERGY_NM` mol of photons.
 pub const MOLAR_PHOTON_ENERGY_NM: f64 = PLANCK * LIGHT_SPEED * AVOGADRO * 1e9;
 
+/// The longest wavelength a spectrum or band may reach, nm (1 mm, the far infrared's end):
+/// integrals take pieces of at most [`PIECE_NM`], so a wavelength without bound would never
+/// finish.
+pub const MAX_WAVELENGTH_NM: f64 = 1e6;
+
 /// Longest piece of a band one Gauss–Legendre rule integrates, nm.
 const PIECE_NM: f64 = 5.0;
 
@@ -58,8 +63,8 @@ pub enum SpectrumError {
     /// Fewer than two samples.
     #[error("a spectrum needs at least two samples (wavelength nm, value)")]
     TooFewSamples,
-    /// Wavelengths not strictly increasing, or not positive and finite.
-    #[error("wavelengths must be positive and strictly increasing (sample {0})")]
+    /// Wavelengths not strictly increasing, or not in (0, [`MAX_WAVELENGTH_NM`]].
+    #[error("wavelengths must be positive, at most 10⁶ nm and strictly increasing (sample {0})")]
     Wavelengths(usize),
     /// A negative or non-finite value.
     #[error("values must be finite and ≥ 0 (sample {0})")]
@@ -77,7 +82,7 @@ impl Spectrum {
         }
         for (i, &(nm, v)) in samples.iter().enumerate() {
             let previous = if i == 0 { 0.0 } else { samples[i - 1].0 };
-            if !(nm.is_finite() && nm > previous) {
+            if !(nm > previous && nm <= MAX_WAVELENGTH_NM) {
                 return Err(SpectrumError::Wavelengths(i));
             }
             if !(v.is_finite() && v >= 0.0) {
@@ -174,9 +179,17 @@ fn planck(nm: f64, kelvin: f64) -> f64 {
     2.0 * PLANCK * LIGHT_SPEED * LIGHT_SPEED / m.powi(5) / x.exp_m1() * 1e-9
 }
 
-/// `∫ f(λ, [S₁(λ), …]) dλ` over `[from, to]` nm: split at every sample of the spectra, then
-/// 4-point Gauss–Legendre on pieces of at most [`PIECE_NM`].
+/// `∫ f(λ, [S₁(λ), …]) dλ` over `[from, to]` nm for an `f` that is zero where a sampled
+/// spectrum is (all of this module's): over the part of the interval every sampled spectrum
+/// covers, split at every sample, then 4-point Gauss–Legendre on pieces of at most
+/// [`PIECE_NM`].
 fn integrate(from: f64, to: f64, spectra: &[&Spectrum], f: impl Fn(f64, &[f64]) -> f64) -> f64 {
+    let (mut from, mut to) = (from, to.min(MAX_WAVELENGTH_NM));
+    for s in spectra {
+        if let Some((first, last)) = s.range() {
+            (from, to) = (from.max(first), to.min(last));
+        }
+    }
     if to.partial_cmp(&from) != Some(std::cmp::Ordering::Greater) {
         return 0.0;
     }
@@ -319,6 +332,11 @@ mod tests {
         assert_eq!(
             Spectrum::sampled(vec![(400.0, 1.0), (500.0, -1.0)]),
             Err(SpectrumError::Value(1))
+        );
+        // A wavelength without bound would take pieces without end.
+        assert_eq!(
+            Spectrum::sampled(vec![(400.0, 1.0), (1e12, 1.0)]),
+            Err(SpectrumError::Wavelengths(1))
         );
     }
 }

@@ -296,11 +296,15 @@ impl Tracer<'_> {
         let source = self.source_of(index);
         let photon = self.sources.emit(world, source, &mut sampler);
         let count = self.counts[source] as f64;
-        // What the photon carries of its source's power (1 but for a CIE sky's weighted
-        // draws, and the same in every channel), for the groups' shares.
-        let weight = photon.power.max_channel() / self.sources.sources[source].power.max_channel();
         let sensing = !world.scene.sensors.is_empty();
         let single = self.groups.len() == 1;
+        // What the photon carries of its source's power (1 but for a CIE sky's weighted
+        // draws, and the same in every channel), for the groups' shares.
+        let weight = if single {
+            1.0
+        } else {
+            photon.power.max_channel() / self.sources.sources[source].power.max_channel()
+        };
         // The groups the photon brings light to (of several, those its source lights): a
         // group it carries nothing for stays so along the whole path and is left alone.
         worker.active.clear();

@@ -12,7 +12,7 @@
 //! by its own spectrum, so that the figure is exact for any mix of lights.
 
 use super::{ENERGY_TOLERANCE, Material, MaterialId, Scene};
-use crate::color::{Band, Rgb, Spectrum};
+use crate::color::{Band, MAX_WAVELENGTH_NM, Rgb, Spectrum};
 
 /// Relative difference below which two lights' µmol per joule in a band count as one.
 const SAME_PHOTON_FACTOR: f64 = 1e-9;
@@ -85,8 +85,8 @@ pub enum SpectralError {
     /// A scene with bands but no band.
     #[error("the scene declares spectra but no band")]
     NoBands,
-    /// A band that is not a positive interval, or a name given twice.
-    #[error("band \"{0}\" must have a unique name and 0 < from < to (nm)")]
+    /// A band that is not a positive interval up to 10⁶ nm, or a name given twice.
+    #[error("band \"{0}\" must have a unique name and 0 < from < to ≤ 10⁶ (nm)")]
     BadBand(String),
     /// Spectra for another number of lights than the scene has.
     #[error("the scene has {scene} lights but spectra for {spectra}")]
@@ -202,7 +202,7 @@ impl Spectral {
             return Err(SpectralError::NoBands);
         }
         for (i, b) in self.bands.iter().enumerate() {
-            let valid = b.from_nm > 0.0 && b.to_nm > b.from_nm && b.to_nm.is_finite();
+            let valid = b.from_nm > 0.0 && b.to_nm > b.from_nm && b.to_nm <= MAX_WAVELENGTH_NM;
             if !valid || self.bands[..i].iter().any(|a| a.name == b.name) {
                 return Err(SpectralError::BadBand(b.name.clone()));
             }

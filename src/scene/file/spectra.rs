@@ -4,7 +4,7 @@
 use super::error::{SceneError, Source};
 use super::fields::Table;
 use super::format::SceneFile;
-use crate::color::{Band, Rgb, Spectrum};
+use crate::color::{Band, MAX_WAVELENGTH_NM, Rgb, Spectrum};
 use crate::scene::{ENERGY_TOLERANCE, MaterialId, MaterialSpectra, Scene, Spectral};
 use std::path::Path;
 use toml::{Spanned, Value};
@@ -193,13 +193,13 @@ pub(super) fn build_spectral(
         let nm = |field: &str, v: Option<&Spanned<f64>>| {
             let v = v.ok_or_else(|| t.missing(field, "a band"))?;
             let x = *v.get_ref();
-            if x.is_finite() && x > 0.0 {
+            if x > 0.0 && x <= MAX_WAVELENGTH_NM {
                 Ok(x)
             } else {
                 Err(t.error(
                     v.span(),
                     field,
-                    "a wavelength must be a positive number of nm",
+                    "a wavelength must be a positive number of nm, at most 10⁶ (1 mm)",
                 ))
             }
         };
