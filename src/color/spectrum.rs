@@ -23,7 +23,7 @@ const STEFAN_BOLTZMANN: f64 = 5.670_374_419e-8;
 pub const MOLAR_PHOTON_ENERGY_NM: f64 = PLANCK * LIGHT_SPEED * AVOGADRO * 1e9;
 
 /// The longest wavelength a spectrum or band may reach, nm (1 mm, the far infrared's end):
-/// integrals take pieces of at most [`PIECE_NM`], so a wavelength without bound would never
+/// integrals take pieces of at most 5 nm, so a wavelength without bound would never
 /// finish.
 pub const MAX_WAVELENGTH_NM: f64 = 1e6;
 
