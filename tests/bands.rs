@@ -14,7 +14,7 @@ use strahl::method::{
     World, run_with_parts,
 };
 use strahl::report::Report;
-use strahl::scene::{BandQuantity, load_str};
+use strahl::scene::{BandQuantity, StandardSpectrum, load_str};
 
 const H: f64 = 6.626_070_15e-34;
 const C: f64 = 299_792_458.0;
@@ -159,6 +159,76 @@ fn a_black_square_receives_the_black_bodys_share_of_every_band() {
     assert!(
         (ratio / expected - 1.0).abs() < 1e-6,
         "{ratio} vs {expected}"
+    );
+}
+
+/// A black square under the ASTM G173 direct sun receives the table's share of PAR and its
+/// photons, computed here by hand from NREL's table (the trapezoids of the samples, 400–700 nm,
+/// over those of 280–4000 nm; the photons by Simpson's rule on each piece, exact for a linear
+/// spectrum times λ): 41.640 % of the light, 4.629 48 µmol per joule.
+#[test]
+fn a_black_square_receives_the_standard_suns_par() {
+    let text = square("diffuse = 0\none_sided = true", "").replace(
+        &format!("{{ blackbody_k = {SUN_K} }}"),
+        "{ standard = \"astm-g173-direct\" }",
+    );
+    let report = solve(&text, &matrix());
+    let par = &report.bands[0].objects[0];
+    let power = SUN * 374.814_965 / 900.139_329_284;
+    assert!(
+        (par.incident_power / power - 1.0).abs() < 1e-6,
+        "{} vs {power}",
+        par.incident_power
+    );
+    let photons = power * 1_735.199_117_772 / 374.814_965;
+    assert!(
+        (par.photon_irradiance_umol_m2_s.unwrap() / photons - 1.0).abs() < 1e-6,
+        "{:?} vs {photons}",
+        par.photon_irradiance_umol_m2_s
+    );
+}
+
+/// A day's suns take its `spectrum` and its skies its `sky_spectrum`; an unknown standard
+/// spectrum is refused at its field, naming the ones strahl knows.
+#[test]
+fn a_days_sun_and_sky_take_their_own_spectra() {
+    let day = r#"
+[[lights]]
+type = "day"
+name = "june"
+date = "2026-06-21"
+utc_offset_hours = 2
+latitude_deg = 52.5
+longitude_deg = 13.4
+sky_type = 12
+spectrum = { standard = "astm-g173-direct" }
+sky_spectrum = { standard = "astm-g173-diffuse" }
+states = [
+  { time = "10:00", direct_normal = 700, diffuse_horizontal = 120 },
+  { time = "14:00", direct_normal = 650, diffuse_horizontal = 130 },
+]
+"#;
+    let text = format!("{BANDS}\n{day}");
+    let scene = load_str(&text, "bands.toml", Path::new(".")).unwrap();
+    let spectral = scene.spectral.as_ref().unwrap();
+    assert_eq!(scene.lights.len(), 4);
+    for (light, spectrum) in scene.lights.iter().zip(&spectral.lights) {
+        let name = light.name.as_deref().unwrap();
+        let expected = if name.ends_with("sky") {
+            StandardSpectrum::AstmG173Diffuse
+        } else {
+            StandardSpectrum::AstmG173Direct
+        };
+        assert_eq!(spectrum, &expected.spectrum(), "{name}");
+    }
+    let unknown = text.replace("astm-g173-diffuse", "astm-g173-sky");
+    let message = load_str(&unknown, "bands.toml", Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("lights[0].sky_spectrum: unknown standard spectrum \"astm-g173-sky\"")
+            && message.contains("astm-g173-diffuse"),
+        "{message}"
     );
 }
 

@@ -8,9 +8,11 @@
 
 mod spectrum;
 mod srgb;
+mod standard_spectra;
 
 pub use spectrum::{Band, MAX_WAVELENGTH_NM, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError};
 pub use srgb::{linear_to_srgb, srgb_to_linear};
+pub use standard_spectra::StandardSpectrum;
 
 use serde::{Deserialize, Serialize};
 use std::ops::{Add, AddAssign, Div, DivAssign, Index, Mul, MulAssign, Neg, Sub, SubAssign};

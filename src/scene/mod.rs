@@ -20,7 +20,9 @@ mod spectral;
 mod tessellate;
 mod texture;
 
-pub use crate::color::{Band, MAX_WAVELENGTH_NM, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError};
+pub use crate::color::{
+    Band, MAX_WAVELENGTH_NM, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError, StandardSpectrum,
+};
 pub use camera::{Camera, CameraRays};
 pub use day::{Day, DayState};
 pub use file::{LoadOptions, SceneError, load, load_mesh_file, load_str, load_str_with, load_with};

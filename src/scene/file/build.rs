@@ -16,7 +16,7 @@ use super::shapes::build_shape;
 use super::spectra::{build_spectral, build_spectrum};
 use super::textures::TextureCache;
 use super::transform::build_transform;
-use crate::scene::{Material, MaterialId, Object, Scene, Shape};
+use crate::scene::{LightKind, Material, MaterialId, Object, Scene, Shape};
 use std::path::Path;
 
 /// Name of the material objects use when they name none.
@@ -84,11 +84,21 @@ pub(super) fn build_scene(
             }
             scene.day = Some(day);
         }
-        let spectrum = entry.get_ref().spectrum.as_ref();
-        let spectrum = spectrum
+        let e = entry.get_ref();
+        let spectrum = e
+            .spectrum
+            .as_ref()
             .map(|v| build_spectrum(&t, "spectrum", v, base_dir))
             .transpose()?;
-        light_spectra.extend(lights.iter().map(|_| (i, spectrum.clone())));
+        // A day's skies take `sky_spectrum` where it is given, its suns `spectrum`.
+        let sky_spectrum = match &e.sky_spectrum {
+            Some(v) => Some(build_spectrum(&t, "sky_spectrum", v, base_dir)?),
+            None => spectrum.clone(),
+        };
+        light_spectra.extend(lights.iter().map(|light| {
+            let sky = matches!(light.kind, LightKind::CieSky { .. });
+            (i, if sky { &sky_spectrum } else { &spectrum }.clone())
+        }));
         scene.lights.extend(lights);
     }
     for (i, entry) in file.sensors.iter().enumerate() {

@@ -287,7 +287,7 @@ impl LightType {
                 ],
                 true,
             ),
-            LightType::Day => dated(&["sky_type", "states", "spectrum"], false),
+            LightType::Day => dated(&["sky_type", "states", "spectrum", "sky_spectrum"], false),
         }
     }
 }
@@ -343,6 +343,7 @@ pub(super) struct LightEntry {
     pub delta_t_s: Option<Spanned<f64>>,
     pub states: Option<Spanned<Vec<Spanned<DayStateEntry>>>>,
     pub spectrum: Option<Spanned<toml::Value>>,
+    pub sky_spectrum: Option<Spanned<toml::Value>>,
 }
 
 /// One state of a `day` light: `{ time = "HH:MM", direct_normal = …, diffuse_horizontal = … }`.
@@ -362,6 +363,7 @@ impl LightEntry {
         let number = |v: &Option<Spanned<f32>>| v.as_ref().map(Spanned::span);
         let text = |v: &Option<Spanned<String>>| v.as_ref().map(Spanned::span);
         let real = |v: &Option<Spanned<f64>>| v.as_ref().map(Spanned::span);
+        let spectrum = |v: &Option<Spanned<toml::Value>>| v.as_ref().map(Spanned::span);
         [
             ("position", coords(&self.position)),
             ("direction", coords(&self.direction)),
@@ -389,7 +391,8 @@ impl LightEntry {
             ("temperature_c", real(&self.temperature_c)),
             ("delta_t_s", real(&self.delta_t_s)),
             ("states", self.states.as_ref().map(Spanned::span)),
-            ("spectrum", self.spectrum.as_ref().map(Spanned::span)),
+            ("spectrum", spectrum(&self.spectrum)),
+            ("sky_spectrum", spectrum(&self.sky_spectrum)),
         ]
         .into_iter()
         .filter_map(|(name, span)| span.map(|span| (name, span)))

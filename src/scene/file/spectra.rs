@@ -1,17 +1,19 @@
 //! `[[bands]]`, and the spectra of lights (`spectrum`) and materials (`diffuse_spectrum`,
-//! `translucency_spectrum`): samples inline, a CSV file, or a black body.
+//! `translucency_spectrum`): samples inline, a CSV file, a black body, or a spectrum strahl
+//! ships.
 
 use super::error::{SceneError, Source};
 use super::fields::Table;
 use super::format::SceneFile;
-use crate::color::{Band, MAX_WAVELENGTH_NM, Rgb, Spectrum};
+use crate::color::{Band, MAX_WAVELENGTH_NM, Rgb, Spectrum, StandardSpectrum};
 use crate::scene::{ENERGY_TOLERANCE, MaterialId, MaterialSpectra, Scene, Spectral};
 use std::path::Path;
 use toml::{Spanned, Value};
 
 /// What a spectrum field may hold, for error messages.
-const SPECTRUM_FORMS: &str = "a spectrum is [[nm, value], …], the name of a CSV file of nm,value lines, or \
-     { blackbody_k = kelvin }";
+const SPECTRUM_FORMS: &str = "a spectrum is [[nm, value], …], the name of a CSV file of nm,value lines, \
+     { blackbody_k = kelvin }, or { standard = \"astm-g173-direct\" } (or -global, -diffuse, \
+     -extraterrestrial)";
 
 /// The spectrum in field `field` of table `t`; CSV files are read relative to `base_dir`.
 pub(super) fn build_spectrum(
@@ -42,15 +44,27 @@ pub(super) fn build_spectrum(
             }
             Spectrum::sampled(samples).map_err(|e| error(e.to_string()))
         }
-        Value::Table(table) => {
+        Value::Table(table) if table.len() == 1 => {
+            if let Some(name) = table.get("standard") {
+                return name
+                    .as_str()
+                    .and_then(StandardSpectrum::from_name)
+                    .map(StandardSpectrum::spectrum)
+                    .ok_or_else(|| {
+                        let known: Vec<&str> =
+                            StandardSpectrum::ALL.iter().map(|s| s.name()).collect();
+                        error(format!(
+                            "unknown standard spectrum {name}; strahl knows {}",
+                            known.join(", ")
+                        ))
+                    });
+            }
             let kelvin = table
                 .get("blackbody_k")
                 .and_then(|k| k.as_float().or_else(|| k.as_integer().map(|i| i as f64)));
             match kelvin {
-                Some(k) if table.len() == 1 => {
-                    Spectrum::blackbody(k).map_err(|e| error(e.to_string()))
-                }
-                _ => Err(error(SPECTRUM_FORMS.to_string())),
+                Some(k) => Spectrum::blackbody(k).map_err(|e| error(e.to_string())),
+                None => Err(error(SPECTRUM_FORMS.to_string())),
             }
         }
         _ => Err(error(SPECTRUM_FORMS.to_string())),
