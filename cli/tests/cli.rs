@@ -220,6 +220,11 @@ name = "plate"
 material = "black"
 vertices = [[0, 0, 1], [1, 0, 1], [1, 0, 0], [0, 0, 0]]
 
+[[sensors]]
+name = "meter"
+position = [0.5, 0.001, 0.5]
+normal = [0, 1, 0]
+
 [[lights]]
 type = "day"
 sky_type = 12
@@ -253,6 +258,35 @@ states = [
     let mean = json["objects"][0]["incident_power"][1].as_f64().unwrap();
     assert_eq!(states[1]["time"], "13:15");
     assert!(((plate(&states[0]) + plate(&states[1])) / 2.0 / mean - 1.0).abs() < 1e-6);
+    // The CSV form holds every state's figures too, the same numbers as the JSON.
+    let csv = temp("day.csv");
+    let o = strahl(&[&args[..], &[csv.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header.len(), row.len());
+    for (k, time) in ["09:00", "13:15"].iter().enumerate() {
+        let column = format!("state_{time}_incident_power_g");
+        let at = header.iter().position(|h| *h == column).unwrap();
+        assert_eq!(
+            row[at].parse::<f64>().unwrap(),
+            plate(&states[k]),
+            "{column}"
+        );
+        let lux = format!("state_{time}_illuminance_lux");
+        assert!(header.contains(&lux.as_str()), "{lux}");
+    }
+    let sensors = std::fs::read_to_string(csv.with_file_name("day.sensors.csv")).unwrap();
+    let header: Vec<&str> = sensors.lines().next().unwrap().split(',').collect();
+    let row: Vec<&str> = sensors.lines().nth(1).unwrap().split(',').collect();
+    let at = header
+        .iter()
+        .position(|h| *h == "state_13:15_illuminance_lux")
+        .unwrap();
+    let lux = json["states"][1]["sensors"][0]["illuminance_lux"].as_f64();
+    assert_eq!(row[at].parse::<f64>().ok(), lux);
 }
 
 #[test]

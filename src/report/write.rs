@@ -13,11 +13,16 @@
 //! `<band>_absorbed_photons_umol_s` and `<band>_photon_irradiance_umol_m2_s`, then
 //! `red_far_red` where the scene has red and far-red bands.
 //!
+//! A scene with a day adds, per state, the columns `state_<time>_incident_power_{r,g,b}`,
+//! `state_<time>_absorbed_power_{r,g,b}` (W), `state_<time>_irradiance_{r,g,b}` (W·m⁻²) and
+//! `state_<time>_illuminance_lux`: each state alone at its full strength, as in the JSON form.
+//!
 //! When the scene has sensors, a second file next to it, named `<stem>.sensors.csv`, has one
 //! row per sensor: `name, x, y, z, nx, ny, nz, illuminance_lux, direct_illuminance_lux,
 //! indirect_illuminance_lux, standard_error_lux, irradiance_{r,g,b}` (irradiance in W·m⁻²),
 //! and per band `<band>_irradiance` and `<band>_photon_irradiance_umol_m2_s`, then
-//! `red_far_red`.
+//! `red_far_red`, then per state of a day `state_<time>_illuminance_lux` and
+//! `state_<time>_irradiance_{r,g,b}`.
 
 use super::schema::Report;
 use crate::atomic_file::AtomicFile;
@@ -158,7 +163,16 @@ fn write_sensors_csv(report: &Report, out: impl Write) -> Result<(), csv::Error>
                 .red_far_red
                 .as_ref()
                 .map(|_| "red_far_red".to_string()),
-        ),
+        )
+        .chain(report.states.iter().flat_map(|state| {
+            [
+                "illuminance_lux",
+                "irradiance_r",
+                "irradiance_g",
+                "irradiance_b",
+            ]
+            .map(|c| format!("state_{}_{c}", state.time))
+        })),
     )?;
     for (k, s) in report.sensors.iter().enumerate() {
         let mut row = vec![s.name.clone()];
@@ -183,6 +197,11 @@ fn write_sensors_csv(report: &Report, out: impl Write) -> Result<(), csv::Error>
         }
         if let Some(ratio) = &report.red_far_red {
             row.push(ratio.sensors[k].map(|v| v.to_string()).unwrap_or_default());
+        }
+        for state in &report.states {
+            let s = &state.sensors[k];
+            row.push(s.illuminance_lux.to_string());
+            row.extend(s.irradiance.to_array().map(|v| v.to_string()));
         }
         w.write_record(&row)?;
     }
@@ -228,6 +247,20 @@ const BAND_COLUMNS: [&str; 6] = [
     "photon_irradiance_umol_m2_s",
 ];
 
+/// The columns each state of a day adds to an object's row, after `state_<time>_`.
+const STATE_COLUMNS: [&str; 10] = [
+    "incident_power_r",
+    "incident_power_g",
+    "incident_power_b",
+    "absorbed_power_r",
+    "absorbed_power_g",
+    "absorbed_power_b",
+    "irradiance_r",
+    "irradiance_g",
+    "irradiance_b",
+    "illuminance_lux",
+];
+
 /// Writes the CSV form of `report` to `out`.
 fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
@@ -237,6 +270,9 @@ fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
     }
     if report.red_far_red.is_some() {
         header.push("red_far_red".into());
+    }
+    for state in &report.states {
+        header.extend(STATE_COLUMNS.map(|c| format!("state_{}_{c}", state.time)));
     }
     w.write_record(header)?;
     let num = |v: f64| v.to_string();
@@ -282,6 +318,13 @@ fn write_csv(report: &Report, out: &mut impl Write) -> Result<(), csv::Error> {
         }
         if let Some(ratio) = &report.red_far_red {
             row.push(opt(ratio.objects[e]));
+        }
+        for state in &report.states {
+            let o = &state.objects[e];
+            rgb(&mut row, Some(o.incident_power));
+            rgb(&mut row, Some(o.absorbed_power));
+            rgb(&mut row, o.irradiance);
+            row.push(opt(o.illuminance_lux));
         }
         w.write_record(&row)?;
     }
