@@ -46,6 +46,13 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         world.geometry.triangle_count(),
         world.geometry.analytic_count()
     );
+    if world.geometry.placement_count() > 0 {
+        println!(
+            "placed      {} copies of shared meshes, {} triangles kept once",
+            world.geometry.placement_count(),
+            world.geometry.placed_mesh_triangles()
+        );
+    }
     println!(
         "materials   {}, textures {}",
         scene.materials.len(),

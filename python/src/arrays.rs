@@ -2,9 +2,10 @@
 //! grouped into named objects, a diffuse reflectance and translucency per object, and a sun
 //! and a uniform or a CIE standard sky; optionally a periodic plot (a field).
 
-use glam::Vec3;
+use glam::{Mat4, Vec3, Vec4};
 use strahl::scene::{
     CieSkyType, ENERGY_TOLERANCE, Light, LightKind, Material, Periodic, PolygonMesh, Scene, Shape,
+    Transform,
 };
 
 /// What Python hands over, decoded: little-endian `f32` / `u32` arrays.
@@ -34,6 +35,10 @@ pub struct Arrays {
     /// The plot `[x₀, x₁, z₀, z₁]` (scene units) that repeats without end in x and z: the
     /// scene stands for a field of copies of it.
     pub periodic: Option<[f32; 4]>,
+    /// Objects placed many times: an object's index and a row-major 3 × 4 affine matrix
+    /// (`[R | t]`) per placement. The object becomes one object per placement, `name[i]`, all
+    /// sharing its triangles (kept once where there are 8 or more).
+    pub placements: Vec<(usize, Vec<[f32; 12]>)>,
 }
 
 /// `bytes` as little-endian 4-byte words, `width` to a row; an error names `what`.
@@ -129,16 +134,36 @@ pub fn scene(name: &str, a: Arrays) -> Result<Scene, String> {
         let mesh = own_vertices(&a.vertices, triangles, &mut local);
         mesh.validate()
             .map_err(|e| format!("object '{}': {e}", a.names[k]))?;
-        scene.add_object(
-            &a.names[k],
-            Shape::Mesh(std::sync::Arc::new(mesh)),
-            material,
-        );
-        if a.per_face
-            && let Some(object) = scene.objects.last_mut()
-        {
-            object.per_face = true;
+        let mesh = std::sync::Arc::new(mesh);
+        let placed = a.placements.iter().find(|(object, _)| *object == k);
+        match placed {
+            None => scene.add_object(&a.names[k], Shape::Mesh(mesh), material),
+            Some((_, matrices)) => {
+                for (i, m) in matrices.iter().enumerate() {
+                    let name = format!("{}[{i}]", a.names[k]);
+                    let transform = placement(m).ok_or_else(|| {
+                        format!(
+                            "placement {i} of '{}' is not finite and invertible",
+                            a.names[k]
+                        )
+                    })?;
+                    scene.add_object(&name, Shape::Mesh(mesh.clone()), material);
+                    if let Some(object) = scene.objects.last_mut() {
+                        object.transform = transform;
+                    }
+                }
+            }
         }
+        if a.per_face {
+            let placed = placed.map_or(1, |(_, m)| m.len());
+            let first = scene.objects.len() - placed;
+            scene.objects[first..]
+                .iter_mut()
+                .for_each(|o| o.per_face = true);
+        }
+    }
+    if let Some((k, _)) = a.placements.iter().find(|(k, _)| *k >= objects) {
+        return Err(format!("placements name object {k} of {objects}"));
     }
     let light = |what: &str, rgb: [f32; 3]| {
         if rgb.iter().all(|v| v.is_finite() && *v >= 0.0) {
@@ -194,6 +219,20 @@ pub fn scene(name: &str, a: Arrays) -> Result<Scene, String> {
     }
     aim_camera(&mut scene, &a.vertices);
     Ok(scene)
+}
+
+/// The transform of a row-major 3 × 4 affine matrix `[R | t]`, when finite and invertible.
+fn placement(m: &[f32; 12]) -> Option<Transform> {
+    let matrix = Mat4::from_cols(
+        Vec4::new(m[0], m[4], m[8], 0.0),
+        Vec4::new(m[1], m[5], m[9], 0.0),
+        Vec4::new(m[2], m[6], m[10], 0.0),
+        Vec4::new(m[3], m[7], m[11], 1.0),
+    );
+    let det = matrix.determinant();
+    (det.is_finite() && det.abs() >= 1e-20)
+        .then(|| Transform::from_matrix(matrix))
+        .flatten()
 }
 
 /// A mesh of `triangles` (indices into the shared `vertices`) holding only the vertices they

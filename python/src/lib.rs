@@ -49,7 +49,7 @@ fn load(py: Python<'_>, name: &str) -> PyResult<Scene> {
 /// `z ∈ [z₀, z₁]` repeats without end in x and z (y up): geometry reaching over a side is
 /// seen through the opposite one; a bad plot raises `ValueError`.
 #[pyfunction]
-#[pyo3(signature = (name, vertices, triangles, object_ids, names, reflectance, translucency, per_face, sun, sky, cie_sky=None, periodic=None))]
+#[pyo3(signature = (name, vertices, triangles, object_ids, names, reflectance, translucency, per_face, sun, sky, cie_sky=None, periodic=None, placements=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 fn scene_from_arrays(
     py: Python<'_>,
@@ -65,6 +65,7 @@ fn scene_from_arrays(
     sky: Option<[f32; 3]>,
     cie_sky: Option<(u8, [f32; 3], [f32; 3])>,
     periodic: Option<[f32; 4]>,
+    placements: Vec<(usize, Vec<u8>)>,
 ) -> PyResult<Scene> {
     let world = py.detach(|| -> Result<World, String> {
         let float = f32::from_le_bytes;
@@ -87,6 +88,13 @@ fn scene_from_arrays(
             sky,
             cie_sky,
             periodic,
+            placements: placements
+                .iter()
+                .map(|(object, bytes)| {
+                    let rows = arrays::rows::<12, f32>(bytes, "placements", float)?;
+                    Ok((*object, rows))
+                })
+                .collect::<Result<_, String>>()?,
         };
         let scene = arrays::scene(name, given)?;
         World::new(scene, AccelKind::Bvh).map_err(|e| format!("scene '{name}': {e}"))

@@ -416,6 +416,7 @@ def from_arrays(
     sky=None,
     cie_sky=None,
     periodic=None,
+    placements=None,
     per_face: bool = False,
     name: str = "arrays",
 ) -> Scene:
@@ -440,7 +441,13 @@ def from_arrays(
     a quad covering the plot. Powers are then per plot. Only the light model
     (``light-trace``) takes every light in a periodic scene; the ray tracers take sun and
     sky only, and the radiosity methods refuse it (ValueError). A plot with a range that is
-    empty (x1 ≤ x0 or z1 ≤ z0) or not finite raises ValueError."""
+    empty (x1 ≤ x0 or z1 ≤ z0) or not finite raises ValueError.
+
+    ``placements={name: matrices}`` places an object many times: ``matrices`` of shape
+    (p, 3, 4) or (p, 4, 4), each an affine map (row-major, ``[R | t]``) from the object's
+    triangles as given to where a copy stands. The object becomes p objects named
+    ``name[i]`` that share its triangles — kept once, not copied, where there are 8 or more —
+    so a plant of 10³ triangles can stand 10⁵ times in a field."""
     vertices = np.ascontiguousarray(vertices, dtype="<f4")
     triangles = np.ascontiguousarray(triangles, dtype="<u4")
     object_ids = np.ascontiguousarray(object_ids, dtype="<u4")
@@ -461,6 +468,17 @@ def from_arrays(
         plot = tuple(float(x) for x in np.asarray(periodic, dtype=float).reshape(-1))
         if len(plot) != 4:
             raise ValueError(f"periodic: {len(plot)} numbers, expected four (x0, x1, z0, z1)")
+    placed = []
+    for placed_name, matrices in (placements or {}).items():
+        if str(placed_name) not in names:
+            raise ValueError(f"placements: no object named {placed_name!r}")
+        m = np.asarray(matrices, dtype="<f4")
+        if m.ndim != 3 or m.shape[1:] not in ((3, 4), (4, 4)):
+            raise ValueError(f"placements[{placed_name!r}]: shape {m.shape}, expected (p, 3, 4) or (p, 4, 4)")
+        if m.shape[1] == 4 and not np.allclose(m[:, 3], [0, 0, 0, 1]):
+            raise ValueError(f"placements[{placed_name!r}]: the last row of a 4 × 4 matrix must be 0, 0, 0, 1")
+        rows = np.ascontiguousarray(m[:, :3, :].reshape(-1, 12), dtype="<f4")
+        placed.append((names.index(str(placed_name)), rows.tobytes()))
     given = (
         name,
         vertices.tobytes(),
@@ -474,6 +492,7 @@ def from_arrays(
         sky_light,
         cie_light,
         plot,
+        placed,
     )
     return Scene(_strahl.scene_from_arrays(*given), ("arrays", given))
 

@@ -72,9 +72,12 @@ def scene_from_arrays(
     sky: Optional[Tuple[float, float, float]],
     cie_sky: Optional[Tuple[int, Tuple[float, float, float], Tuple[float, float, float]]] = None,
     periodic: Optional[Tuple[float, float, float, float]] = None,
+    placements: list[Tuple[int, bytes]] = ...,
 ) -> Scene:
     """`periodic`: the plot (x0, x1, z0, z1), scene units, repeated without end in x and z
-    (y up); ValueError unless both ranges are finite with x0 < x1 and z0 < z1."""
+    (y up); ValueError unless both ranges are finite with x0 < x1 and z0 < z1. `placements`:
+    per placed object its index and little-endian `f32` 3 × 4 row-major matrices, one per
+    copy."""
 def sun_position(
     year: int, month: int, day: int, hour: int, minute: int, second: float,
     utc_offset_hours: float, latitude_deg: float, longitude_deg: float,

@@ -286,6 +286,7 @@ impl Bvh {
                             t,
                             prim: lanes[lane],
                             local: [b1, b2],
+                            part: 0,
                         };
                         if any {
                             return Some(hit);

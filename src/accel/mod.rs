@@ -24,6 +24,8 @@ pub struct PrimHit {
     /// Primitive-specific numbers for the second stage (barycentrics of a triangle, part
     /// index of an analytic shape).
     pub local: [f32; 2],
+    /// The triangle hit within a placed mesh's own triangles (0 for other primitives).
+    pub part: u32,
 }
 
 impl PrimHit {

@@ -552,6 +552,7 @@ mod tests {
                     t,
                     prim,
                     local: [b1, b2],
+                    part: 0,
                 });
             }
             let height = self.planes[i - self.triangles.len()];
@@ -560,6 +561,7 @@ mod tests {
                 t,
                 prim,
                 local: [0.0; 2],
+                part: 0,
             })
         }
     }

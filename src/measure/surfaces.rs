@@ -47,18 +47,13 @@ impl SurfaceTable {
         let objects = scene.objects.len();
         // Per object, triangle area per face (grown as faces appear).
         let mut face_areas: Vec<Vec<f64>> = vec![Vec::new(); objects];
-        for prim in 0..geometry.triangle_count() as u32 {
-            let Some(tri) = geometry.triangle(prim) else {
-                continue;
-            };
-            let (object, _) = geometry.owner(prim);
-            let face = geometry.point_on_triangle(prim, 1.0 / 3.0, 1.0 / 3.0).face as usize;
-            let areas = &mut face_areas[object as usize];
+        geometry.for_each_triangle_area(|object, face, area| {
+            let (areas, face) = (&mut face_areas[object as usize], face as usize);
             if areas.len() <= face {
                 areas.resize(face + 1, 0.0);
             }
-            areas[face] += tri.area() as f64;
-        }
+            areas[face] += area;
+        });
         let mut table = SurfaceTable::default();
         let mut by_name: HashMap<(String, Option<u32>), u32> = HashMap::new();
         for (index, object) in scene.objects.iter().enumerate() {

@@ -23,6 +23,8 @@ mod texture;
 pub use crate::color::{
     Band, MAX_WAVELENGTH_NM, MOLAR_PHOTON_ENERGY_NM, Spectrum, SpectrumError, StandardSpectrum,
 };
+/// An object's placement: object space to world space and back.
+pub use crate::geometry::Transform;
 pub use camera::{Camera, CameraRays};
 pub use day::{Day, DayState};
 pub use file::{LoadOptions, SceneError, load, load_mesh_file, load_str, load_str_with, load_with};

@@ -17,6 +17,7 @@ mod lights;
 pub mod lobes;
 pub mod optics;
 mod periodic;
+mod placed_mesh;
 mod ray_bench;
 mod scene_geometry;
 mod sky;
@@ -27,6 +28,7 @@ pub use light_at_point::{
 };
 pub use lights::{AreaLight, AreaSample, LightSet};
 pub use periodic::{Field, MAX_CROSSINGS};
+pub use placed_mesh::PLACED_MESH_MIN_TRIANGLES;
 pub use ray_bench::{
     PRIMARY_WIDTH, QueryTiming, RANDOM_RAYS, RayBench, RaySet, RaySetError, bench_rays, ray_set,
 };

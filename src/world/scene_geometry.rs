@@ -1,11 +1,16 @@
 //! The scene flattened for ray queries: world-space triangles (from every planar shape, mesh
-//! and emissive analytic shape) and analytic shapes with their world transforms. It is the
+//! and emissive analytic shape), analytic shapes with their world transforms, and placements
+//! of meshes several objects share (`placed_mesh.rs`: their triangles kept once). It is the
 //! [`PrimitiveSet`] every accelerator indexes, and it finishes hits (the second stage).
+//! Primitives are numbered triangles first, then analytic shapes, then placements.
 
+use super::placed_mesh::{MeshLibrary, PLACED_MESH_MIN_TRIANGLES, Placement};
 use crate::accel::{PrimHit, PrimitiveSet};
 use crate::geometry::{Aabb, LocalHit, Ray, Transform, Triangle, cuboid, plane, sphere};
 use crate::scene::{AnalyticKind, MaterialId, Scene, Shape, Texture};
 use glam::{Vec2, Vec3};
+use std::collections::HashMap;
+use std::sync::Arc;
 
 /// Segments used when an emissive curved shape is turned into triangles for light sampling.
 pub const EMITTER_SEGMENTS: u32 = 64;
@@ -93,6 +98,9 @@ pub struct SceneGeometry {
     attributes: Vec<TriangleAttributes>,
     shading_normals: Vec<[Vec3; 3]>,
     shapes: Vec<AnalyticInstance>,
+    /// The meshes placed rather than copied, and their placements.
+    meshes: MeshLibrary,
+    placements: Vec<Placement>,
     /// Alpha texture per material (cloned so the geometry stands alone).
     alpha: Vec<Option<Texture>>,
     /// Whether any material has an alpha texture (skips the cut-out test when none does).
@@ -113,6 +121,14 @@ impl SceneGeometry {
             any_alpha: scene.materials.iter().any(|m| m.alpha_texture.is_some()),
             ..Default::default()
         };
+        // Meshes shared by several objects, by address: placed, not copied, where they may be.
+        let mut shared: HashMap<*const crate::scene::PolygonMesh, (usize, Option<u32>)> =
+            HashMap::new();
+        for object in &scene.objects {
+            if let Shape::Mesh(mesh) = &object.shape {
+                shared.entry(Arc::as_ptr(mesh)).or_insert((0, None)).0 += 1;
+            }
+        }
         for (index, object) in scene.objects.iter().enumerate() {
             let degenerate = |reason: String| GeometryError::Degenerate {
                 object: scene.object_name(index),
@@ -153,6 +169,7 @@ impl SceneGeometry {
                         object.shape.kind_name()
                     )));
                 }
+                _ if g.place(scene, index, &mut shared).map_err(degenerate)? => {}
                 _ => {
                     let mesh = object.shape.to_mesh(EMITTER_SEGMENTS).map_err(degenerate)?;
                     mesh.validate().map_err(degenerate)?;
@@ -162,6 +179,53 @@ impl SceneGeometry {
         }
         g.sort_triangles_spatially();
         Ok(g)
+    }
+
+    /// Places object `index` as a placement of its mesh when the mesh is shared by several
+    /// objects (`shared`: uses and library index per mesh address), has at least
+    /// [`PLACED_MESH_MIN_TRIANGLES`] triangles (its polygons' fans) and one material, and the material neither
+    /// emits nor cuts out (emitters are sampled triangle by triangle, cut-outs tested per
+    /// triangle): true when placed.
+    fn place(
+        &mut self,
+        scene: &Scene,
+        index: usize,
+        shared: &mut HashMap<*const crate::scene::PolygonMesh, (usize, Option<u32>)>,
+    ) -> Result<bool, String> {
+        let object = &scene.objects[index];
+        let Shape::Mesh(mesh) = &object.shape else {
+            return Ok(false);
+        };
+        let material = &scene.materials[object.material as usize];
+        let Some((uses, placed)) = shared.get_mut(&Arc::as_ptr(mesh)) else {
+            return Ok(false);
+        };
+        let triangles: usize = mesh.faces().map(|f| f.len().saturating_sub(2)).sum();
+        if *uses < 2
+            || triangles < PLACED_MESH_MIN_TRIANGLES
+            || mesh.face_materials.is_some()
+            || material.is_emissive()
+            || material.alpha_texture.is_some()
+        {
+            return Ok(false);
+        }
+        let library = match *placed {
+            Some(library) => library,
+            None => {
+                mesh.validate()?;
+                let library = self.meshes.add(mesh);
+                *placed = Some(library);
+                library
+            }
+        };
+        self.placements.push(Placement {
+            mesh: library,
+            to_world: object.transform,
+            bounds: self.meshes.placed_bounds(library, &object.transform),
+            object: index as u32,
+            material: object.material,
+        });
+        Ok(true)
     }
 
     /// Reorders the triangles along a Morton (Z-order) curve through their centroids, so
@@ -222,10 +286,14 @@ impl SceneGeometry {
                 if tri.area() <= 0.0 {
                     continue;
                 }
-                let uvs = mesh
-                    .uvs
-                    .as_ref()
-                    .map_or([Vec2::ZERO, Vec2::X, Vec2::Y], |u| [u[a], u[b], u[c]]);
+                // Without texture coordinates a triangle's corners take (0,0), (1,0), (0,1) in
+                // the mesh's own order, mirrored or not (as a placed copy's do).
+                let default = if flip {
+                    [Vec2::ZERO, Vec2::Y, Vec2::X]
+                } else {
+                    [Vec2::ZERO, Vec2::X, Vec2::Y]
+                };
+                let uvs = mesh.uvs.as_ref().map_or(default, |u| [u[a], u[b], u[c]]);
                 let normals = match &normals {
                     Some(n) if [n[a], n[b], n[c]].iter().all(|v| *v != Vec3::ZERO) => {
                         self.shading_normals.push([n[a], n[b], n[c]]);
@@ -256,6 +324,29 @@ impl SceneGeometry {
         self.shapes.len()
     }
 
+    /// Number of placed meshes (primitives after the triangles and analytic shapes).
+    pub fn placement_count(&self) -> usize {
+        self.placements.len()
+    }
+
+    /// Triangles the placed meshes keep, each mesh once.
+    pub fn placed_mesh_triangles(&self) -> usize {
+        self.meshes.total_triangles()
+    }
+
+    /// Calls `f(object, face, area m²)` for every triangle of the scene's triangle meshes:
+    /// the copied triangles and every placement's.
+    pub fn for_each_triangle_area(&self, mut f: impl FnMut(u32, u32, f64)) {
+        for (tri, attr) in self.triangles.iter().zip(&self.attributes) {
+            f(attr.object, attr.face, tri.area() as f64);
+        }
+        for placement in &self.placements {
+            for (face, area) in self.meshes.triangle_areas(placement) {
+                f(placement.object, face, area);
+            }
+        }
+    }
+
     /// The triangle of primitive `prim`, if it is one.
     #[inline]
     pub fn triangle(&self, prim: u32) -> Option<&Triangle> {
@@ -267,11 +358,20 @@ impl SceneGeometry {
     pub fn owner(&self, prim: u32) -> (u32, MaterialId) {
         match self.attributes.get(prim as usize) {
             Some(a) => (a.object, a.material),
-            None => {
-                let s = &self.shapes[prim as usize - self.triangles.len()];
-                (s.object, s.material)
-            }
+            None => match self.shapes.get(prim as usize - self.triangles.len()) {
+                Some(s) => (s.object, s.material),
+                None => {
+                    let p = self.placement(prim);
+                    (p.object, p.material)
+                }
+            },
         }
+    }
+
+    /// The placement that is primitive `prim` (past the triangles and analytic shapes).
+    #[inline]
+    fn placement(&self, prim: u32) -> &Placement {
+        &self.placements[prim as usize - self.triangles.len() - self.shapes.len()]
     }
 
     /// Bounds of all bounded primitives.
@@ -350,6 +450,7 @@ impl SceneGeometry {
             t: 0.0,
             prim,
             local: [b1, b2],
+            part: 0,
         };
         self.describe(&hit, &Ray::new(Vec3::ZERO, toward_front))
     }
@@ -358,7 +459,11 @@ impl SceneGeometry {
     /// solid shows its inside through its holes).
     #[inline(never)]
     fn intersect_analytic(&self, prim: u32, ray: &Ray, t_max: f32) -> Option<PrimHit> {
-        let shape = &self.shapes[prim as usize - self.triangles.len()];
+        let Some(shape) = self.shapes.get(prim as usize - self.triangles.len()) else {
+            return self
+                .meshes
+                .intersect(self.placement(prim), prim, ray, t_max);
+        };
         let mut t_start = 0.0f32;
         for _ in 0..4 {
             let moved = Ray::new(ray.at(t_start), ray.dir);
@@ -373,6 +478,7 @@ impl SceneGeometry {
                     t,
                     prim,
                     local: [part as f32, 0.0],
+                    part: 0,
                 });
             }
             t_start = t * (1.0 + 1e-5) + 1e-7;
@@ -404,6 +510,21 @@ impl SceneGeometry {
                 material: attr.material,
                 object: attr.object,
                 face: attr.face,
+                prim: hit.prim,
+                front_face: true,
+            }
+        } else if prim >= self.triangles.len() + self.shapes.len() {
+            let placement = self.placement(hit.prim);
+            let at = self.meshes.describe(placement, hit.part, hit.local);
+            SurfaceHit {
+                t: hit.t,
+                p: at.p,
+                ng: at.ng,
+                ns: at.ns,
+                uv: at.uv,
+                material: placement.material,
+                object: placement.object,
+                face: at.face,
                 prim: hit.prim,
                 front_face: true,
             }
@@ -446,13 +567,16 @@ fn morton3(x: u32, y: u32, z: u32) -> u32 {
 
 impl PrimitiveSet for SceneGeometry {
     fn len(&self) -> usize {
-        self.triangles.len() + self.shapes.len()
+        self.triangles.len() + self.shapes.len() + self.placements.len()
     }
 
     fn bounds(&self, prim: u32) -> Aabb {
         match self.triangles.get(prim as usize) {
             Some(t) => Aabb::from_points(t.vertices()),
-            None => self.shapes[prim as usize - self.triangles.len()].bounds,
+            None => match self.shapes.get(prim as usize - self.triangles.len()) {
+                Some(s) => s.bounds,
+                None => self.placement(prim).bounds,
+            },
         }
     }
 
@@ -477,6 +601,7 @@ impl PrimitiveSet for SceneGeometry {
             t,
             prim,
             local: [b1, b2],
+            part: 0,
         })
     }
 }

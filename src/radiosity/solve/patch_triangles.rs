@@ -53,6 +53,7 @@ impl PrimitiveSet for PatchTriangles {
                 t,
                 prim,
                 local: [b1, b2],
+                part: 0,
             })
     }
 }

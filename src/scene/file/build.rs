@@ -11,6 +11,7 @@ use super::locate::toml_error;
 use super::materials::{TextureContext, build_material};
 use super::meshes::{FaceMaterials, MeshCache};
 use super::periodic::build_periodic;
+use super::placements::build_placements;
 use super::sensors::build_sensors;
 use super::shapes::build_shape;
 use super::spectra::{build_spectral, build_spectrum};
@@ -66,7 +67,22 @@ pub(super) fn build_scene(
             meshes: &mut meshes,
         };
         let object = build_object(&t, entry.get_ref(), &mut context, &mut scene)?;
-        scene.objects.push(object);
+        match &entry.get_ref().placements {
+            // One object per placement, `name[i]`, sharing the mesh.
+            Some(placements) => {
+                let placed = build_placements(&t, placements, base_dir, &object.transform)?;
+                let index = scene.objects.len();
+                let name = (object.name.clone()).unwrap_or_else(|| format!("object-{index}"));
+                scene
+                    .objects
+                    .extend(placed.into_iter().enumerate().map(|(i, transform)| Object {
+                        name: Some(format!("{name}[{i}]")),
+                        transform,
+                        ..object.clone()
+                    }));
+            }
+            None => scene.objects.push(object),
+        }
     }
     let mut light_spectra = Vec::new();
     for (i, entry) in file.lights.iter().enumerate() {

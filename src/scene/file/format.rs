@@ -133,7 +133,7 @@ impl ObjectType {
         match self {
             ObjectType::Triangle | ObjectType::Polygon | ObjectType::Quad => &["vertices", "uvs"],
             ObjectType::Parallelogram => &["origin", "edge_u", "edge_v"],
-            ObjectType::Mesh => &["file"],
+            ObjectType::Mesh => &["file", "placements"],
             ObjectType::Sphere => &["center", "radius"],
             ObjectType::Box => &["min", "max"],
             ObjectType::Cylinder => &["base", "top", "radius", "caps"],
@@ -195,6 +195,7 @@ pub(super) struct ObjectEntry {
     pub cap: Option<Spanned<bool>>,
     pub point: Option<Spanned<Coords>>,
     pub normal: Option<Spanned<Coords>>,
+    pub placements: Option<Spanned<toml::Value>>,
 }
 
 impl ObjectEntry {
@@ -225,6 +226,7 @@ impl ObjectEntry {
         add("cap", self.cap.as_ref().map(Spanned::span));
         add("point", self.point.as_ref().map(Spanned::span));
         add("normal", self.normal.as_ref().map(Spanned::span));
+        add("placements", self.placements.as_ref().map(Spanned::span));
         out
     }
 }

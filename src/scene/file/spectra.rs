@@ -5,6 +5,7 @@
 use super::error::{SceneError, Source};
 use super::fields::Table;
 use super::format::SceneFile;
+use super::number_rows::read_number_rows;
 use crate::color::{Band, MAX_WAVELENGTH_NM, Rgb, Spectrum, StandardSpectrum};
 use crate::scene::{ENERGY_TOLERANCE, MaterialId, MaterialSpectra, Scene, Spectral};
 use std::path::Path;
@@ -71,36 +72,18 @@ pub(super) fn build_spectrum(
     }
 }
 
-/// The spectrum in the CSV file `path`: one `nm,value` pair a line (commas, semicolons, tabs
-/// or spaces between), `#` comments, blank lines and a header line of words skipped.
+/// The spectrum in the CSV file `path`: one `nm,value` pair a line ([`read_number_rows`]).
 fn read_csv(path: &Path) -> Result<Spectrum, String> {
-    let shown = path.display();
-    let text =
-        std::fs::read_to_string(path).map_err(|e| format!("cannot read spectrum {shown}: {e}"))?;
-    let mut samples = Vec::new();
-    for (n, line) in text.lines().enumerate() {
-        let line = line.split('#').next().unwrap_or("").trim();
-        let fields: Vec<&str> = line
-            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
-            .filter(|f| !f.is_empty())
-            .collect();
-        if fields.is_empty() {
-            continue;
-        }
-        let numbers: Option<Vec<f64>> = fields.iter().map(|f| f.parse().ok()).collect();
-        match numbers.as_deref() {
-            Some([nm, value]) => samples.push((*nm, *value)),
-            // A header of words before the first sample.
-            None if samples.is_empty() && fields[0].parse::<f64>().is_err() => {}
-            _ => {
-                return Err(format!(
-                    "{shown}:{}: expected two numbers, wavelength nm and value",
-                    n + 1
-                ));
-            }
+    let expected = "two numbers, wavelength nm and value";
+    let rows = read_number_rows(path, "spectrum", expected)?;
+    let mut samples = Vec::with_capacity(rows.len());
+    for (line, numbers) in rows {
+        match numbers[..] {
+            [nm, value] => samples.push((nm, value)),
+            _ => return Err(format!("{}:{line}: expected {expected}", path.display())),
         }
     }
-    Spectrum::sampled(samples).map_err(|e| format!("{shown}: {e}"))
+    Spectrum::sampled(samples).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Wavelengths of the red, green and blue thirds of the visible, nm: a spectrum's plain means
