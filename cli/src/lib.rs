@@ -54,6 +54,7 @@ pub enum Command {
 
 /// Runs the command line with the process arguments; returns the process exit code.
 pub fn main() -> std::process::ExitCode {
+    quiet_on_closed_pipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => {
@@ -177,4 +178,16 @@ fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> anyhow
         .build()
         .map_err(|e| anyhow::anyhow!("cannot start {threads} threads: {e}"))?;
     Ok(pool.install(f))
+}
+
+/// A closed standard output (`strahl info … | head`) ends the process quietly, as it ends
+/// other Unix tools, instead of a panic at the next line printed: the default action of
+/// SIGPIPE, which Rust's runtime sets to be ignored.
+fn quiet_on_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: called once at the start of `main`, before any other thread exists; it sets
+    // the signal's disposition back to the system default and installs no handler.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
 }
