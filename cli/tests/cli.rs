@@ -257,6 +257,10 @@ states = [
     let plate = |v: &serde_json::Value| v["objects"][0]["incident_power"][1].as_f64().unwrap();
     let mean = json["objects"][0]["incident_power"][1].as_f64().unwrap();
     assert_eq!(states[1]["time"], "13:15");
+    // The run's seconds hold the states' solves (matrix radiosity solves each after the day).
+    let stats = &json["stats"];
+    let parts = stats["seconds_parts"].as_f64().unwrap();
+    assert!(parts > 0.0 && stats["seconds"].as_f64().unwrap() > parts, "{stats}");
     assert!(((plate(&states[0]) + plate(&states[1])) / 2.0 / mean - 1.0).abs() < 1e-6);
     // The CSV form holds every state's figures too, the same numbers as the JSON.
     let csv = temp("day.csv");

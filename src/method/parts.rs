@@ -93,7 +93,8 @@ pub fn run_with_parts(
 
 /// `method` on `world` and on each of the worlds `parts` (relit from it): the light model
 /// along one set of photon paths when no world has emitting surfaces, else one run after
-/// another. The parts' outcomes are `None` when a method other than the light model was
+/// another, the scene's outcome then counting the parts' seconds and rays too (its stats
+/// with `seconds_parts`, theirs alone). The parts' outcomes are `None` when a method other than the light model was
 /// stopped before they were all complete.
 fn run_parts(
     world: &Arc<World>,
@@ -121,11 +122,23 @@ fn run_parts(
             Ok((outcome, Some(rest)))
         }
         _ => {
-            let outcome = run(world, method, progress, cancel)?;
+            let mut outcome = run(world, method, progress, cancel)?;
             let light_model = matches!(method, Method::LightTrace(_));
             let mut outcomes = Vec::with_capacity(parts.len());
             for part in parts {
                 let part = run(&Arc::new(part), method, progress, cancel)?;
+                // The run's time and rays are the scene's and its parts' together; the parts'
+                // seconds also on their own.
+                outcome.seconds += part.seconds;
+                if let (Some(m), Some(p)) = (&mut outcome.measurement, &part.measurement) {
+                    m.stats.seconds += p.stats.seconds;
+                    m.stats.rays += p.stats.rays;
+                    let parts_seconds = m.stats.extra.get("seconds_parts").and_then(|v| v.as_f64());
+                    m.stats.insert(
+                        "seconds_parts",
+                        parts_seconds.unwrap_or(0.0) + p.stats.seconds,
+                    );
+                }
                 if !part.complete && !light_model {
                     return Ok((outcome, None));
                 }
