@@ -260,7 +260,10 @@ states = [
     // The run's seconds hold the states' solves (matrix radiosity solves each after the day).
     let stats = &json["stats"];
     let parts = stats["seconds_parts"].as_f64().unwrap();
-    assert!(parts > 0.0 && stats["seconds"].as_f64().unwrap() > parts, "{stats}");
+    assert!(
+        parts > 0.0 && stats["seconds"].as_f64().unwrap() > parts,
+        "{stats}"
+    );
     assert!(((plate(&states[0]) + plate(&states[1])) / 2.0 / mean - 1.0).abs() < 1e-6);
     // The CSV form holds every state's figures too, the same numbers as the JSON.
     let csv = temp("day.csv");
