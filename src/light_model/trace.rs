@@ -439,22 +439,34 @@ impl Tracer<'_> {
         let tally = &mut worker.tallies[g];
         let hits = &mut worker.hits[g];
         let add = |a: [f64; 3], b: [f64; 3]| [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
-        let all = hits.iter().fold([0.0; 3], |a, &(_, x)| add(a, x));
-        let indirect = match hits.first() {
-            Some(&(_, first)) => [0, 1, 2].map(|c| all[c] - first[c]),
-            None => all,
-        };
-        for (squares, total) in tally.total_squares.iter_mut().zip([all, indirect]) {
-            add_fixed_saturating(squares, total.map(square));
-        }
-        // Per surface: the photon's hits summed (in hit order, so the same for any thread).
-        hits.sort_by_key(|&(entry, _)| entry);
-        for run in hits.chunk_by(|a, b| a.0 == b.0) {
-            let total = run.iter().fold([0.0; 3], |a, &(_, x)| add(a, x));
-            add_fixed_saturating(
-                &mut tally.entries[run[0].0].incident_squares,
-                total.map(square),
-            );
+        match hits[..] {
+            // Nothing hit: nothing to add (squares of zero).
+            [] => {}
+            // One hit, the common case: its square is the whole path's and its surface's, and
+            // the indirect part is zero — the sums below, without them.
+            [(entry, x)] => {
+                let squares = x.map(square);
+                add_fixed_saturating(&mut tally.total_squares[0], squares);
+                add_fixed_saturating(&mut tally.entries[entry].incident_squares, squares);
+            }
+            _ => {
+                let all = hits.iter().fold([0.0; 3], |a, &(_, x)| add(a, x));
+                let first = hits[0].1;
+                let indirect = [0, 1, 2].map(|c| all[c] - first[c]);
+                for (squares, total) in tally.total_squares.iter_mut().zip([all, indirect]) {
+                    add_fixed_saturating(squares, total.map(square));
+                }
+                // Per surface: the photon's hits summed (in hit order, so the same for any
+                // thread).
+                hits.sort_by_key(|&(entry, _)| entry);
+                for run in hits.chunk_by(|a, b| a.0 == b.0) {
+                    let total = run.iter().fold([0.0; 3], |a, &(_, x)| add(a, x));
+                    add_fixed_saturating(
+                        &mut tally.entries[run[0].0].incident_squares,
+                        total.map(square),
+                    );
+                }
+            }
         }
         let sensor_scale = FIXED_POINT_TOTAL / group.sensor_reference;
         for (light, fixed) in worker.sensor_light[g].iter_mut().zip(&mut tally.sensors) {
