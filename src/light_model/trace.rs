@@ -321,7 +321,12 @@ impl Tracer<'_> {
             let share = power.to_f64().map(|c| c / count);
             let emitted = group.quantize(share);
             let carried = share.map(|c| c * photon.carried);
-            let q = group.quantize(carried);
+            // Most photons carry all of their share (no aiming): the same units again.
+            let q = if photon.carried == 1.0 {
+                emitted
+            } else {
+                group.quantize(carried)
+            };
             let tally = &mut worker.tallies[g];
             match photon.surface {
                 Some((object, face)) => {
@@ -339,7 +344,9 @@ impl Tracer<'_> {
                 }
                 None => add_fixed(&mut tally.light_emission, emitted),
             }
-            add_fixed(&mut tally.escaped, [0, 1, 2].map(|c| emitted[c] - q[c]));
+            if q != emitted {
+                add_fixed(&mut tally.escaped, [0, 1, 2].map(|c| emitted[c] - q[c]));
+            }
             worker.active.push(g);
             worker.q.push(q);
             worker.carried.push(carried);
