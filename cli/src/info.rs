@@ -4,6 +4,7 @@ use super::choice::choice;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::collections::BTreeMap;
+use std::fmt::Write;
 use strahl::method::{AccelKind, World};
 use strahl::scene::LightKind;
 
@@ -31,33 +32,43 @@ pub fn run(args: &InfoArgs) -> Result<()> {
     }
     let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
     let c = &scene.camera;
-    println!("scene       {}", scene.name);
-    println!(
+    let mut out = String::new();
+    writeln!(out, "scene       {}", scene.name)?;
+    writeln!(
+        out,
         "camera      at {:?} looking at {:?}, fov {}°, {}×{}",
         c.position.to_array(),
         c.look_at.to_array(),
         c.fov_degrees,
         c.width,
         c.height
-    );
-    println!("objects     {} ({})", scene.objects.len(), kinds.join(", "));
-    println!(
+    )?;
+    writeln!(
+        out,
+        "objects     {} ({})",
+        scene.objects.len(),
+        kinds.join(", ")
+    )?;
+    writeln!(
+        out,
         "primitives  {} triangles, {} analytic shapes",
         world.geometry.triangle_count(),
         world.geometry.analytic_count()
-    );
+    )?;
     if world.geometry.placement_count() > 0 {
-        println!(
+        writeln!(
+            out,
             "placed      {} copies of shared meshes, {} triangles kept once",
             world.geometry.placement_count(),
             world.geometry.placed_mesh_triangles()
-        );
+        )?;
     }
-    println!(
+    writeln!(
+        out,
         "materials   {}, textures {}",
         scene.materials.len(),
         scene.textures.len()
-    );
+    )?;
     let mut lights: BTreeMap<&str, usize> = BTreeMap::new();
     for l in &scene.lights {
         let k = match l.kind {
@@ -83,29 +94,32 @@ pub fn run(args: &InfoArgs) -> Result<()> {
             .map(|l| l.prims.len())
             .sum::<usize>()
     ));
-    println!("lights      {}", light_list.join(", "));
+    writeln!(out, "lights      {}", light_list.join(", "))?;
     if !scene.sensors.is_empty() {
-        println!("sensors     {}", scene.sensors.len());
+        writeln!(out, "sensors     {}", scene.sensors.len())?;
     }
     let b = world.geometry.bounds();
-    println!(
+    writeln!(
+        out,
         "bounds      {:?} .. {:?}",
         b.min.to_array(),
         b.max.to_array()
-    );
+    )?;
     if let Some(field) = world.field() {
         let p = field.plot;
-        println!(
+        writeln!(
+            out,
             "periodic    plot x {:?} z {:?}, area {} (square scene units), repeated without \
              end; {} copies of the geometry reach into it",
             p.x,
             p.z,
             p.area(),
             field.copies()
-        );
+        )?;
     }
     let s = world.accel_stats();
-    println!(
+    writeln!(
+        out,
         "{:<11} built in {:.3} s: {} nodes, {} leaves, depth {}, {} primitive references",
         s.kind,
         world.build_seconds(),
@@ -113,6 +127,7 @@ pub fn run(args: &InfoArgs) -> Result<()> {
         s.leaves,
         s.max_depth,
         s.references
-    );
+    )?;
+    super::print_text(&out)?;
     Ok(())
 }

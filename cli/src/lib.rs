@@ -54,7 +54,6 @@ pub enum Command {
 
 /// Runs the command line with the process arguments; returns the process exit code.
 pub fn main() -> std::process::ExitCode {
-    quiet_on_closed_pipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => {
@@ -71,10 +70,11 @@ pub fn main() -> std::process::ExitCode {
             validate::run(&args)
         }
         Command::Scenes => {
-            for (name, description) in strahl::scene::builtin::names() {
-                println!("{name:18} {description}");
-            }
-            Ok(())
+            let list: String = strahl::scene::builtin::names()
+                .iter()
+                .map(|(name, description)| format!("{name:18} {description}\n"))
+                .collect();
+            print_text(&list).map_err(anyhow::Error::from)
         }
         Command::Info(args) => {
             progress::watch_memory(args.memory.bytes());
@@ -180,14 +180,13 @@ fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> anyhow
     Ok(pool.install(f))
 }
 
-/// A closed standard output (`strahl info … | head`) ends the process quietly, as it ends
-/// other Unix tools, instead of a panic at the next line printed: the default action of
-/// SIGPIPE, which Rust's runtime sets to be ignored.
-fn quiet_on_closed_pipe() {
-    #[cfg(unix)]
-    // SAFETY: called once at the start of `main`, before any other thread exists; it sets
-    // the signal's disposition back to the system default and installs no handler.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+/// Writes `text` to standard output; a reader that stops reading early (`strahl info … |
+/// head`) is no error (`println!` would panic there).
+fn print_text(text: &str) -> std::io::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        written => written,
     }
 }

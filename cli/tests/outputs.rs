@@ -159,3 +159,22 @@ fn a_reader_that_stops_early_is_no_error() {
     assert!(out.status.success(), "{:?}: {stderr}", out.status);
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+#[test]
+fn listings_to_a_reader_that_has_gone_are_no_error() {
+    // `strahl info … | head -0`, `strahl scenes | head -0`: the reader is gone before the
+    // first line is written.
+    for args in [&["info", "cornell"][..], &["scenes"][..]] {
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_strahl"))
+            .args(args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{args:?}: {:?}: {stderr}", out.status);
+        assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    }
+}
