@@ -288,6 +288,52 @@ translucency_spectrum = [[400, 0.02], [700, 0.04], [750, 0.40], [1100, 0.40]]"#;
     }
 }
 
+/// Bands on a curved shape: a black sphere of radius 0.5 under the 5778 K sun receives each
+/// band's share of `E·π·r²` by the light model, within four standard errors; hierarchical
+/// radiosity gives each band its share of its own (grey) RGB figure to 10⁻⁶ — the patches of
+/// the meshed sphere cast a shadow 2.6 % smaller than the sphere's (a polyhedron inside it),
+/// which the RGB figure shares.
+#[test]
+fn a_black_sphere_receives_each_bands_share_of_its_shadow() {
+    let text = square("diffuse = 0", "").replace(
+        r#"type = "quad"
+name = "square"
+material = "m"
+vertices = [[0, 0, 1], [1, 0, 1], [1, 0, 0], [0, 0, 0]]"#,
+        r#"type = "sphere"
+name = "ball"
+material = "m"
+center = [0, 0, 0]
+radius = 0.5"#,
+    );
+    let cross_section = std::f64::consts::PI * 0.25;
+    let photons = Method::LightTrace(LightTraceSettings {
+        photons: 200_000,
+        ..LightTraceSettings::default()
+    });
+    let hierarchical = Method::Radiosity(RadiositySettings::new(SolverKind::Hierarchical));
+    for (method, name) in [(photons, "light model"), (hierarchical, "hierarchical")] {
+        let report = solve(&text, &method);
+        for band in &report.bands {
+            let share = below(band.to_nm, SUN_K) - below(band.from_nm, SUN_K);
+            let o = &band.objects[0];
+            let (expected, allowed) = if name == "light model" {
+                let sigma = o.incident_power_standard_error.unwrap();
+                (SUN * cross_section * share, 4.0 * sigma)
+            } else {
+                let rgb = report.objects[0].incident_power.g * share;
+                (rgb, 1e-6 * rgb)
+            };
+            assert!(
+                (o.incident_power - expected).abs() <= allowed,
+                "{name}, {}: {} vs {expected} (± {allowed})",
+                band.name,
+                o.incident_power
+            );
+        }
+    }
+}
+
 /// Two lights of different spectra in one band: its photon flux is carried on its own and
 /// equals the sum of each light's alone (the solve is linear in the lights).
 #[test]
