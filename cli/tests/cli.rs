@@ -157,6 +157,35 @@ fn a_periodic_field_is_solved_by_the_light_model_and_refused_by_radiosity() {
 }
 
 #[test]
+fn the_placed_plants_example_reports_every_copy() {
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../examples/placed-plants/plants.toml"
+    );
+    let o = strahl(&["info", scene]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let info = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        info.contains("placed      200 copies of shared meshes, 24 triangles kept once"),
+        "{info}"
+    );
+    let report = temp("plants.json");
+    let args = ["solve", scene, "--photons", "50000", "-q", "--report"];
+    let o = strahl(&[&args[..], &[report.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    let objects = json["objects"].as_array().unwrap();
+    assert_eq!(objects.len(), 201);
+    // Every copy its own row, with its light: the sun and sky reach every plant on the plot.
+    for (i, plant) in objects[1..].iter().enumerate() {
+        assert_eq!(plant["name"], format!("plant[{i}]"));
+        let absorbed = plant["absorbed_power"][1].as_f64().unwrap();
+        assert!(absorbed > 0.0 && absorbed.is_finite(), "{plant}");
+    }
+}
+
+#[test]
 fn the_plant_example_reports_its_bands_in_json_and_csv() {
     let scene = concat!(
         env!("CARGO_MANIFEST_DIR"),
