@@ -205,6 +205,27 @@ fn radiosity_sees_placed_meshes_as_their_copies() {
     }
 }
 
+/// A shared mesh whose faces are all degenerate is not placed (it has no bounds) and adds no
+/// primitive: the world builds, and rays miss it.
+#[test]
+fn a_shared_mesh_of_degenerate_faces_adds_nothing() {
+    let flat =
+        PolygonMesh::from_triangles(vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0], &[[0, 1, 2]; 8]);
+    let mesh = Arc::new(flat);
+    let mut scene = Scene::empty("degenerate");
+    let m = scene.add_material(Material::diffuse("m", Rgb::splat(0.5)));
+    for i in 0..3 {
+        scene.add_object(&format!("flat-{i}"), Shape::Mesh(mesh.clone()), m);
+    }
+    let world = World::new(scene, AccelKind::Bvh).unwrap();
+    assert_eq!(world.geometry.placement_count(), 0);
+    assert!(
+        world
+            .intersect(&Ray::new(Vec3::new(1.0, 1.0, 0.0), -Vec3::Y))
+            .is_none()
+    );
+}
+
 const OBJ: &str = "v -0.05 0 0\nv 0.05 0 0\nv 0.05 0.4 0.3\nv -0.05 0.4 0.3\n\
 v 0 0 -0.05\nv 0 0 0.05\nv 0.3 0.4 0.05\nv 0.3 0.4 -0.05\n\
 v 0.05 0 0\nv -0.05 0 0\nv -0.05 0.4 -0.3\nv 0.05 0.4 -0.3\n\

@@ -146,6 +146,11 @@ impl MeshLibrary {
         (self.meshes.len() - 1) as u32
     }
 
+    /// Whether mesh `mesh` kept any triangle (a mesh of degenerate faces keeps none).
+    pub fn has_triangles(&self, mesh: u32) -> bool {
+        !self.meshes[mesh as usize].triangles.0.is_empty()
+    }
+
     /// Triangles kept for all meshes together.
     pub fn total_triangles(&self) -> usize {
         self.meshes.iter().map(|m| m.triangles.len()).sum()

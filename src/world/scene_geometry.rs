@@ -218,6 +218,10 @@ impl SceneGeometry {
                 library
             }
         };
+        // A mesh of degenerate faces has no bounds to place; copied, it adds nothing.
+        if !self.meshes.has_triangles(library) {
+            return Ok(false);
+        }
         self.placements.push(Placement {
             mesh: library,
             to_world: object.transform,
