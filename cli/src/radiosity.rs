@@ -271,9 +271,10 @@ pub fn method_error(e: MethodError) -> anyhow::Error {
     }
 }
 
-/// Warns that radiosity counts the light that non-diffuse materials of `scene` reflect
-/// specularly or transmit as absorbed.
-pub fn warn_non_diffuse(scene: &Scene) {
+/// Warns that `method` (radiosity, or the surface tracer, which solves what radiosity
+/// solves) counts the light that non-diffuse materials of `scene` reflect specularly or
+/// transmit as absorbed.
+pub fn warn_non_diffuse(scene: &Scene, method: MethodKind) {
     let non_diffuse = strahl::method::non_diffuse_materials(scene);
     if non_diffuse.is_empty() {
         return;
@@ -285,9 +286,14 @@ pub fn warn_non_diffuse(scene: &Scene) {
         ("materials", "reflect specularly or transmit")
     };
     eprintln!(
-        "warning: radiosity reflects light diffusely only: the light that {materials} {} \
+        "warning: {} reflects light diffusely only: the light that {materials} {} \
          {verbs} is counted as absorbed (the light model, --solver light-trace, and the \
          path tracer follow it)",
+        if method == MethodKind::SurfaceTrace {
+            "surface-trace"
+        } else {
+            "radiosity"
+        },
         names.join(", ")
     );
 }

@@ -325,7 +325,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         (method, _) => method,
     };
     if method.radiosity().is_some() {
-        radiosity::warn_non_diffuse(&world.scene);
+        radiosity::warn_non_diffuse(&world.scene, method.kind());
     }
     let world = Arc::new(world);
     if let (Some(batch), Some(path)) = (args.batch, &args.partial) {

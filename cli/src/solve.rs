@@ -14,7 +14,9 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use strahl::method::World;
-use strahl::method::{AccelKind, Batch, LightTraceSettings, Method, MethodKind};
+use strahl::method::{
+    AccelKind, Batch, LightTraceSettings, Method, MethodKind, SurfaceTraceSettings,
+};
 use strahl::report::{ExportFormat, ObjectReport, Report, ReportFormat, write_report};
 use strahl::scene::Scene;
 
@@ -28,6 +30,16 @@ pub struct LightTraceArgs {
     /// Scattering events after which a photon is absorbed where it is.
     #[arg(long, default_value_t = LightTraceSettings::default().max_bounces)]
     pub max_bounces: u32,
+}
+
+/// Options of the surface-trace solver.
+#[derive(Debug, Args)]
+#[command(next_help_heading = "Surface tracing (--solver surface-trace)")]
+pub struct SurfaceTraceArgs {
+    /// Points on each reported surface (at least 2; and rays per sensor), each measured on
+    /// both sides.
+    #[arg(long, default_value_t = SurfaceTraceSettings::default().points, value_parser = clap::value_parser!(u32).range(2..))]
+    pub points: u32,
 }
 
 /// Arguments of `strahl solve`.
@@ -76,6 +88,9 @@ pub struct SolveArgs {
     /// Light-trace options.
     #[command(flatten)]
     pub light_trace: LightTraceArgs,
+    /// Surface-trace options.
+    #[command(flatten)]
+    pub surface_trace: SurfaceTraceArgs,
     /// Radiosity options.
     #[command(flatten)]
     pub radiosity: RadiosityArgs,
@@ -146,11 +161,17 @@ impl SolveArgs {
                          progressive, hierarchical or hierarchical-shooting"
                     );
                 }
-                Method::LightTrace(LightTraceSettings {
-                    photons: self.light_trace.photons,
-                    seed: self.seed,
-                    max_bounces: self.light_trace.max_bounces,
-                })
+                match self.solver {
+                    MethodKind::SurfaceTrace => Method::SurfaceTrace(SurfaceTraceSettings {
+                        points: self.surface_trace.points,
+                        seed: self.seed,
+                    }),
+                    _ => Method::LightTrace(LightTraceSettings {
+                        photons: self.light_trace.photons,
+                        seed: self.seed,
+                        max_bounces: self.light_trace.max_bounces,
+                    }),
+                }
             }
         };
         method.check().map_err(|e| method_error(e.into()))?;
@@ -185,8 +206,8 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         eprintln!("warning: {warning}");
     }
     let method = args.method()?;
-    if method.radiosity().is_some() {
-        radiosity::warn_non_diffuse(&world.scene);
+    if method.radiosity().is_some() || method.kind() == MethodKind::SurfaceTrace {
+        radiosity::warn_non_diffuse(&world.scene, method.kind());
     }
     let world = Arc::new(world);
     if let (Some(batch), Some(path)) = (args.batch, &args.partial) {
@@ -224,10 +245,12 @@ pub fn run(args: &SolveArgs) -> Result<()> {
         None if !args.quiet => eprintln!(
             "{name}: {}{}",
             outcome.summary,
-            if outcome.complete {
-                ""
-            } else {
-                " (interrupted: report scaled to the full photon count)"
+            match (outcome.complete, args.solver) {
+                (true, _) => "",
+                (false, MethodKind::SurfaceTrace) => {
+                    " (interrupted: each surface reported from the points it had drawn)"
+                }
+                (false, _) => " (interrupted: report scaled to the full photon count)",
             }
         ),
         None => {}

@@ -29,6 +29,10 @@ pub struct ValidateArgs {
     /// --quick, else 2²⁰; at most 2²⁴).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(super::limits::MAX_VALIDATE_SAMPLES)))]
     pub samples: Option<u32>,
+    /// Points per surface of the surface tracer (default 2¹⁶ with --quick, else 2¹⁸; 2 to
+    /// 2²⁴).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(2..=i64::from(super::limits::MAX_VALIDATE_SAMPLES)))]
+    pub points: Option<u32>,
     /// Error threshold of hierarchical radiosity and hierarchical shooting, relative to all
     /// power emitted in the scene (10⁻⁸ to 1).
     #[arg(long)]
@@ -62,6 +66,7 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
     let effort = Effort {
         photons: args.photons.unwrap_or(base.photons),
         samples: args.samples.unwrap_or(base.samples),
+        points: args.points.unwrap_or(base.points),
         error: args.error.unwrap_or(base.error),
         surface_gather: args.gather.settings(),
         ..base

@@ -147,6 +147,25 @@ fn a_periodic_field_is_solved_by_the_light_model_and_refused_by_radiosity() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
     assert_eq!(json["objects"].as_array().unwrap().len(), 101);
+    // Rays from every leaf: each with its standard error, none non-finite.
+    let args = [
+        "solve",
+        "field:100",
+        "--solver",
+        "surface-trace",
+        "--points",
+        "16",
+        "-q",
+    ];
+    let o = strahl(&[&args[..], &["--report", report.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["solver"], "surface-trace");
+    for object in json["objects"].as_array().unwrap() {
+        let sigma = object["incident_power_standard_error"][1].as_f64().unwrap();
+        assert!(object["absorbed_power"][1].as_f64().unwrap() > 0.0 && sigma.is_finite());
+    }
     let o = strahl(&["solve", "field:100", "--solver", "hierarchical", "-q"]);
     assert!(!o.status.success());
     assert!(

@@ -178,12 +178,13 @@ proptest! {
     fn degenerate_geometry_at_any_scale_gives_finite_conserved_light(
         pieces in prop::collection::vec(junk(), 1..5),
     ) {
-        let solvers: [&[&str]; 5] = [
+        let solvers: [&[&str]; 6] = [
             &["--solver", "hierarchical"],
             &["--solver", "hierarchical-shooting"],
             &["--solver", "matrix", "--mesh-size", "levels:1"],
             &["--solver", "progressive", "--mesh-size", "levels:1"],
             &["--solver", "light-trace", "--photons", "20000"],
+            &["--solver", "surface-trace", "--points", "64"],
         ];
         let mut at_unit_scale: Vec<Vec<f64>> = Vec::new();
         // At 10⁻⁶ units the ray offsets are a tenth of the room (strahl warns): the light is
@@ -198,10 +199,13 @@ proptest! {
                 let shares = balanced_shares(&report(file, solver), 1e-6);
                 if s == 1.0 {
                     at_unit_scale.push(shares);
-                } else if s > 1e-6 {
+                } else if s > 1e-6 && !solver.contains(&"surface-trace") {
                     // The same light at every scale, to the solvers' accuracy: scaled
                     // coordinates round differently, which may flip an oracle's decision
-                    // (the light model draws the same photons).
+                    // (the light model draws the same photons). The surface tracer puts its
+                    // points by the triangles' areas, which round differently too: a point
+                    // moves to the next triangle and the estimate changes within its noise
+                    // (several per cent at 64 points), so it is held to finite and conserved.
                     for (a, b) in shares.iter().zip(&at_unit_scale[k]) {
                         prop_assert!((a - b).abs() < 1e-3, "{solver:?} at {s:e}: {a} vs {b}");
                     }

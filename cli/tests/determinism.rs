@@ -65,8 +65,9 @@ fn every_rendering_method_gives_the_same_image_for_any_thread_count() {
 
 #[test]
 fn every_solver_gives_the_same_report_for_any_thread_count() {
-    let solvers: [&[&str]; 5] = [
+    let solvers: [&[&str]; 6] = [
         &["--solver", "light-trace", "--photons", "20000"],
+        &["--solver", "surface-trace", "--points", "64"],
         &["--solver", "matrix", "--mesh-size", "levels:2"],
         &["--solver", "progressive", "--mesh-size", "levels:2"],
         &["--solver", "hierarchical", "--error", "1e-3"],

@@ -398,8 +398,9 @@ impl Scene {
             .map(|p| (p.x[0], p.x[1], p.z[0], p.z[1]))
     }
 
-    /// Runs a method that reports the light on every surface (`light-trace`, `matrix`,
-    /// `progressive`, `hierarchical`, `hierarchical-shooting`) with `settings` (name, value)
+    /// Runs a method that reports the light on every surface (`light-trace`,
+    /// `surface-trace`, `matrix`, `progressive`, `hierarchical`, `hierarchical-shooting`)
+    /// with `settings` (name, value)
     /// and returns its report as JSON (the `strahl solve --report` file). `per_face` reports
     /// every face of every object on its own, `diffuse_only` drops the materials'
     /// non-diffuse lobes (`strahl solve --per-face --diffuse-only`). A scene with

@@ -316,7 +316,9 @@ class Scene:
         **settings,
     ) -> Result:
         """Runs a method that reports the light on every surface: ``light-trace`` (the light
-        model), ``matrix``, ``progressive``, ``hierarchical`` or ``hierarchical-shooting``.
+        model), ``surface-trace`` (rays from points on every surface, each to a share of its
+        own light: ``points=256``), ``matrix``, ``progressive``, ``hierarchical`` or
+        ``hierarchical-shooting``.
 
         ``settings`` are the method's settings by the command line's names with ``_`` for
         ``-`` (``photons=10**7``, ``error=1e-5``, ``mesh_size="levels:2"``,

@@ -59,6 +59,18 @@ def test_the_light_model_follows_the_sun_across_the_plots_sides():
     assert plain.incident_w.mean(axis=1)[1] > SUN * 3.5, plain.incident_w
 
 
+def test_the_surface_tracer_measures_every_surface_of_a_plot():
+    # Rays from points on each surface: the leaf's top takes 10 W/m² at every point (exact),
+    # the ground's points see the wrapped shadow of the leaf over the plot's corner.
+    result = _field().solve("surface-trace", points=2048, seed=1)
+    incident = result.incident_w.mean(axis=1)[:2]
+    sigma = result.incident_w_sigma.mean(axis=1)[:2]
+    assert abs(incident[0] - SUN) < 1e-4 and sigma[0] < 1e-6, (incident, sigma)
+    assert abs(incident[1] - 3 * SUN) <= 3 * sigma[1] + 1e-9 and 0 < sigma[1] < 0.5, (incident, sigma)
+    with pytest.raises(ValueError, match="points"):
+        _field().solve("surface-trace", points=0)
+
+
 def test_a_ground_at_the_bottom_of_all_geometry_stops_the_sky_from_below():
     # A uniform sky of radiance 1/π brings 1 W/m² down through the plot's top and 1 W/m² up
     # through its bottom: the leaf (top side: 1 W; its underside sees only the black ground)

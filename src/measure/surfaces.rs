@@ -47,12 +47,12 @@ impl SurfaceTable {
         let objects = scene.objects.len();
         // Per object, triangle area per face (grown as faces appear).
         let mut face_areas: Vec<Vec<f64>> = vec![Vec::new(); objects];
-        geometry.for_each_triangle_area(|object, face, area| {
-            let (areas, face) = (&mut face_areas[object as usize], face as usize);
+        geometry.for_each_surface_triangle(|t| {
+            let (areas, face) = (&mut face_areas[t.object as usize], t.face as usize);
             if areas.len() <= face {
                 areas.resize(face + 1, 0.0);
             }
-            areas[face] += area;
+            areas[face] += t.area;
         });
         let mut table = SurfaceTable::default();
         let mut by_name: HashMap<(String, Option<u32>), u32> = HashMap::new();

@@ -8,6 +8,7 @@ use super::{
 use crate::choice::Choice;
 use crate::light_model::LightTraceSettings;
 use crate::radiosity::solve::SolverKind;
+use crate::trace::SurfaceTraceSettings;
 
 /// A method of computing light, without its settings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -24,6 +25,8 @@ pub enum MethodKind {
     Direct,
     /// The light model: power per surface and at the sensors.
     LightTrace,
+    /// Rays from points on every surface: power per surface and at the sensors.
+    SurfaceTrace,
     /// A radiosity solver: power per surface and at the sensors, and the solution.
     Radiosity(SolverKind),
 }
@@ -61,6 +64,11 @@ impl Choice for MethodKind {
             "The light model: photons traced from all lights and the sky, Monte Carlo",
         ),
         (
+            MethodKind::SurfaceTrace,
+            "surface-trace",
+            "Rays from points spread over every surface (--points): lights by shadow rays, sky and reflected light by path tracing; every surface to a share of its own light, small and shaded ones too",
+        ),
+        (
             MethodKind::Radiosity(SolverKind::Matrix),
             "matrix",
             "Radiosity: full form-factor matrix, Jacobi or Gauss-Seidel",
@@ -90,6 +98,7 @@ impl Choice for MethodKind {
             MethodKind::FinalGather => "final-gather",
             MethodKind::Direct => "direct",
             MethodKind::LightTrace => "light-trace",
+            MethodKind::SurfaceTrace => "surface-trace",
             MethodKind::Radiosity(solver) => solver.name(),
         }
     }
@@ -110,10 +119,11 @@ impl MethodKind {
         MethodKind::FinalGather,
     ];
 
-    /// The methods that measure the power on every surface: the light model and the
-    /// radiosity solvers.
-    pub const SURFACE_SOLVERS: [MethodKind; 5] = [
+    /// The methods that measure the power on every surface: the light model, the rays from
+    /// the surfaces and the radiosity solvers.
+    pub const SURFACE_SOLVERS: [MethodKind; 6] = [
         MethodKind::LightTrace,
+        MethodKind::SurfaceTrace,
         MethodKind::Radiosity(SolverKind::Matrix),
         MethodKind::Radiosity(SolverKind::Progressive),
         MethodKind::Radiosity(SolverKind::Hierarchical),
@@ -127,7 +137,10 @@ impl MethodKind {
 
     /// True when the method reports the power per surface (not only images or sensors).
     pub fn reports_surfaces(self) -> bool {
-        matches!(self, MethodKind::LightTrace | MethodKind::Radiosity(_))
+        matches!(
+            self,
+            MethodKind::LightTrace | MethodKind::SurfaceTrace | MethodKind::Radiosity(_)
+        )
     }
 
     /// True when the method counts light reflected between surfaces.
@@ -145,6 +158,7 @@ impl MethodKind {
             MethodKind::FinalGather => Method::FinalGather(FinalGatherSettings::default()),
             MethodKind::Direct => Method::SensorTrace(SensorTraceSettings::default()),
             MethodKind::LightTrace => Method::LightTrace(LightTraceSettings::default()),
+            MethodKind::SurfaceTrace => Method::SurfaceTrace(SurfaceTraceSettings::default()),
             MethodKind::Radiosity(solver) => Method::Radiosity(RadiositySettings::new(solver)),
         }
     }

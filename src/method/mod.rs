@@ -76,7 +76,7 @@ pub use crate::radiosity::{
     FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,
     non_diffuse_materials,
 };
-pub use crate::trace::{AntialiasMode, ShadowMode};
+pub use crate::trace::{AntialiasMode, ShadowMode, SurfaceTraceSettings};
 pub use crate::world::{GeometryError, QueryTiming, RayBench, RaySet, World, bench_rays};
 
 pub use crate::final_gather::SurfaceGather;
@@ -99,6 +99,8 @@ pub enum Method {
     SensorTrace(SensorTraceSettings),
     /// The light model: photons from the lights, power per surface and at the sensors.
     LightTrace(LightTraceSettings),
+    /// Rays from points on every surface: power per surface and at the sensors.
+    SurfaceTrace(SurfaceTraceSettings),
     /// A radiosity solver: power per surface and at the sensors, and the solution.
     Radiosity(RadiositySettings),
 }
@@ -114,6 +116,7 @@ impl Method {
             Method::SensorTrace(s) if s.path_tracing => MethodKind::PathTrace,
             Method::SensorTrace(_) => MethodKind::Direct,
             Method::LightTrace(_) => MethodKind::LightTrace,
+            Method::SurfaceTrace(_) => MethodKind::SurfaceTrace,
             Method::Radiosity(r) => MethodKind::Radiosity(r.solver),
         }
     }
@@ -127,7 +130,8 @@ impl Method {
             Method::RayTrace(_)
             | Method::PathTrace(_)
             | Method::SensorTrace(_)
-            | Method::LightTrace(_) => None,
+            | Method::LightTrace(_)
+            | Method::SurfaceTrace(_) => None,
         }
     }
 
@@ -144,6 +148,7 @@ impl Method {
             }
             Method::SensorTrace(s) => s.seed = seed,
             Method::LightTrace(s) => s.seed = seed,
+            Method::SurfaceTrace(s) => s.seed = seed,
             Method::Radiosity(s) => s.system.visibility.seed = seed,
         }
         self
@@ -196,6 +201,14 @@ impl Method {
                 at_least_one("samples", s.paths)
             }
             Method::LightTrace(s) => check_light_trace(s),
+            Method::SurfaceTrace(s) if s.points < 2 => Err(SettingError::new(
+                "points",
+                format!(
+                    "must be at least 2, for each surface's standard error (got {})",
+                    s.points
+                ),
+            )),
+            Method::SurfaceTrace(_) => Ok(()),
             Method::Radiosity(s) => s.check(),
         }
     }

@@ -38,7 +38,10 @@ pub fn run_with_parts(
 ) -> Result<(Outcome, Parts), MethodError> {
     let measures = matches!(
         method,
-        Method::LightTrace(_) | Method::Radiosity(_) | Method::SensorTrace(_)
+        Method::LightTrace(_)
+            | Method::SurfaceTrace(_)
+            | Method::Radiosity(_)
+            | Method::SensorTrace(_)
     );
     let scene = &world.scene;
     let spectral = scene.spectral.as_ref().filter(|_| measures);

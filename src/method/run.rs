@@ -5,7 +5,7 @@ use super::settings::{
     Antialias, FinalGatherSettings, ImageSize, LinkSelection, PathTraceSettings,
     RadiosityImageSettings, RadiositySettings, RayTraceSettings, SensorTraceSettings,
 };
-use super::{Method, MethodError};
+use super::{Method, MethodError, MethodKind};
 use crate::choice::Choice;
 use crate::final_gather::gather_surfaces;
 use crate::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
@@ -19,7 +19,8 @@ use crate::sampling::SequenceKind;
 use crate::scene::LightKind;
 use crate::trace::{
     Integrator, PathTracer, ProgressiveSettings, RenderOutput, RenderSettings, SensorSettings,
-    StandardRayTracer, render, render_progressive, sensor_readings,
+    StandardRayTracer, SurfaceTraceSettings, render, render_progressive, sensor_readings,
+    trace_surfaces,
 };
 use crate::world::World;
 use std::sync::Arc;
@@ -45,6 +46,7 @@ pub fn run(
         Method::FinalGather(s) => final_gather(world, s, progress, cancel)?,
         Method::SensorTrace(s) => sensor_trace(world, s),
         Method::LightTrace(s) => light_trace(world, s, progress, cancel)?,
+        Method::SurfaceTrace(s) => surface_trace(world, s, progress, cancel)?,
         Method::Radiosity(s) => radiosity(world, s, progress, cancel)?,
     };
     outcome.seconds = start.elapsed().as_secs_f64();
@@ -62,7 +64,10 @@ pub(super) fn check_periodic(world: &World, method: &Method) -> Result<(), Metho
     let name = method.kind().name();
     match method {
         Method::LightTrace(_) => Ok(()),
-        Method::RayTrace(_) | Method::PathTrace(_) | Method::SensorTrace(_) => {
+        Method::RayTrace(_)
+        | Method::PathTrace(_)
+        | Method::SensorTrace(_)
+        | Method::SurfaceTrace(_) => {
             let lamps = !world.lights.area.is_empty()
                 || world
                     .lights
@@ -391,6 +396,40 @@ fn sensor_trace(world: &World, s: &SensorTraceSettings) -> Outcome {
         sensor_readings: readings,
         ..empty()
     }
+}
+
+/// The light on every surface and at the sensors by rays from them.
+fn surface_trace(
+    world: &World,
+    s: &SurfaceTraceSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Outcome, MethodError> {
+    progress.phase("points");
+    let mut measurement = trace_surfaces(world, s, progress, cancel)?;
+    let complete = measurement.stats.extra["complete"] == true;
+    let tracer = PathTracer::new(world, u32::MAX, 1);
+    let sensors = SensorSettings {
+        samples: s.points,
+        paths: s.points,
+        seed: s.seed,
+    };
+    if complete {
+        measurement.sensors = sensor_readings(world, Some(&tracer), &sensors);
+    }
+    Ok(Outcome {
+        summary: format!(
+            "{}, {} points on {} surfaces in {:.2} s{}",
+            MethodKind::SurfaceTrace.name(),
+            measurement.stats.extra["points"],
+            measurement.power.table().len(),
+            measurement.stats.seconds,
+            if complete { "" } else { " so far" }
+        ),
+        measurement: Some(measurement),
+        complete,
+        ..empty()
+    })
 }
 
 /// The light model.

@@ -11,13 +11,16 @@
 //!   samples ([`render_samples`], [`PixelSums`]);
 //! - sensors: the irradiance at the scene's point sensors by rays from the sensor
 //!   ([`sensor_readings`]: direct light as the standard ray tracer computes it, indirect light
-//!   from an integrator).
+//!   from an integrator);
+//! - surfaces: the light on every reported surface by rays from points spread over it
+//!   ([`trace_surfaces`], the `surface-trace` method).
 
 pub(crate) mod direct;
 mod path;
 mod render;
 mod sensors;
 pub(crate) mod shading;
+mod surfaces;
 mod whitted;
 
 pub use direct::ShadowMode;
@@ -27,6 +30,7 @@ pub use render::{
     RenderedSamples, render, render_progressive, render_samples,
 };
 pub use sensors::{SensorSettings, irradiance_sample, sensor_readings};
+pub use surfaces::{SEGMENTS, SurfaceTraceSettings, trace_surfaces};
 pub use whitted::StandardRayTracer;
 
 use crate::color::Rgb;

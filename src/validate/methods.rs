@@ -2,16 +2,17 @@
 
 use crate::method::{
     self, LightTraceSettings, MeshSize, MethodKind, RadiositySettings, SensorTraceSettings,
-    SolverKind, SurfaceGather,
+    SolverKind, SurfaceGather, SurfaceTraceSettings,
 };
 
 /// The methods the suite checks, in the order it runs them: the direct light of the
-/// standard ray tracer and the path tracer at the sensors, the light model, and every
-/// radiosity solver.
-pub const SUITE: [MethodKind; 7] = [
+/// standard ray tracer and the path tracer at the sensors, the light model, the surface
+/// tracer, and every radiosity solver.
+pub const SUITE: [MethodKind; 8] = [
     MethodKind::Direct,
     MethodKind::PathTrace,
     MethodKind::LightTrace,
+    MethodKind::SurfaceTrace,
     MethodKind::Radiosity(SolverKind::Matrix),
     MethodKind::Radiosity(SolverKind::Progressive),
     MethodKind::Radiosity(SolverKind::HierarchicalShooting),
@@ -26,6 +27,8 @@ pub struct Effort {
     /// Points per emitting surface for each sensor's direct light, and cosine-distributed
     /// rays per sensor for its indirect light (ray tracers).
     pub samples: u32,
+    /// Points per surface of the surface tracer (and its rays per sensor).
+    pub points: u32,
     /// Hierarchical radiosity's error threshold (`--error`), relative to all power emitted
     /// in the scene.
     pub error: f64,
@@ -36,18 +39,21 @@ pub struct Effort {
 }
 
 impl Effort {
-    /// The quick run of the test suite: 10⁶ photons, 2¹⁸ samples, the default error.
+    /// The quick run of the test suite: 10⁶ photons, 2¹⁸ samples, 2¹⁶ points, the default
+    /// error.
     pub const QUICK: Effort = Effort {
         photons: 1_000_000,
         samples: 1 << 18,
+        points: 1 << 16,
         error: 1e-4,
         quick: true,
         surface_gather: SurfaceGather::DEFAULT,
     };
-    /// The full run: 8·10⁶ photons, 2²⁰ samples, the default error.
+    /// The full run: 8·10⁶ photons, 2²⁰ samples, 2¹⁸ points, the default error.
     pub const FULL: Effort = Effort {
         photons: 8_000_000,
         samples: 1 << 20,
+        points: 1 << 18,
         error: 1e-4,
         quick: false,
         surface_gather: SurfaceGather::DEFAULT,
@@ -85,6 +91,10 @@ pub fn suite_method(
             settings.surface_gather = effort.surface_gather;
             method::Method::Radiosity(settings)
         }
+        MethodKind::SurfaceTrace => method::Method::SurfaceTrace(SurfaceTraceSettings {
+            points: effort.points,
+            seed,
+        }),
         MethodKind::RayTrace | MethodKind::RadiosityImage | MethodKind::FinalGather => {
             return None;
         }

@@ -138,25 +138,30 @@ pub fn run_suite(
     Ok(rows)
 }
 
-/// Whether `check` applies to `method`: sensors to every method (the direct-light ray
-/// tracer only where the case gives the direct light), surface totals to the methods that
+/// Whether `check` applies to `method`: sensors to every method but the surface tracer,
+/// which reads them as the path tracer does (the direct-light ray tracer only where the
+/// case gives the direct light), surface totals to the methods that
 /// report surfaces, the indirect mean to the light model (the one that tells it apart), a
 /// measuring patch and a face held to the light model's recording to the radiosity solvers
 /// (the flat ones hold each surface to its own error; both hierarchical ones hold every
-/// measuring patch to 1 % of its own light, `importance.rs`, `shooting.rs`). The light model
-/// reads a point through a sensor: a 2 × 2 cm patch catches a few of millions of photons;
-/// and the recording is its own. A periodic scene's checks apply to the light model alone,
+/// measuring patch to 1 % of its own light, `importance.rs`, `shooting.rs`) and to the
+/// surface tracer (as many points on a small patch as on a wall). The light model reads a
+/// point through a sensor: a 2 × 2 cm patch catches a few of millions of photons; and the
+/// recording is its own. A periodic scene's checks apply to the light model alone,
 /// the one method that follows light across the plot's sides (they read large surfaces).
 fn applies(case: &Case, check: &Check, method: MethodKind) -> bool {
     if case.scene.periodic.is_some() {
         return method == MethodKind::LightTrace;
     }
     match check.quantity {
+        // The surface tracer reads sensors by the path tracer's code (checked as `pathtrace`).
+        Quantity::Sensor(_) if method == MethodKind::SurfaceTrace => false,
         Quantity::Sensor(_) => method.counts_reflections() || check.expected_direct.is_some(),
         Quantity::TotalFlux | Quantity::MeanIlluminance => method.reports_surfaces(),
         Quantity::MeanIndirect => method == MethodKind::LightTrace,
         Quantity::Surface(_) | Quantity::FaceFlux { .. } => {
-            method.reports_surfaces() && !method.is_monte_carlo()
+            method.reports_surfaces()
+                && (!method.is_monte_carlo() || method == MethodKind::SurfaceTrace)
         }
     }
 }
@@ -232,7 +237,11 @@ fn measured(check: &Check, method: MethodKind, outcome: &Outcome) -> (f64, f64, 
                 return (check.expected, f64::NAN, None);
             };
             let k = power.table().entry(object, face);
-            (check.expected, luminous(power.balance(k).incident), None)
+            let se = power
+                .standard_error(k)
+                .filter(|_| method.is_monte_carlo())
+                .map(luminous);
+            (check.expected, luminous(power.balance(k).incident), se)
         }
         Quantity::TotalFlux | Quantity::MeanIlluminance | Quantity::MeanIndirect => {
             let Some(power) = outcome.measurement.as_ref().map(|m| &m.power) else {

@@ -32,7 +32,9 @@ pub use placed_mesh::PLACED_MESH_MIN_TRIANGLES;
 pub use ray_bench::{
     PRIMARY_WIDTH, QueryTiming, RANDOM_RAYS, RayBench, RaySet, RaySetError, bench_rays, ray_set,
 };
-pub use scene_geometry::{EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit};
+pub use scene_geometry::{
+    EMITTER_SEGMENTS, GeometryError, SceneGeometry, SurfaceHit, SurfaceTriangle,
+};
 pub use sky::{CompiledCieSky, Sky};
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
 
@@ -180,12 +182,30 @@ impl World {
     /// since the facets lie inside the true surface. `None` when there is no curved shape,
     /// so this world serves as it is.
     pub fn faceted(&self, segments: u32) -> Result<Option<World>, GeometryError> {
-        if !self.scene.objects.iter().any(|o| o.shape.is_curved()) {
+        self.meshed(segments, Shape::is_curved)
+    }
+
+    /// This world with every analytic shape (curved ones as in [`World::faceted`], boxes
+    /// exactly) replaced by its polygon mesh: a world whose surfaces are all triangles, for
+    /// methods that put points on them. An infinite plane is refused (it has no mesh).
+    /// `None` when there is no analytic shape.
+    pub fn tessellated(&self, segments: u32) -> Result<Option<World>, GeometryError> {
+        self.meshed(segments, Shape::is_analytic)
+    }
+
+    /// This world with the shapes `which` picks replaced by their polygon meshes of
+    /// `segments` segments; `None` when it picks none.
+    fn meshed(
+        &self,
+        segments: u32,
+        which: fn(&Shape) -> bool,
+    ) -> Result<Option<World>, GeometryError> {
+        if !self.scene.objects.iter().any(|o| which(&o.shape)) {
             return Ok(None);
         }
         let mut scene = self.scene.clone();
         for (index, object) in scene.objects.iter_mut().enumerate() {
-            if object.shape.is_curved() {
+            if which(&object.shape) {
                 let mesh =
                     object
                         .shape

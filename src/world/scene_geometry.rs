@@ -63,6 +63,22 @@ pub struct SurfaceHit {
     pub front_face: bool,
 }
 
+/// One triangle of the scene's surfaces, where points can be put on them: a copied triangle,
+/// or a triangle of one copy of a placed mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceTriangle {
+    /// The primitive: the triangle, or the placement.
+    pub prim: u32,
+    /// The triangle within a placement's mesh (0 for a copied triangle).
+    pub part: u32,
+    /// Scene object.
+    pub object: u32,
+    /// Face of the object.
+    pub face: u32,
+    /// Area, squared scene units.
+    pub area: f64,
+}
+
 /// Error while flattening a scene.
 #[derive(Debug, thiserror::Error)]
 pub enum GeometryError {
@@ -338,17 +354,52 @@ impl SceneGeometry {
         self.meshes.total_triangles()
     }
 
-    /// Calls `f(object, face, area m²)` for every triangle of the scene's triangle meshes:
-    /// the copied triangles and every placement's.
-    pub fn for_each_triangle_area(&self, mut f: impl FnMut(u32, u32, f64)) {
-        for (tri, attr) in self.triangles.iter().zip(&self.attributes) {
-            f(attr.object, attr.face, tri.area() as f64);
+    /// Calls `f` with every triangle of the scene's triangle meshes: the copied triangles
+    /// and every placement's (analytic shapes are not triangles).
+    pub fn for_each_surface_triangle(&self, mut f: impl FnMut(SurfaceTriangle)) {
+        for (prim, (tri, attr)) in self.triangles.iter().zip(&self.attributes).enumerate() {
+            f(SurfaceTriangle {
+                prim: prim as u32,
+                part: 0,
+                object: attr.object,
+                face: attr.face,
+                area: tri.area() as f64,
+            });
         }
-        for placement in &self.placements {
-            for (face, area) in self.meshes.triangle_areas(placement) {
-                f(placement.object, face, area);
+        let first = (self.triangles.len() + self.shapes.len()) as u32;
+        for (placement, prim) in self.placements.iter().zip(first..) {
+            for (part, (face, area)) in self.meshes.triangle_areas(placement).enumerate() {
+                f(SurfaceTriangle {
+                    prim,
+                    part: part as u32,
+                    object: placement.object,
+                    face,
+                    area,
+                });
             }
         }
+    }
+
+    /// The surface at barycentrics `(b1, b2)` of `triangle`, seen from its front side.
+    pub fn surface_point(&self, triangle: &SurfaceTriangle, b1: f32, b2: f32) -> SurfaceHit {
+        let hit = PrimHit {
+            t: 0.0,
+            prim: triangle.prim,
+            local: [b1, b2],
+            part: triangle.part,
+        };
+        // The ray's direction only decides the side seen, set here.
+        let surface = self.describe(&hit, &Ray::new(Vec3::ZERO, Vec3::Y));
+        SurfaceHit {
+            front_face: true,
+            ..surface
+        }
+    }
+
+    /// False where `material`'s alpha texture cuts the surface away at `uv`.
+    #[inline]
+    pub fn is_present(&self, material: MaterialId, uv: Vec2) -> bool {
+        !self.cut_away(material, || uv)
     }
 
     /// The triangle of primitive `prim`, if it is one.

@@ -97,7 +97,7 @@ pub fn run(args: &ViewArgs) -> Result<()> {
     let scene = strahl::scene::open(&args.scene, &args.limits.load_options())?;
     // Checked here, so that a scene that cannot be compiled fails before anything is served.
     World::new(scene.clone(), AccelKind::Bvh).with_context(|| format!("scene '{}'", args.scene))?;
-    radiosity::warn_non_diffuse(&scene);
+    radiosity::warn_non_diffuse(&scene, MethodKind::RadiosityImage);
     let server = tiny_http::Server::http((args.bind, args.port)).map_err(|e| {
         anyhow::anyhow!(
             "cannot listen on {}:{}: {e} (--port 0 picks a free port)",

@@ -47,6 +47,10 @@ pub struct PathTracer {
     /// Paths branching from the first hit (seed 002 §3.2: N paths from the first hit, one
     /// path after that); at least 1.
     pub first_hit_paths: u32,
+    /// Scattering events a path has had before Russian roulette may end it
+    /// ([`ROULETTE_START`] unless set otherwise: 1 lets roulette end every path that
+    /// continues, which pays where surfaces reflect little, a canopy of leaves).
+    pub roulette_start: u32,
     pub(super) lights: LightPicker,
     /// Lobe probabilities per scene material, `None` where a texture changes them from point
     /// to point.
@@ -119,6 +123,7 @@ impl PathTracer {
         PathTracer {
             max_depth,
             first_hit_paths: first_hit_paths.max(1),
+            roulette_start: ROULETTE_START,
             lights: LightPicker::new(world),
             lobes: world
                 .scene
@@ -342,7 +347,7 @@ impl PathTracer {
             front_face: sp.hit.front_face,
         };
         let bs = sample_bsdf(&sp.material, choice, &side, numbers.lobe, numbers.direction)?;
-        let beta = survive_roulette(beta * bs.weight, bounce, sampler)?;
+        let beta = survive_roulette(beta * bs.weight, (bounce, self.roulette_start), sampler)?;
         let arrival = Arrival {
             from: sp.hit.p,
             normal: sp.n,
@@ -354,13 +359,17 @@ impl PathTracer {
 }
 
 /// The throughput `beta` of a path continuing after `bounce + 1` scattering events, after
-/// Russian roulette (its number drawn from `sampler`'s pseudo-random stream); `None` when the
-/// path carries nothing or roulette ends it.
-pub(super) fn survive_roulette(beta: Rgb, bounce: u32, sampler: &mut Sampler) -> Option<Rgb> {
+/// Russian roulette from `start` events on (its number drawn from `sampler`'s pseudo-random
+/// stream); `None` when the path carries nothing or roulette ends it.
+pub(super) fn survive_roulette(
+    beta: Rgb,
+    (bounce, start): (u32, u32),
+    sampler: &mut Sampler,
+) -> Option<Rgb> {
     if beta.is_black() {
         return None;
     }
-    if bounce + 1 < ROULETTE_START {
+    if bounce + 1 < start {
         return Some(beta);
     }
     let survival = beta.max_channel().min(ROULETTE_MAX_SURVIVAL);

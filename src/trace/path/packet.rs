@@ -163,7 +163,7 @@ impl PathTracer {
                     let lane = used.trailing_zeros() as usize;
                     used &= used - 1;
                     let (path, sampler) = (&mut paths[lane], &mut samplers[lane]);
-                    finish_lambert(world, path, &lambert, &scattered, lane, sampler);
+                    finish_lambert(self, world, path, &lambert, &scattered, lane, sampler);
                 }
             }
             if !paths.iter().any(|p| p.alive) {
@@ -230,6 +230,7 @@ impl PathTracer {
 /// ray, and the light sample's shadow ray.
 #[inline(always)]
 fn finish_lambert(
+    tracer: &PathTracer,
     world: &World,
     path: &mut Path,
     lambert: &LambertLanes,
@@ -240,7 +241,7 @@ fn finish_lambert(
     let bit = 1 << lane;
     let next_beta = Rgb::from(get(&scattered.beta, lane));
     let beta = (scattered.leaves & bit != 0)
-        .then(|| survive_roulette(next_beta, path.bounce, sampler))
+        .then(|| survive_roulette(next_beta, (path.bounce, tracer.roulette_start), sampler))
         .flatten();
     if scattered.carries & bit != 0 {
         let shadow = Ray::new(

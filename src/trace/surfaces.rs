@@ -1,0 +1,246 @@
+//! The light on every reported surface by rays from points on it (`surface-trace`): the
+//! gathering counterpart of the light model, and the way Helios' radiation model measures a
+//! canopy leaf by leaf. Where the light model follows photons from the lights and counts
+//! what each surface happens to catch — a small or shaded leaf few of them — this method
+//! puts the same number of points on every surface, however small or dark, so every
+//! surface's standard error is a share of its own light.
+//!
+//! At each point, on each side, one estimate of the irradiance ([`irradiance_sample`]):
+//! point, spot and directional lights (the sun) by a shadow ray each, emitting surfaces by a
+//! point on them and the gather ray weighed by multiple importance sampling, the sky where
+//! that cosine-distributed gather ray escapes (through a periodic plot's sides too), and the
+//! light reflected toward the point from the surface it meets by the path tracer
+//! ([`PathTracer`]) with Russian roulette from the first bounce on (a leaf reflecting 10 %
+//! ends nine paths in ten at once, the survivors weighed up: no path goes on carrying a
+//! hundredth of its light). What a side absorbs at the point is its irradiance times
+//! `1 − ρ − τ` there (textures applied; the back of a one-sided material absorbs it all),
+//! what it emits `π·Lₑ`.
+//!
+//! The scene is the one radiosity solves: materials keep their diffuse lobes (Lambertian
+//! reflection and translucency; the rest of their light counts as absorbed, as radiosity
+//! counts it) and analytic shapes are meshed ([`World::tessellated`], curved ones with
+//! [`SEGMENTS`] segments), so that the method checks a radiosity solution surface by surface
+//! — on periodic plots too, which radiosity does not model.
+//!
+//! Points: [`SurfaceTraceSettings::points`] on each reported surface, Owen-scrambled Sobol
+//! points in two dimensions, the first choosing the triangle by area and, within its share,
+//! going on across it (so a quad's two triangles hold one net of points). Each side of a
+//! point draws its rays from a Sobol stream of its own, so that its gather direction is
+//! always the first two dimensions there, stratified over the point's index (drawn from the
+//! point's stream, the back's direction would fall on whatever dimension the front's path
+//! left it: measured on the field's leaves, the sky's light then converged as plain random
+//! sampling does). Points that an alpha texture cuts away count as nothing there. Each
+//! surface's incident power carries the standard error of its mean (the points taken as
+//! independent draws, which overstates it for Sobol points). Deterministic: surface `s`
+//! draws streams `3s`, `3s + 1` and `3s + 2` of the seed, whatever the threads.
+
+use super::{PathTracer, irradiance_sample};
+use crate::color::{Rgb, Rgb64};
+use crate::measure::{Measurement, Stats, SurfacePower, SurfaceTable};
+use crate::progress::{Cancel, ProgressListener};
+use crate::sampling::warp::uniform_triangle;
+use crate::sampling::{Moments, Sampler, SequenceKind};
+use crate::world::{GeometryError, SurfaceMaterial, SurfaceTriangle, World, emitted_toward};
+use glam::Vec2;
+use rayon::prelude::*;
+use std::f64::consts::PI;
+use std::time::Instant;
+
+/// Points a surface draws between two looks at the cancel token (a few milliseconds).
+pub const CANCEL_POINTS: u32 = 256;
+
+/// Segments around the axis of a meshed curved shape (a sphere's, a cylinder's).
+pub const SEGMENTS: u32 = 32;
+
+/// How many points `surface-trace` puts on each surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SurfaceTraceSettings {
+    /// Points on each reported surface (each measured on both sides), at least 2 (for a
+    /// standard error).
+    pub points: u32,
+    /// Seed of all random numbers.
+    pub seed: u64,
+}
+
+impl Default for SurfaceTraceSettings {
+    /// 1,024 points per surface, seed 0.
+    fn default() -> Self {
+        SurfaceTraceSettings {
+            points: 1024,
+            seed: 0,
+        }
+    }
+}
+
+/// The sums one surface's points gather, per point (W·m⁻², both sides together).
+#[derive(Clone, Copy, Default)]
+struct SurfaceSums {
+    /// Incident irradiance, with its moments.
+    incident: Moments,
+    /// Its direct part.
+    direct: Rgb64,
+    /// Its indirect part, with its moments.
+    indirect: Moments,
+    /// Absorbed.
+    absorbed: Rgb64,
+    /// Emitted exitance.
+    emitted: Rgb64,
+}
+
+/// Measures every reported surface of `world`'s scene as the module describes; an error when
+/// a shape cannot be meshed (an infinite plane). When `cancel` stops it (within
+/// [`CANCEL_POINTS`] points), each surface keeps the points it had drawn, and one without any
+/// reports nothing, without a standard error: the statistics say `complete: false` and how
+/// many points were drawn.
+pub fn trace_surfaces(
+    world: &World,
+    settings: &SurfaceTraceSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+) -> Result<Measurement, GeometryError> {
+    let start = Instant::now();
+    let meshed = world.tessellated(SEGMENTS)?;
+    let meshed = meshed.as_ref().unwrap_or(world);
+    let diffuse = meshed.diffuse()?;
+    let world = diffuse.as_ref().unwrap_or(meshed);
+    let table = SurfaceTable::new(&world.scene, &world.geometry);
+    let mut triangles: Vec<Vec<SurfaceTriangle>> = vec![Vec::new(); table.len()];
+    world.geometry.for_each_surface_triangle(|t| {
+        if t.area > 0.0 {
+            triangles[table.entry(t.object, t.face)].push(t);
+        }
+    });
+    let mut tracer = PathTracer::new(world, u32::MAX, 1);
+    tracer.roulette_start = 1;
+    progress.start(table.len() as u64);
+    let sums: Vec<SurfaceSums> = triangles
+        .par_iter()
+        .enumerate()
+        .map(|(s, triangles)| {
+            let sums = measure_surface(world, &tracer, triangles, (s as u64, settings), cancel);
+            progress.advance(1);
+            sums
+        })
+        .collect();
+    progress.finish();
+    let mut power = SurfacePower::new(table);
+    let mut errors = Vec::with_capacity(sums.len());
+    let (mut total_variance, mut indirect_variance) = (Rgb64::BLACK, Rgb64::BLACK);
+    for (s, (sums, triangles)) in sums.iter().zip(&triangles).enumerate() {
+        let area: f64 = triangles.iter().map(|t| t.area).sum();
+        let n = sums.incident.n.max(1) as f64;
+        let balance = power.balance_mut(s);
+        balance.incident = sums.incident.mean() * area;
+        balance.direct = Some(sums.direct * (area / n));
+        balance.absorbed = sums.absorbed * (area / n);
+        balance.emitted = sums.emitted * (area / n);
+        balance.reflected = balance.incident - balance.absorbed;
+        let variance = sums.incident.variance_of_mean() * (area * area);
+        total_variance += variance;
+        indirect_variance += sums.indirect.variance_of_mean() * (area * area);
+        // A surface without points (stopped before it, or without area) has no estimate.
+        errors.push((sums.incident.n > 0).then(|| variance.map(f64::sqrt)));
+    }
+    power.set_standard_errors(errors);
+    power.set_total_standard_errors(
+        total_variance.map(f64::sqrt),
+        indirect_variance.map(f64::sqrt),
+    );
+    let light_power: Rgb64 = world
+        .scene
+        .lights
+        .iter()
+        .map(|l| world.light_power(&l.kind).to_f64())
+        .sum();
+    power.add_light_emission(light_power);
+    let totals = power.totals();
+    power.add_escaped((totals.emitted_power - totals.absorbed_power).map(|p| p.max(0.0)));
+    let points: u64 = sums.iter().map(|s| s.incident.n).sum();
+    let mut stats = Stats {
+        seconds: start.elapsed().as_secs_f64(),
+        // The gather rays, one per side of each point; the paths continuing from where
+        // they meet a surface and the shadow rays are not counted.
+        rays: 2 * points,
+        ..Stats::default()
+    };
+    stats.insert("points", points);
+    // A surface without area (every triangle degenerate) has no points to draw.
+    let complete = sums
+        .iter()
+        .zip(&triangles)
+        .all(|(s, t)| t.is_empty() || s.incident.n == u64::from(settings.points));
+    stats.insert("complete", complete);
+    Ok(Measurement {
+        solver: "surface-trace",
+        power,
+        sensors: Vec::new(),
+        stats,
+    })
+}
+
+/// The sums of `settings.points` points on the surface made of `triangles`, drawn from
+/// streams `3·stream`… of the seed; fewer when `cancel` is set.
+fn measure_surface(
+    world: &World,
+    tracer: &PathTracer,
+    triangles: &[SurfaceTriangle],
+    (stream, settings): (u64, &SurfaceTraceSettings),
+    cancel: &Cancel,
+) -> SurfaceSums {
+    let mut sums = SurfaceSums::default();
+    if triangles.is_empty() {
+        return sums;
+    }
+    let mut cdf = Vec::with_capacity(triangles.len());
+    let mut area = 0.0;
+    for t in triangles {
+        area += t.area;
+        cdf.push(area);
+    }
+    let scene = &world.scene;
+    for i in 0..settings.points {
+        if i % CANCEL_POINTS == 0 && cancel.is_requested() {
+            break;
+        }
+        // The point from its own stream, each side's rays from theirs: every side's gather
+        // direction is then the first two dimensions of a Sobol sequence, however many
+        // numbers the other side's path used (see the module).
+        let mut sampler = Sampler::new(SequenceKind::Sobol, settings.seed, 3 * stream, i);
+        let u = sampler.next_2d();
+        let pick = f64::from(u.x) * area;
+        let k = cdf.partition_point(|&c| c <= pick).min(triangles.len() - 1);
+        let below = if k == 0 { 0.0 } else { cdf[k - 1] };
+        let across = ((pick - below) / triangles[k].area).clamp(0.0, 1.0) as f32;
+        let (b1, b2) = uniform_triangle(Vec2::new(across, u.y));
+        let hit = world.geometry.surface_point(&triangles[k], b1, b2);
+        if !world.geometry.is_present(hit.material, hit.uv) {
+            sums.incident.add(Rgb64::BLACK);
+            sums.indirect.add(Rgb64::BLACK);
+            continue;
+        }
+        let material = SurfaceMaterial::at(scene, &hit);
+        let m = &scene.materials[hit.material as usize];
+        let (mut incident, mut reflected) = (Rgb64::BLACK, Rgb64::BLACK);
+        for (side, front) in [true, false].into_iter().enumerate() {
+            let normal = if front { hit.ng } else { -hit.ng };
+            let stream = 3 * stream + 1 + side as u64;
+            let mut sampler = Sampler::new(SequenceKind::Sobol, settings.seed, stream, i);
+            let (direct, indirect) =
+                irradiance_sample(world, tracer, (hit.p, normal), &mut sampler);
+            let scattered = if material.is_black_from(front) {
+                Rgb::BLACK
+            } else {
+                material.diffuse + material.translucency
+            };
+            let e = direct + indirect;
+            incident += e;
+            reflected += indirect;
+            sums.direct += direct;
+            sums.absorbed += (Rgb64::WHITE - scattered.to_f64()) * e;
+            sums.emitted += emitted_toward(scene, m, hit.uv, front).to_f64() * PI;
+        }
+        sums.incident.add(incident);
+        sums.indirect.add(reflected);
+    }
+    sums
+}

@@ -1,0 +1,268 @@
+//! The surface tracer (`surface-trace`: rays from points spread over every surface) against
+//! closed forms — a sunlit leaf, a plot's ground in the periodic shadow of a leaf over its
+//! corner, a furnace — and against the light model surface by surface: every face of the
+//! Cornell box and every leaf of `canopy:300`, each recorded at 2·10⁸ and 10⁹ photons.
+
+use glam::Vec3;
+use serde_json::Value;
+use std::sync::Arc;
+use strahl::color::Rgb;
+use strahl::method::{
+    AccelKind, Cancel, Method, MethodKind, NoProgress, SurfaceTraceSettings, World, run,
+};
+use strahl::report::{ObjectReport, Report};
+use strahl::scene::{Light, LightKind, Material, Periodic, Scene, Shape, builtin};
+
+/// The report of `points` points per surface (seed `seed`) on `world`.
+fn surface_trace(world: &Arc<World>, points: u32, seed: u64) -> Report {
+    let method = Method::SurfaceTrace(SurfaceTraceSettings { points, seed });
+    let outcome = run(world, &method, &NoProgress, &Cancel::new()).unwrap();
+    assert!(outcome.complete);
+    Report::new("scene", outcome.measurement.as_ref().unwrap())
+}
+
+fn object<'a>(report: &'a Report, name: &str) -> &'a ObjectReport {
+    report.objects.iter().find(|o| o.name == name).unwrap()
+}
+
+fn world(scene: Scene) -> Arc<World> {
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
+}
+
+/// A plot of 2 × 2 m with a black ground and a black horizontal 1 × 1 m leaf at height 1
+/// centred on the plot's corner (a quarter of it in the plot, three quarters in the
+/// neighbouring plots), under a vertical sun of 10 W·m⁻².
+fn corner_leaf() -> Scene {
+    let mut scene = Scene::empty("corner");
+    let black = scene.add_material(Material::diffuse("black", Rgb::BLACK));
+    let square = |origin: Vec3, side: f32| Shape::Parallelogram {
+        origin,
+        edge_u: Vec3::Z * side,
+        edge_v: Vec3::X * side,
+    };
+    scene.add_object("leaf", square(Vec3::new(-0.5, 1.0, -0.5), 1.0), black);
+    scene.add_object("ground", square(Vec3::ZERO, 2.0), black);
+    scene.periodic = Some(Periodic::new([0.0, 2.0], [0.0, 2.0]).unwrap());
+    scene.lights.push(Light {
+        name: Some("sun".into()),
+        kind: LightKind::Directional {
+            direction: -Vec3::Y,
+            irradiance: Rgb::splat(10.0),
+        },
+    });
+    scene
+}
+
+#[test]
+fn a_leaf_over_the_plots_corner_shades_a_quarter_of_every_plot() {
+    let report = surface_trace(&world(corner_leaf()), 4096, 0);
+    // The leaf's whole square (its four quarters through the plot's four corners) takes
+    // 10 W·m⁻² on its top at every point, nothing below from the black ground: exactly.
+    let leaf = object(&report, "leaf");
+    assert!((leaf.incident_power.g - 10.0).abs() < 1e-4, "{leaf:?}");
+    assert!(leaf.incident_power_standard_error.unwrap().g < 1e-6);
+    // The ground: 3 of the plot's 4 m² in the sun, through the wrapped shadow rays.
+    let ground = object(&report, "ground");
+    let sigma = ground.incident_power_standard_error.unwrap().g;
+    assert!(
+        (ground.incident_power.g - 30.0).abs() < 3.0 * sigma + 1e-9 && sigma < 0.3,
+        "{:?} ± {sigma}",
+        ground.incident_power
+    );
+    // Black surfaces absorb all, and the plot all the sun sends into it.
+    let totals = &report.totals;
+    assert!((totals.emitted_power.g - 40.0).abs() < 1e-9, "{totals:?}");
+    assert!((totals.absorbed_power.g - 40.0).abs() < 3.0 * sigma + 1e-4);
+}
+
+/// A closed cube of side 1 whose six walls face inward, each emitting radiance `le` from its
+/// front and reflecting `rho` diffusely.
+fn furnace(le: f32, rho: f32) -> Scene {
+    let mut scene = Scene::empty("furnace");
+    let wall = scene.add_material(Material {
+        emission: Rgb::splat(le),
+        ..Material::diffuse("wall", Rgb::splat(rho))
+    });
+    let (x, y, z) = (Vec3::X, Vec3::Y, Vec3::Z);
+    // Each wall's edges ordered so that u × v points into the cube.
+    let walls = [
+        ("bottom", Vec3::ZERO, z, x),
+        ("top", y, x, z),
+        ("left", Vec3::ZERO, y, z),
+        ("right", x, z, y),
+        ("back", Vec3::ZERO, x, y),
+        ("front", z, y, x),
+    ];
+    for (name, origin, edge_u, edge_v) in walls {
+        assert!(edge_u.cross(edge_v).dot(Vec3::splat(0.5) - origin) > 0.0);
+        scene.add_object(
+            name,
+            Shape::Parallelogram {
+                origin,
+                edge_u,
+                edge_v,
+            },
+            wall,
+        );
+    }
+    scene
+}
+
+#[test]
+fn every_wall_of_a_furnace_receives_e_over_one_minus_rho() {
+    // Inside a closed cube whose walls emit π·Lₑ and reflect ρ, every point receives
+    // E = π·Lₑ / (1 − ρ); each wall absorbs (1 − ρ)·E, what it emits.
+    let (le, rho) = (2.0, 0.6);
+    let report = surface_trace(&world(furnace(le, rho)), 4096, 3);
+    let expected = std::f64::consts::PI * f64::from(le) / (1.0 - f64::from(rho));
+    for wall in &report.objects {
+        let (e, sigma) = (
+            wall.incident_power.g,
+            wall.incident_power_standard_error.unwrap().g,
+        );
+        assert!(
+            (e - expected).abs() < 4.0 * sigma && sigma < 0.015 * expected,
+            "{}: {e} ± {sigma}, expected {expected}",
+            wall.name
+        );
+        assert!((wall.emitted_power.g - std::f64::consts::PI * f64::from(le)).abs() < 1e-4);
+        assert!((wall.absorbed_power.g - 0.4 * e).abs() < 1e-6 * e);
+    }
+}
+
+/// `(value, standard error)` of `key` per channel of an entry of a recording.
+fn triple(v: &Value) -> [f64; 3] {
+    std::array::from_fn(|c| v[c].as_f64().unwrap())
+}
+
+/// The largest deviation of `report`'s incident power from `reference` (name → incident
+/// power and its standard error, W per channel) in combined standard errors, and the
+/// largest relative one.
+fn worst(report: &Report, reference: &[(String, [f64; 3], [f64; 3])]) -> (f64, f64, String) {
+    let (mut sigmas, mut relative, mut name) = (0.0f64, 0.0f64, String::new());
+    for (entry, expected, error) in reference {
+        let got = report
+            .objects
+            .iter()
+            .find(|o| match o.face {
+                Some(face) => format!("{}#{face}", o.name) == *entry,
+                None => o.name == *entry,
+            })
+            .unwrap_or_else(|| panic!("{entry} not reported"));
+        let own = got.incident_power_standard_error.unwrap().to_array();
+        for c in 0..3 {
+            let off = got.incident_power.to_array()[c] - expected[c];
+            let s = off.abs() / (own[c].powi(2) + error[c].powi(2)).sqrt();
+            if s > sigmas {
+                sigmas = s;
+                name = format!("{entry} channel {c}: {:+.2} %", 100.0 * off / expected[c]);
+            }
+            relative = relative.max(off.abs() / expected[c]);
+        }
+    }
+    (sigmas, relative, name)
+}
+
+#[test]
+fn every_face_of_the_cornell_box_receives_what_the_light_model_says() {
+    let mut scene = builtin::load("cornell").unwrap().unwrap();
+    for object in &mut scene.objects {
+        object.per_face = true;
+    }
+    let reference: Vec<_> = strahl::validate::recorded::cornell_faces()
+        .iter()
+        .map(|f| {
+            let name = format!("{}#{}", f.object, f.face);
+            (name, f.incident_power, f.incident_power_standard_error)
+        })
+        .collect();
+    // 65,536 points a face (about a second on two threads): every face, the dim block
+    // faces too, within four combined standard errors of the recording and within 2 %
+    // (measured: worst −0.95 %, the ceiling's face 3, whose light is all reflected; at
+    // 2¹⁸ points every face within 0.5 %).
+    let report = surface_trace(&world(scene), 1 << 16, 0);
+    let (sigmas, relative, name) = worst(&report, &reference);
+    assert!(sigmas < 4.0 && relative < 0.02, "{name} ({sigmas:.2} σ)");
+}
+
+#[test]
+fn every_leaf_of_the_canopy_receives_what_the_light_model_says() {
+    // canopy:300: translucent leaves under sun and sky, recorded at 10⁹ photons.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/canopy300_per_leaf_light_model.json");
+    let json: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let reference: Vec<_> = json["leaves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|leaf| {
+            (
+                leaf["name"].as_str().unwrap().to_string(),
+                triple(&leaf["incident_power"]),
+                triple(&leaf["incident_power_standard_error"]),
+            )
+        })
+        .collect();
+    let canopy = builtin::load("canopy:300").unwrap().unwrap();
+    let report = surface_trace(&world(canopy), 4096, 0);
+    let (sigmas, relative, name) = worst(&report, &reference);
+    assert!(sigmas < 4.5 && relative < 0.02, "{name} ({sigmas:.2} σ)");
+}
+
+#[test]
+fn the_report_does_not_depend_on_the_thread_count() {
+    let world = world(builtin::load("canopy:30").unwrap().unwrap());
+    let in_pool = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut report = pool.install(|| surface_trace(&world, 64, 9));
+        report.stats.seconds = 0.0;
+        serde_json::to_string(&report).unwrap()
+    };
+    assert_eq!(in_pool(1), in_pool(2));
+}
+
+#[test]
+fn it_is_a_surface_solver_with_its_points_as_a_setting() {
+    assert!(MethodKind::SURFACE_SOLVERS.contains(&MethodKind::SurfaceTrace));
+    let mut method = MethodKind::SurfaceTrace.with_defaults();
+    method
+        .set("points", &strahl::method::SettingValue::Int(1))
+        .unwrap();
+    assert_eq!(method.check().unwrap_err().setting, "points");
+    // An infinite plane has no points to put on it.
+    let mut scene = corner_leaf();
+    let black = scene.material_id("black").unwrap();
+    scene.periodic = None;
+    scene.add_object(
+        "plane",
+        Shape::Plane {
+            point: Vec3::ZERO,
+            normal: Vec3::Y,
+        },
+        black,
+    );
+    let w = world(scene);
+    let method = Method::SurfaceTrace(SurfaceTraceSettings::default());
+    let Err(e) = run(&w, &method, &NoProgress, &Cancel::new()) else {
+        panic!("an infinite plane was measured");
+    };
+    assert!(e.to_string().contains("plane"), "{e}");
+}
+
+#[test]
+fn a_cancelled_run_keeps_what_it_measured_and_says_it_stopped() {
+    let world = world(builtin::load("cornell").unwrap().unwrap());
+    let cancel = Cancel::new();
+    cancel.request();
+    let method = Method::SurfaceTrace(SurfaceTraceSettings::default());
+    let outcome = run(&world, &method, &NoProgress, &cancel).unwrap();
+    assert!(!outcome.complete);
+    let measurement = outcome.measurement.unwrap();
+    assert_eq!(measurement.stats.extra["complete"], false);
+    assert_eq!(measurement.stats.extra["points"], 0);
+    let totals = measurement.power.totals();
+    assert!(totals.absorbed_power.g == 0.0 && totals.escaped_power.g.is_finite());
+}
