@@ -15,7 +15,11 @@ use strahl::scene::{Light, LightKind, Material, Periodic, Scene, Shape, builtin}
 
 /// The report of `points` points per surface (seed `seed`) on `world`.
 fn surface_trace(world: &Arc<World>, points: u32, seed: u64) -> Report {
-    let method = Method::SurfaceTrace(SurfaceTraceSettings { points, seed });
+    let method = Method::SurfaceTrace(SurfaceTraceSettings {
+        points,
+        seed,
+        ..SurfaceTraceSettings::default()
+    });
     let outcome = run(world, &method, &NoProgress, &Cancel::new()).unwrap();
     assert!(outcome.complete);
     Report::new("scene", outcome.measurement.as_ref().unwrap())
@@ -265,4 +269,33 @@ fn a_cancelled_run_keeps_what_it_measured_and_says_it_stopped() {
     assert_eq!(measurement.stats.extra["points"], 0);
     let totals = measurement.power.totals();
     assert!(totals.absorbed_power.g == 0.0 && totals.escaped_power.g.is_finite());
+}
+
+#[test]
+fn a_standard_error_asked_for_adds_points_where_a_surface_needs_them() {
+    // The corner leaf's top is exact at any count; the ground's shadow edge needs points.
+    let world = world(corner_leaf());
+    let method = Method::SurfaceTrace(SurfaceTraceSettings {
+        points: 64,
+        standard_error: 0.002,
+        seed: 4,
+    });
+    let outcome = run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+    let measurement = outcome.measurement.as_ref().unwrap();
+    let report = Report::new("corner", measurement);
+    let (leaf, ground) = (object(&report, "leaf"), object(&report, "ground"));
+    let sigma = ground.incident_power_standard_error.unwrap().g;
+    assert!(sigma <= 0.002 * ground.incident_power.g, "{sigma}");
+    assert!((ground.incident_power.g - 30.0).abs() < 3.0 * sigma + 1e-9);
+    assert!((leaf.incident_power.g - 10.0).abs() < 1e-4);
+    // The leaf stopped at 64 points, the ground went on in doublings.
+    let points = measurement.stats.extra["points"].as_u64().unwrap();
+    assert!(
+        points > 64 + 1024 && (points - 64).is_power_of_two(),
+        "{points}"
+    );
+    let mut bad = MethodKind::SurfaceTrace.with_defaults();
+    let value = strahl::method::SettingValue::Float(1.0);
+    bad.set("standard-error", &value).unwrap();
+    assert_eq!(bad.check().unwrap_err().setting, "standard-error");
 }

@@ -40,6 +40,10 @@ pub struct SurfaceTraceArgs {
     /// both sides.
     #[arg(long, default_value_t = SurfaceTraceSettings::default().points, value_parser = clap::value_parser!(u32).range(2..))]
     pub points: u32,
+    /// Add points, in rounds, to every surface whose incident power's standard error is
+    /// above this share of it (e.g. 0.03), up to 2²⁰ points a surface; 0: --points on each.
+    #[arg(long, default_value_t = 0.0)]
+    pub standard_error: f64,
 }
 
 /// Arguments of `strahl solve`.
@@ -164,6 +168,7 @@ impl SolveArgs {
                 match self.solver {
                     MethodKind::SurfaceTrace => Method::SurfaceTrace(SurfaceTraceSettings {
                         points: self.surface_trace.points,
+                        standard_error: self.surface_trace.standard_error,
                         seed: self.seed,
                     }),
                     _ => Method::LightTrace(LightTraceSettings {

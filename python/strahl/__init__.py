@@ -317,7 +317,8 @@ class Scene:
     ) -> Result:
         """Runs a method that reports the light on every surface: ``light-trace`` (the light
         model), ``surface-trace`` (rays from points on every surface, each to a share of its
-        own light: ``points=256``), ``matrix``, ``progressive``, ``hierarchical`` or
+        own light: ``points=256``, or ``standard_error=0.03`` to add points where a surface
+        needs them), ``matrix``, ``progressive``, ``hierarchical`` or
         ``hierarchical-shooting``.
 
         ``settings`` are the method's settings by the command line's names with ``_`` for

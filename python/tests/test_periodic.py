@@ -69,6 +69,10 @@ def test_the_surface_tracer_measures_every_surface_of_a_plot():
     assert abs(incident[1] - 3 * SUN) <= 3 * sigma[1] + 1e-9 and 0 < sigma[1] < 0.5, (incident, sigma)
     with pytest.raises(ValueError, match="points"):
         _field().solve("surface-trace", points=0)
+    # A standard error asked for: the ground gets points until it is there.
+    result = _field().solve("surface-trace", points=64, standard_error=0.005, seed=2)
+    ground, sigma = result.incident_w[1].mean(), result.incident_w_sigma[1].mean()
+    assert sigma <= 0.005 * ground and abs(ground - 3 * SUN) <= 3 * sigma, (ground, sigma)
 
 
 def test_a_ground_at_the_bottom_of_all_geometry_stops_the_sky_from_below():

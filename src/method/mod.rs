@@ -208,6 +208,15 @@ impl Method {
                     s.points
                 ),
             )),
+            Method::SurfaceTrace(s) if !(0.0..1.0).contains(&s.standard_error) => {
+                Err(SettingError::new(
+                    "standard-error",
+                    format!(
+                        "must be a share of each surface's light, 0 (off) to under 1 (got {})",
+                        s.standard_error
+                    ),
+                ))
+            }
             Method::SurfaceTrace(_) => Ok(()),
             Method::Radiosity(s) => s.check(),
         }

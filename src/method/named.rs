@@ -81,7 +81,7 @@ impl Method {
             ],
             Method::SensorTrace(_) => &["samples", "paths"],
             Method::LightTrace(_) => &["photons", "max-bounces"],
-            Method::SurfaceTrace(_) => &["points"],
+            Method::SurfaceTrace(_) => &["points", "standard-error"],
             Method::Radiosity(_) => &SURFACE_GATHER,
         };
         let mut names = vec!["seed"];
@@ -176,7 +176,10 @@ impl Method {
                 "photons" => s.photons = v.count64()?,
                 _ => s.max_bounces = v.count()?,
             },
-            Method::SurfaceTrace(s) => s.points = v.count()?,
+            Method::SurfaceTrace(s) => match name {
+                "points" => s.points = v.count()?,
+                _ => s.standard_error = v.real()?,
+            },
             Method::Radiosity(s) => match name {
                 "surface-gather" => s.surface_gather.error = v.real()?,
                 _ => s.surface_gather.below_share = v.real()?,

@@ -31,8 +31,12 @@
 //! left it: measured on the field's leaves, the sky's light then converged as plain random
 //! sampling does). Points that an alpha texture cuts away count as nothing there. Each
 //! surface's incident power carries the standard error of its mean (the points taken as
-//! independent draws, which overstates it for Sobol points). Deterministic: surface `s`
-//! draws streams `3s`, `3s + 1` and `3s + 2` of the seed, whatever the threads.
+//! independent draws, which overstates it for Sobol points). With a standard error asked
+//! for ([`SurfaceTraceSettings::standard_error`]), the surfaces still above it after the
+//! first points go on, in rounds, along the same sequences: where a leaf is evenly lit few
+//! points do, where a shadow's edge or the sky's gaps cross it it gets more. Deterministic:
+//! surface `s` draws streams `3s`, `3s + 1` and `3s + 2` of the seed and decides on more
+//! points by its own, whatever the threads.
 
 use super::{PathTracer, irradiance_sample};
 use crate::color::{Rgb, Rgb64};
@@ -53,24 +57,36 @@ pub const CANCEL_POINTS: u32 = 256;
 pub const SEGMENTS: u32 = 32;
 
 /// How many points `surface-trace` puts on each surface.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfaceTraceSettings {
     /// Points on each reported surface (each measured on both sides), at least 2 (for a
-    /// standard error).
+    /// standard error); the first round's when `standard_error` is set.
     pub points: u32,
+    /// When positive, the standard error each surface's incident power is measured to, a
+    /// share of it: a surface above it after `points` gets more, in rounds, up to
+    /// `MAX_POINTS` (2²⁰; 0: `points` on every surface).
+    pub standard_error: f64,
     /// Seed of all random numbers.
     pub seed: u64,
 }
 
 impl Default for SurfaceTraceSettings {
-    /// 1,024 points per surface, seed 0.
+    /// 1,024 points per surface, no target, seed 0.
     fn default() -> Self {
         SurfaceTraceSettings {
             points: 1024,
+            standard_error: 0.0,
             seed: 0,
         }
     }
 }
+
+/// Points a surface gets at most when a standard error is asked for; one that reaches it
+/// keeps the error it has.
+pub const MAX_POINTS: u32 = 1 << 20;
+
+/// Channels below this share of a surface's brightest channel do not hold its points back.
+const DIM_CHANNEL: f64 = 0.01;
 
 /// The sums one surface's points gather, per point (W·m⁻², both sides together).
 #[derive(Clone, Copy, Default)]
@@ -89,7 +105,7 @@ struct SurfaceSums {
 
 /// Measures every reported surface of `world`'s scene as the module describes; an error when
 /// a shape cannot be meshed (an infinite plane). When `cancel` stops it (within
-/// [`CANCEL_POINTS`] points), each surface keeps the points it had drawn, and one without any
+/// `CANCEL_POINTS` points), each surface keeps the points it had drawn, and one without any
 /// reports nothing, without a standard error: the statistics say `complete: false` and how
 /// many points were drawn.
 pub fn trace_surfaces(
@@ -112,17 +128,41 @@ pub fn trace_surfaces(
     });
     let mut tracer = PathTracer::new(world, u32::MAX, 1);
     tracer.roulette_start = 1;
-    progress.start(table.len() as u64);
-    let sums: Vec<SurfaceSums> = triangles
-        .par_iter()
-        .enumerate()
-        .map(|(s, triangles)| {
-            let sums = measure_surface(world, &tracer, triangles, (s as u64, settings), cancel);
-            progress.advance(1);
-            sums
-        })
-        .collect();
-    progress.finish();
+    let mut sums = vec![SurfaceSums::default(); table.len()];
+    let mut wanted = vec![settings.points; table.len()];
+    // In rounds: every surface to `points`, then those still above the error asked for to
+    // as many more as their error says (each surface's own points decide: the same for any
+    // thread count).
+    loop {
+        let round: Vec<usize> = (0..sums.len())
+            .filter(|&s| !triangles[s].is_empty() && sums[s].incident.n < u64::from(wanted[s]))
+            .collect();
+        if round.is_empty() || cancel.is_requested() {
+            break;
+        }
+        progress.start(round.len() as u64);
+        let drawn: Vec<SurfaceSums> = round
+            .par_iter()
+            .map(|&s| {
+                let points = (sums[s], wanted[s]);
+                let more = measure_surface(
+                    world,
+                    &tracer,
+                    &triangles[s],
+                    (s as u64, settings),
+                    points,
+                    cancel,
+                );
+                progress.advance(1);
+                more
+            })
+            .collect();
+        progress.finish();
+        for (&s, more) in round.iter().zip(drawn) {
+            sums[s] = more;
+            wanted[s] = points_wanted(&sums[s], settings.standard_error);
+        }
+    }
     let mut power = SurfacePower::new(table);
     let mut errors = Vec::with_capacity(sums.len());
     let (mut total_variance, mut indirect_variance) = (Rgb64::BLACK, Rgb64::BLACK);
@@ -165,10 +205,8 @@ pub fn trace_surfaces(
     };
     stats.insert("points", points);
     // A surface without area (every triangle degenerate) has no points to draw.
-    let complete = sums
-        .iter()
-        .zip(&triangles)
-        .all(|(s, t)| t.is_empty() || s.incident.n == u64::from(settings.points));
+    let complete = (0..sums.len())
+        .all(|s| triangles[s].is_empty() || sums[s].incident.n >= u64::from(wanted[s]));
     stats.insert("complete", complete);
     Ok(Measurement {
         solver: "surface-trace",
@@ -178,19 +216,40 @@ pub fn trace_surfaces(
     })
 }
 
-/// The sums of `settings.points` points on the surface made of `triangles`, drawn from
-/// streams `3·stream`… of the seed; fewer when `cancel` is set.
+/// The points a surface with `sums` is to have in all for a standard error of
+/// `target` of its incident power (in every channel not under [`DIM_CHANNEL`] of its
+/// brightest): as many as it has when it is there (or has [`MAX_POINTS`], or `target` is 0,
+/// or it receives nothing), else as many more as the error says — a tenth over lest the next
+/// round fall just short, 2 to 16 times as many.
+fn points_wanted(sums: &SurfaceSums, target: f64) -> u32 {
+    let n = sums.incident.n;
+    let mean = sums.incident.mean();
+    let brightest = mean.max_channel();
+    let relative = (0..3)
+        .filter(|&c| mean[c] > DIM_CHANNEL * brightest)
+        .map(|c| sums.incident.variance_of_mean()[c].sqrt() / mean[c])
+        .fold(0.0, f64::max);
+    if target <= 0.0 || relative <= target || n >= u64::from(MAX_POINTS) {
+        return n as u32;
+    }
+    let doublings = (1.1 * (relative / target).powi(2))
+        .log2()
+        .ceil()
+        .clamp(1.0, 4.0);
+    (n << doublings as u32).min(u64::from(MAX_POINTS)) as u32
+}
+
+/// `sums` of the surface made of `triangles` with its points up to `wanted`, drawn from
+/// streams `3·stream`… of the seed (point `i` from index `i` of each); fewer when `cancel`
+/// is set.
 fn measure_surface(
     world: &World,
     tracer: &PathTracer,
     triangles: &[SurfaceTriangle],
     (stream, settings): (u64, &SurfaceTraceSettings),
+    (mut sums, wanted): (SurfaceSums, u32),
     cancel: &Cancel,
 ) -> SurfaceSums {
-    let mut sums = SurfaceSums::default();
-    if triangles.is_empty() {
-        return sums;
-    }
     let mut cdf = Vec::with_capacity(triangles.len());
     let mut area = 0.0;
     for t in triangles {
@@ -198,7 +257,7 @@ fn measure_surface(
         cdf.push(area);
     }
     let scene = &world.scene;
-    for i in 0..settings.points {
+    for i in sums.incident.n as u32..wanted {
         if i % CANCEL_POINTS == 0 && cancel.is_requested() {
             break;
         }

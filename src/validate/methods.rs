@@ -94,6 +94,7 @@ pub fn suite_method(
         MethodKind::SurfaceTrace => method::Method::SurfaceTrace(SurfaceTraceSettings {
             points: effort.points,
             seed,
+            ..SurfaceTraceSettings::default()
         }),
         MethodKind::RayTrace | MethodKind::RadiosityImage | MethodKind::FinalGather => {
             return None;

@@ -48,7 +48,7 @@ pub struct PathTracer {
     /// path after that); at least 1.
     pub first_hit_paths: u32,
     /// Scattering events a path has had before Russian roulette may end it
-    /// ([`ROULETTE_START`] unless set otherwise: 1 lets roulette end every path that
+    /// (`ROULETTE_START`, 5, unless set otherwise: 1 lets roulette end every path that
     /// continues, which pays where surfaces reflect little, a canopy of leaves).
     pub roulette_start: u32,
     pub(super) lights: LightPicker,
