@@ -9,7 +9,7 @@ use strahl::color::Rgb;
 use strahl::geometry::{Ray, Transform};
 use strahl::method::{
     AccelKind, Cancel, LightTraceSettings, Method, NoProgress, RadiositySettings, SolverKind,
-    World, run,
+    SurfaceTraceSettings, World, run,
 };
 use strahl::report::Report;
 use strahl::sampling::{Sampler, SequenceKind};
@@ -202,6 +202,36 @@ fn radiosity_sees_placed_meshes_as_their_copies() {
     for (x, y) in a.objects.iter().zip(&b.objects) {
         let (pa, pb) = (x.absorbed_power.g, y.absorbed_power.g);
         assert!((pa / pb - 1.0).abs() < 0.005, "{}: {pa} vs {pb}", x.name);
+    }
+}
+
+/// The surface tracer puts its points on placed meshes as on their copies and sees the same
+/// light: every object's incident power within 2 % and four standard errors of the
+/// difference (the points are the same but on a mirrored copy, whose triangles' corners come
+/// in another order; measured: worst 0.65 %, plant-2).
+#[test]
+fn the_surface_tracer_sees_placed_meshes_as_their_copies() {
+    let (placed, copied) = worlds();
+    let method = Method::SurfaceTrace(SurfaceTraceSettings {
+        points: 4096,
+        ..SurfaceTraceSettings::default()
+    });
+    let report = |world: &Arc<World>| {
+        let outcome = run(world, &method, &NoProgress, &Cancel::new()).unwrap();
+        Report::new("plot", outcome.measurement.as_ref().unwrap())
+    };
+    let (a, b) = (report(&placed), report(&copied));
+    assert_eq!(a.objects.len(), 26);
+    for (x, y) in a.objects.iter().zip(&b.objects) {
+        let (pa, pb) = (x.incident_power.g, y.incident_power.g);
+        let sigma = x.incident_power_standard_error.unwrap().g;
+        let sigma = sigma.hypot(y.incident_power_standard_error.unwrap().g);
+        assert!(
+            (pa / pb - 1.0).abs() < 0.02 && (pa - pb).abs() <= 4.0 * sigma,
+            "{}: {pa} vs {pb} ± {sigma}",
+            x.name
+        );
+        assert!((x.area.unwrap() / y.area.unwrap() - 1.0).abs() < 1e-5);
     }
 }
 

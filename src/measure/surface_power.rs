@@ -110,6 +110,15 @@ impl SurfacePower {
         self.escaped += power;
     }
 
+    /// Adds the power `lights` (W) of the lights that are not surfaces, and counts all that
+    /// is emitted and not absorbed as escaped: the balance of solvers that measure what
+    /// surfaces receive, not what leaves the scene (radiosity, the surface tracer).
+    pub fn balance_with_lights(&mut self, lights: Rgb64) {
+        self.add_light_emission(lights);
+        let totals = self.totals();
+        self.add_escaped((totals.emitted_power - totals.absorbed_power).map(|p| p.max(0.0)));
+    }
+
     /// Multiplies every power by `factor` (e.g. to scale a partial run to its full size).
     pub fn scale(&mut self, factor: f64) {
         for b in &mut self.balances {

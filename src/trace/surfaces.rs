@@ -186,15 +186,7 @@ pub fn trace_surfaces(
         total_variance.map(f64::sqrt),
         indirect_variance.map(f64::sqrt),
     );
-    let light_power: Rgb64 = world
-        .scene
-        .lights
-        .iter()
-        .map(|l| world.light_power(&l.kind).to_f64())
-        .sum();
-    power.add_light_emission(light_power);
-    let totals = power.totals();
-    power.add_escaped((totals.emitted_power - totals.absorbed_power).map(|p| p.max(0.0)));
+    power.balance_with_lights(world.lights_power());
     let points: u64 = sums.iter().map(|s| s.incident.n).sum();
     let mut stats = Stats {
         seconds: start.elapsed().as_secs_f64(),

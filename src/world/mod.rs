@@ -39,7 +39,7 @@ pub use sky::{CompiledCieSky, Sky};
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
 
 use crate::accel::{AccelKind, AccelStats, Accelerator, PrimHit};
-use crate::color::Rgb;
+use crate::color::{Rgb, Rgb64};
 use crate::geometry::Ray;
 use crate::scene::{LightKind, Material, Scene, Shape};
 use glam::Vec3;
@@ -282,6 +282,16 @@ impl World {
     pub fn entry_sphere(&self) -> (Vec3, f32) {
         let (center, radius) = self.geometry.bounding_sphere();
         (center, radius * 1.001 + 1e-6)
+    }
+
+    /// The power (W per channel) all the scene's lights that are not surfaces send into it,
+    /// each as [`World::light_power`] says.
+    pub fn lights_power(&self) -> Rgb64 {
+        self.scene
+            .lights
+            .iter()
+            .map(|l| self.light_power(&l.kind).to_f64())
+            .sum()
     }
 
     /// The power (W per channel) a light that is not a surface sends into the scene, the one

@@ -270,15 +270,7 @@ impl Solution {
                 power.balance_mut(entry).direct = None;
             }
         }
-        let light_power = world
-            .scene
-            .lights
-            .iter()
-            .map(|l| world.light_power(&l.kind).to_f64())
-            .sum();
-        power.add_light_emission(light_power);
-        let totals = power.totals();
-        power.add_escaped((totals.emitted_power - totals.absorbed_power).map(|p| p.max(0.0)));
+        power.balance_with_lights(world.lights_power());
         power
     }
 
