@@ -299,3 +299,39 @@ fn a_standard_error_asked_for_adds_points_where_a_surface_needs_them() {
     bad.set("standard-error", &value).unwrap();
     assert_eq!(bad.check().unwrap_err().setting, "standard-error");
 }
+
+/// Asks the run to stop once the first surface is done.
+struct StopAfterOne<'a>(&'a Cancel);
+
+impl strahl::method::ProgressListener for StopAfterOne<'_> {
+    fn start(&self, _: u64) {}
+    fn advance(&self, _: u64) {
+        self.0.request();
+    }
+    fn finish(&self) {}
+}
+
+#[test]
+fn a_run_stopped_midway_reports_the_surfaces_it_measured_and_is_incomplete() {
+    let world = world(builtin::load("canopy:300").unwrap().unwrap());
+    let cancel = Cancel::new();
+    let method = Method::SurfaceTrace(SurfaceTraceSettings {
+        points: 4096,
+        ..SurfaceTraceSettings::default()
+    });
+    let outcome = run(&world, &method, &StopAfterOne(&cancel), &cancel).unwrap();
+    assert!(!outcome.complete);
+    let measurement = outcome.measurement.unwrap();
+    assert_eq!(measurement.stats.extra["complete"], false);
+    let points = measurement.stats.extra["points"].as_u64().unwrap();
+    assert!((4096..301 * 4096).contains(&points), "{points}");
+    // The surface done has its light and error; one never started has neither.
+    let report = Report::new("canopy", &measurement);
+    let errors: Vec<_> = report
+        .objects
+        .iter()
+        .map(|o| o.incident_power_standard_error)
+        .collect();
+    assert!(errors.iter().any(|e| e.is_some_and(|e| e.g > 0.0)));
+    assert!(errors.iter().any(Option::is_none));
+}

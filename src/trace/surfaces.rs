@@ -160,7 +160,10 @@ pub fn trace_surfaces(
         progress.finish();
         for (&s, more) in round.iter().zip(drawn) {
             sums[s] = more;
-            wanted[s] = points_wanted(&sums[s], settings.standard_error);
+            // A surface stopped short keeps its count wanted: the run is then incomplete.
+            if sums[s].incident.n >= u64::from(wanted[s]) {
+                wanted[s] = points_wanted(&sums[s], settings.standard_error);
+            }
         }
     }
     let mut power = SurfacePower::new(table);
