@@ -117,8 +117,21 @@ fn every_wall_of_a_furnace_receives_e_over_one_minus_rho() {
     // Inside a closed cube whose walls emit π·Lₑ and reflect ρ, every point receives
     // E = π·Lₑ / (1 − ρ); each wall absorbs (1 − ρ)·E, what it emits.
     let (le, rho) = (2.0, 0.6);
-    let report = surface_trace(&world(furnace(le, rho)), 4096, 3);
+    let mut scene = furnace(le, rho);
+    // A sensor in the middle reads the walls' radiosity, the same E.
+    scene.sensors.push(strahl::scene::Sensor {
+        name: "middle".into(),
+        position: Vec3::splat(0.5),
+        normal: Vec3::Y,
+    });
+    let report = surface_trace(&world(scene), 4096, 3);
     let expected = std::f64::consts::PI * f64::from(le) / (1.0 - f64::from(rho));
+    let sensor = &report.sensors[0];
+    let (e, sigma) = (sensor.irradiance.g, sensor.standard_error.unwrap().g);
+    assert!(
+        (e - expected).abs() < 4.0 * sigma && sigma < 0.02 * expected,
+        "sensor: {e} ± {sigma}, expected {expected}"
+    );
     for wall in &report.objects {
         let (e, sigma) = (
             wall.incident_power.g,

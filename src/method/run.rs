@@ -406,17 +406,7 @@ fn surface_trace(
     cancel: &Cancel,
 ) -> Result<Outcome, MethodError> {
     progress.phase("points");
-    let mut measurement = trace_surfaces(world, s, progress, cancel)?;
-    let complete = measurement.stats.extra["complete"] == true;
-    let tracer = PathTracer::new(world, u32::MAX, 1);
-    let sensors = SensorSettings {
-        samples: s.points,
-        paths: s.points,
-        seed: s.seed,
-    };
-    if complete {
-        measurement.sensors = sensor_readings(world, Some(&tracer), &sensors);
-    }
+    let (measurement, complete) = trace_surfaces(world, s, progress, cancel)?;
     Ok(Outcome {
         summary: format!(
             "{}, {} points on {} surfaces in {:.2} s{}",

@@ -16,6 +16,9 @@
 //! `1 − ρ − τ` there (textures applied; the back of a one-sided material absorbs it all),
 //! what it emits `π·Lₑ`.
 //!
+//! The sensors are read as the path tracer reads them ([`sensor_readings`], `points` rays
+//! each), in the same scene as the surfaces.
+//!
 //! The scene is the one radiosity solves: materials keep their diffuse lobes (Lambertian
 //! reflection and translucency; the rest of their light counts as absorbed, as radiosity
 //! counts it) and analytic shapes are meshed ([`World::tessellated`], curved ones with
@@ -38,7 +41,7 @@
 //! surface `s` draws streams `3s`, `3s + 1` and `3s + 2` of the seed and decides on more
 //! points by its own, whatever the threads.
 
-use super::{PathTracer, irradiance_sample};
+use super::{PathTracer, SensorSettings, irradiance_sample, sensor_readings};
 use crate::color::{Rgb, Rgb64};
 use crate::measure::{Measurement, Stats, SurfacePower, SurfaceTable};
 use crate::progress::{Cancel, ProgressListener};
@@ -103,17 +106,18 @@ struct SurfaceSums {
     emitted: Rgb64,
 }
 
-/// Measures every reported surface of `world`'s scene as the module describes; an error when
-/// a shape cannot be meshed (an infinite plane). When `cancel` stops it (within
-/// `CANCEL_POINTS` points), each surface keeps the points it had drawn, and one without any
-/// reports nothing, without a standard error: the statistics say `complete: false` and how
-/// many points were drawn.
+/// Measures every reported surface of `world`'s scene as the module describes, and its
+/// sensors as the path tracer reads them (`points` rays each, in the same scene), and whether
+/// it completed; an error when a shape cannot be meshed (an infinite plane). When `cancel`
+/// stops it (within `CANCEL_POINTS` points), each surface keeps the points it had drawn, and
+/// one without any reports nothing, without a standard error; the sensors are not read; the
+/// statistics say `complete: false` and how many points were drawn.
 pub fn trace_surfaces(
     world: &World,
     settings: &SurfaceTraceSettings,
     progress: &dyn ProgressListener,
     cancel: &Cancel,
-) -> Result<Measurement, GeometryError> {
+) -> Result<(Measurement, bool), GeometryError> {
     let start = Instant::now();
     let meshed = world.tessellated(SEGMENTS)?;
     let meshed = meshed.as_ref().unwrap_or(world);
@@ -191,24 +195,35 @@ pub fn trace_surfaces(
     );
     power.balance_with_lights(world.lights_power());
     let points: u64 = sums.iter().map(|s| s.incident.n).sum();
+    // A surface without area (every triangle degenerate) has no points to draw.
+    let complete = (0..sums.len())
+        .all(|s| triangles[s].is_empty() || sums[s].incident.n >= u64::from(wanted[s]));
+    let sensors = if complete {
+        let rays = SensorSettings {
+            samples: settings.points,
+            paths: settings.points,
+            seed: settings.seed,
+        };
+        sensor_readings(world, Some(&tracer), &rays)
+    } else {
+        Vec::new()
+    };
     let mut stats = Stats {
         seconds: start.elapsed().as_secs_f64(),
         // The gather rays, one per side of each point; the paths continuing from where
-        // they meet a surface and the shadow rays are not counted.
+        // they meet a surface, the shadow rays and the sensors' rays are not counted.
         rays: 2 * points,
         ..Stats::default()
     };
     stats.insert("points", points);
-    // A surface without area (every triangle degenerate) has no points to draw.
-    let complete = (0..sums.len())
-        .all(|s| triangles[s].is_empty() || sums[s].incident.n >= u64::from(wanted[s]));
     stats.insert("complete", complete);
-    Ok(Measurement {
+    let measurement = Measurement {
         solver: "surface-trace",
         power,
-        sensors: Vec::new(),
+        sensors,
         stats,
-    })
+    };
+    Ok((measurement, complete))
 }
 
 /// The points a surface with `sums` is to have in all for a standard error of
