@@ -11,6 +11,9 @@
 //! whose gap fraction differs from the expected one by about 0.3 % (measured over seeds), well
 //! inside the 1 % the tests allow together with the photons' 3σ.
 
+mod common;
+
+use common::corner_leaf;
 use glam::Vec3;
 use std::sync::Arc;
 use strahl::accel::AccelKind;
@@ -22,7 +25,7 @@ use strahl::method::{
 use strahl::progress::{Cancel, NoProgress};
 use strahl::report::Report;
 use strahl::scene::builtin::field::{FieldSpec, field};
-use strahl::scene::{CieSkyType, Light, LightKind, Material, Periodic, Scene, Sensor, Shape};
+use strahl::scene::{CieSkyType, Light, LightKind, Material, Sensor};
 use strahl::validate::closed_forms::parallel_rectangle;
 use strahl::world::{LightSet, World};
 
@@ -136,41 +139,6 @@ fn the_sun_and_a_uniform_sky_reach_the_ground_as_beers_law_says() {
         let measured = ground_fraction(&mut world, sky);
         assert_close(&format!("LAI {lai}, sky"), measured, uniform_sky_gap(lai));
     }
-}
-
-/// A plot of 2 × 2 m with a black ground and a black horizontal 1 × 1 m leaf at height 1
-/// centred on the plot's corner (a quarter of it in the plot, three quarters beyond its
-/// sides), under a vertical sun of 10 W·m⁻² and a uniform sky of radiance 1.
-fn corner_leaf() -> Scene {
-    let mut scene = Scene::empty("corner");
-    let black = scene.add_material(Material::diffuse("black", Rgb::BLACK));
-    scene.add_object(
-        "leaf",
-        Shape::Parallelogram {
-            origin: Vec3::new(-0.5, 1.0, -0.5),
-            edge_u: Vec3::Z,
-            edge_v: Vec3::X,
-        },
-        black,
-    );
-    scene.add_object(
-        "ground",
-        Shape::Parallelogram {
-            origin: Vec3::ZERO,
-            edge_u: Vec3::Z * 2.0,
-            edge_v: Vec3::X * 2.0,
-        },
-        black,
-    );
-    scene.periodic = Some(Periodic::new([0.0, 2.0], [0.0, 2.0]).unwrap());
-    scene.lights.push(Light {
-        name: Some("sun".into()),
-        kind: LightKind::Directional {
-            direction: -Vec3::Y,
-            irradiance: Rgb::splat(10.0),
-        },
-    });
-    scene
 }
 
 #[test]

@@ -208,7 +208,7 @@ fn radiosity_sees_placed_meshes_as_their_copies() {
 /// The surface tracer puts its points on placed meshes as on their copies and sees the same
 /// light: every object's incident power within 2 % and four standard errors of the
 /// difference (the points are the same but on a mirrored copy, whose triangles' corners come
-/// in another order; measured: worst 0.65 %, plant-2).
+/// in another order; measured: all 26 within 0.68 % and 0.56 standard errors).
 #[test]
 fn the_surface_tracer_sees_placed_meshes_as_their_copies() {
     let (placed, copied) = worlds();

@@ -3,6 +3,9 @@
 //! corner, a furnace — and against the light model surface by surface: every face of the
 //! Cornell box and every leaf of `canopy:300`, each recorded at 2·10⁸ and 10⁹ photons.
 
+mod common;
+
+use common::corner_leaf;
 use glam::Vec3;
 use serde_json::Value;
 use std::sync::Arc;
@@ -11,7 +14,7 @@ use strahl::method::{
     AccelKind, Cancel, Method, MethodKind, NoProgress, SurfaceTraceSettings, World, run,
 };
 use strahl::report::{ObjectReport, Report};
-use strahl::scene::{Light, LightKind, Material, Periodic, Scene, Shape, builtin};
+use strahl::scene::{Material, Scene, Shape, builtin};
 
 /// The report of `points` points per surface (seed `seed`) on `world`.
 fn surface_trace(world: &Arc<World>, points: u32, seed: u64) -> Report {
@@ -31,30 +34,6 @@ fn object<'a>(report: &'a Report, name: &str) -> &'a ObjectReport {
 
 fn world(scene: Scene) -> Arc<World> {
     Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
-}
-
-/// A plot of 2 × 2 m with a black ground and a black horizontal 1 × 1 m leaf at height 1
-/// centred on the plot's corner (a quarter of it in the plot, three quarters in the
-/// neighbouring plots), under a vertical sun of 10 W·m⁻².
-fn corner_leaf() -> Scene {
-    let mut scene = Scene::empty("corner");
-    let black = scene.add_material(Material::diffuse("black", Rgb::BLACK));
-    let square = |origin: Vec3, side: f32| Shape::Parallelogram {
-        origin,
-        edge_u: Vec3::Z * side,
-        edge_v: Vec3::X * side,
-    };
-    scene.add_object("leaf", square(Vec3::new(-0.5, 1.0, -0.5), 1.0), black);
-    scene.add_object("ground", square(Vec3::ZERO, 2.0), black);
-    scene.periodic = Some(Periodic::new([0.0, 2.0], [0.0, 2.0]).unwrap());
-    scene.lights.push(Light {
-        name: Some("sun".into()),
-        kind: LightKind::Directional {
-            direction: -Vec3::Y,
-            irradiance: Rgb::splat(10.0),
-        },
-    });
-    scene
 }
 
 #[test]

@@ -49,6 +49,7 @@ use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::Side;
 use crate::radiosity::solve::UNEVEN_RUN;
 use crate::radiosity::solve::{GatheredIrradiance, RadiositySystem, Shading, Solution};
+use crate::sampling::adaptive::{lit_channels, samples_for, worst_relative_error};
 use crate::sampling::{Moments, Sampler, SequenceKind};
 use crate::trace::irradiance_sample;
 use rayon::prelude::*;
@@ -126,9 +127,6 @@ pub const LARGE_SHARE: f64 = 0.01;
 /// The share of the error asked for that large surfaces are measured to where the near
 /// field's rays carried light: three of their standard errors within the error asked for.
 pub const LARGE_SURFACE_ERROR: f64 = 1.0 / 3.0;
-
-/// Channels below this share of a surface's brightest channel do not hold its gather back.
-const DIM_CHANNEL: f64 = 0.01;
 
 /// Measures the irradiance of every element of the surfaces `gather` selects anew from
 /// `solution`, as the module describes, in rounds: [`FIRST_POINTS`] points per surface and
@@ -427,21 +425,13 @@ impl Surfaces {
             if !active[s] {
                 continue;
             }
-            let (relative, channel) = lit_channels(sum)
-                .map(|c| (variance[c].sqrt() / sum[c], c))
-                .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a });
+            let (relative, channel) = worst_relative_error(sum, variance);
             let target = target * self.error_share[s];
             if relative <= target || points >= MAX_POINTS {
                 active[s] = false;
                 continue;
             }
-            // The error falls as one over the root of the points: as many more as it says,
-            // a tenth over lest the next round fall just short, in a power of two.
-            let doublings = (1.1 * (relative / target).powi(2))
-                .log2()
-                .ceil()
-                .clamp(1.0, 4.0);
-            short[s] = Some((channel, (points << doublings as u32).min(MAX_POINTS)));
+            short[s] = Some((channel, samples_for(points, relative, target, MAX_POINTS)));
         }
         short
     }
@@ -557,12 +547,6 @@ impl Surfaces {
             *wanted = (*wanted).max((points as f64 * share).ceil() as u64);
         }
     }
-}
-
-/// The channels of `power` not below [`DIM_CHANNEL`] of its brightest.
-fn lit_channels(power: Rgb64) -> impl Iterator<Item = usize> {
-    let brightest = power.max_channel();
-    (0..3).filter(move |&c| power[c] > DIM_CHANNEL * brightest)
 }
 
 /// One element's samples: their moments and the sum of their direct part, W·m⁻².

@@ -45,6 +45,7 @@ use super::{PathTracer, SensorSettings, irradiance_sample, sensor_readings};
 use crate::color::{Rgb, Rgb64};
 use crate::measure::{Measurement, Stats, SurfacePower, SurfaceTable};
 use crate::progress::{Cancel, ProgressListener};
+use crate::sampling::adaptive::{samples_for, worst_relative_error};
 use crate::sampling::warp::uniform_triangle;
 use crate::sampling::{Moments, Sampler, SequenceKind};
 use crate::world::{GeometryError, SurfaceMaterial, SurfaceTriangle, World, emitted_toward};
@@ -87,9 +88,6 @@ impl Default for SurfaceTraceSettings {
 /// Points a surface gets at most when a standard error is asked for; one that reaches it
 /// keeps the error it has.
 pub const MAX_POINTS: u32 = 1 << 20;
-
-/// Channels below this share of a surface's brightest channel do not hold its points back.
-const DIM_CHANNEL: f64 = 0.01;
 
 /// The sums one surface's points gather, per point (W·m⁻², both sides together).
 #[derive(Clone, Copy, Default)]
@@ -226,27 +224,18 @@ pub fn trace_surfaces(
     Ok((measurement, complete))
 }
 
-/// The points a surface with `sums` is to have in all for a standard error of
-/// `target` of its incident power (in every channel not under [`DIM_CHANNEL`] of its
-/// brightest): as many as it has when it is there (or has [`MAX_POINTS`], or `target` is 0,
-/// or it receives nothing), else as many more as the error says — a tenth over lest the next
-/// round fall just short, 2 to 16 times as many.
+/// The points a surface with `sums` is to have in all for a standard error of `target` of
+/// its incident power (in its lit channels): as many as it has when it is there (or has
+/// [`MAX_POINTS`], or `target` is 0, or it receives nothing), else as many more as
+/// [`samples_for`] says.
 fn points_wanted(sums: &SurfaceSums, target: f64) -> u32 {
     let n = sums.incident.n;
-    let mean = sums.incident.mean();
-    let brightest = mean.max_channel();
-    let relative = (0..3)
-        .filter(|&c| mean[c] > DIM_CHANNEL * brightest)
-        .map(|c| sums.incident.variance_of_mean()[c].sqrt() / mean[c])
-        .fold(0.0, f64::max);
+    let variance = sums.incident.variance_of_mean();
+    let (relative, _) = worst_relative_error(sums.incident.mean(), variance);
     if target <= 0.0 || relative <= target || n >= u64::from(MAX_POINTS) {
         return n as u32;
     }
-    let doublings = (1.1 * (relative / target).powi(2))
-        .log2()
-        .ceil()
-        .clamp(1.0, 4.0);
-    (n << doublings as u32).min(u64::from(MAX_POINTS)) as u32
+    samples_for(n, relative, target, u64::from(MAX_POINTS)) as u32
 }
 
 /// `sums` of the surface made of `triangles` with its points up to `wanted`, drawn from
