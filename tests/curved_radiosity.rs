@@ -11,15 +11,16 @@ use std::sync::Arc;
 use strahl::accel::AccelKind;
 use strahl::color::Rgb64;
 use strahl::image::ToneMapping;
+use strahl::light_model::LightTraceSettings;
 use strahl::measure::Film;
-use strahl::method::{RadiositySettings, SolvedRadiosity, solve_radiosity};
+use strahl::method::{Method, RadiositySettings, SolvedRadiosity, run, solve_radiosity};
 use strahl::progress::{Cancel, NoProgress};
 use strahl::radiosity::solve::{
     DisplaySettings, LinkDisplay, RadiositySystem, Shading, Solution, SolverKind, render_solution,
     vertex_radiosity,
 };
 use strahl::radiosity::{MeshSize, Side};
-use strahl::report::export_lit_mesh;
+use strahl::report::{Report, export_lit_mesh};
 use strahl::sampling::SequenceKind;
 use strahl::scene::{Scene, builtin};
 use strahl::trace::{
@@ -325,4 +326,47 @@ fn the_built_in_spheres_by_every_solver() {
             check_solution(&world, solver, coarse, name);
         }
     }
+}
+
+/// The built-in spheres sphere by sphere: hierarchical radiosity at its defaults (16 segments)
+/// against the light model (10⁷ photons on the scene with its glossy lobes dropped, what
+/// radiosity solves; a sphere's standard error about 0.5 %). The meshed spheres are as large
+/// as the spheres, so they catch, one with another, the light the spheres catch: the median
+/// sphere within 0.6 % (measured +0.06 %; meshes with their corners on the spheres had every
+/// sphere but one too dark, the median by 2.9 %), the RMS within 1.5 % (measured 1.2 %, 1.0 %
+/// against 4·10⁷ photons: the facets' shape under lamps as close as 0.1 to a sphere stays,
+/// falling with more segments, 0.7 % at 24).
+#[test]
+fn the_built_in_spheres_catch_the_light_the_light_model_gives_them() {
+    let world = builtin_world("spheres");
+    let diffuse = Arc::new(world.diffuse().unwrap().unwrap());
+    let photons = Method::LightTrace(LightTraceSettings {
+        photons: 10_000_000,
+        ..LightTraceSettings::default()
+    });
+    let hierarchical = Method::Radiosity(RadiositySettings::new(SolverKind::Hierarchical));
+    let power = |world: &Arc<World>, method: &Method| -> Vec<f64> {
+        let outcome = run(world, method, &NoProgress, &Cancel::new()).unwrap();
+        let report = Report::new("spheres", outcome.measurement.as_ref().unwrap());
+        let sum = |p: Rgb64| p.r + p.g + p.b;
+        report
+            .objects
+            .iter()
+            .map(|o| sum(o.incident_power))
+            .collect()
+    };
+    let reference = power(&diffuse, &photons);
+    let mut deviations: Vec<f64> = power(&world, &hierarchical)
+        .iter()
+        .zip(&reference)
+        .map(|(p, q)| p / q - 1.0)
+        .collect();
+    deviations.sort_by(f64::total_cmp);
+    let median = deviations[deviations.len() / 2];
+    let rms = (deviations.iter().map(|d| d * d).sum::<f64>() / deviations.len() as f64).sqrt();
+    eprintln!("spheres: median {median:+.4}, RMS {rms:.4}");
+    assert!(
+        median.abs() < 0.006 && rms < 0.015,
+        "median {median}, RMS {rms}"
+    );
 }

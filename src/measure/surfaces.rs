@@ -136,7 +136,7 @@ fn analytic_area(scene: &Scene, index: usize) -> f64 {
 /// Area of object `index` tessellated with `segments` (world space).
 fn tessellated_area(scene: &Scene, index: usize, segments: u32) -> f64 {
     let object = &scene.objects[index];
-    match object.shape.to_mesh(segments) {
+    match object.shape.to_inscribed_mesh(segments) {
         Err(_) if matches!(object.shape, crate::scene::Shape::Plane { .. }) => f64::INFINITY,
         Err(_) => 0.0,
         Ok(mesh) => {

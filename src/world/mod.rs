@@ -179,7 +179,7 @@ impl World {
     /// This world with every curved analytic shape (sphere, cylinder, cone, frustum) replaced
     /// by its polygon mesh of `segments` segments around the axis, with the same accelerator
     /// kind: the surfaces that methods working on those meshes (radiosity patches) must see,
-    /// since the facets lie inside the true surface. `None` when there is no curved shape,
+    /// since the facets lie off the true surface. `None` when there is no curved shape,
     /// so this world serves as it is.
     pub fn faceted(&self, segments: u32) -> Result<Option<World>, GeometryError> {
         self.meshed(segments, Shape::is_curved)
