@@ -543,6 +543,81 @@ fn display_draws_the_links_of_one_object() {
 }
 
 #[test]
+fn the_links_shown_include_those_from_lamps_the_sun_and_the_sky() {
+    // A grey floor and a block on it under a lamp, the sun and a sky: every light reaches the
+    // floor, so each has links shown, from the receiver's centre to the lamp, or toward the
+    // sun or along the receiving side's normal (the sky) at the scene's bounding radius.
+    let mut scene = Scene::empty("lit-floor");
+    let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
+    let floor = Shape::Parallelogram {
+        origin: Vec3::new(-1.0, 0.0, -1.0),
+        edge_u: Vec3::Z * 2.0,
+        edge_v: Vec3::X * 2.0,
+    };
+    scene.add_object("floor", floor, grey);
+    let block = Shape::Box {
+        min: Vec3::new(-0.2, 0.0, -0.2),
+        max: Vec3::new(0.2, 0.4, 0.2),
+    };
+    scene.add_object("block", block, grey);
+    let lamp = Vec3::new(0.5, 1.0, 0.0);
+    let sun = Vec3::new(1.0, -2.0, 0.5).normalize();
+    for kind in [
+        LightKind::Point {
+            position: lamp,
+            intensity: Rgb::splat(1.0),
+        },
+        LightKind::Directional {
+            direction: sun,
+            irradiance: Rgb::splat(100.0),
+        },
+        LightKind::Sky {
+            radiance: Rgb::splat(10.0),
+        },
+    ] {
+        scene.lights.push(Light { name: None, kind });
+    }
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let reach = f64::from(world.geometry.bounding_sphere().1);
+    let settings = HierarchicalSettings {
+        link_segments: true,
+        ..HierarchicalSettings::default()
+    };
+    let (_, solution) = hierarchical(&world, &settings);
+    for light in 0..3 {
+        let links: Vec<_> = solution
+            .link_segments
+            .iter()
+            .filter(|l| l.light == Some(light))
+            .collect();
+        assert!(links.len() >= 2, "light {light}: {} links", links.len());
+        for l in links {
+            assert_eq!(l.emitter_object, None);
+            assert!(l.receiver_object.is_some() && l.level.is_some());
+            let to_emitter = l.emitter - l.receiver;
+            match light {
+                0 => assert_eq!(l.emitter, lamp.as_dvec3()),
+                1 => assert!((to_emitter + reach * sun.as_dvec3()).length() < 1e-9),
+                _ => {
+                    assert!((to_emitter.length() - reach).abs() < 1e-9);
+                    // The floor's links come from above it, whichever side they reach.
+                    if l.receiver_object == Some(0) {
+                        assert!(to_emitter.y.abs() > 0.999 * reach, "{to_emitter}");
+                    }
+                }
+            }
+        }
+    }
+    // The patch links keep no light.
+    assert!(
+        solution
+            .link_segments
+            .iter()
+            .any(|l| l.light.is_none() && l.emitter_object.is_some())
+    );
+}
+
+#[test]
 fn exports_parse_as_gltf_and_ply() {
     let world = furnace();
     let system = RadiositySystem::new(&world, options(1)).unwrap();

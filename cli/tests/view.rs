@@ -360,12 +360,12 @@ fn the_links_are_served_with_the_objects_at_their_ends() {
     let objects = scene["objects"].as_array().unwrap().len() as i32;
     let (status, _, links) = get(address, "/api/links");
     assert_eq!(status, 200);
-    assert_eq!(links.len(), 4 + 36 * shown);
+    assert_eq!(links.len(), 4 + 40 * shown);
     let word = |at: usize| <[u8; 4]>::try_from(&links[at..at + 4]).unwrap();
     assert_eq!(u32::from_le_bytes(word(0)) as usize, shown);
     let mut levels = std::collections::BTreeSet::new();
     for k in 0..shown {
-        let at = 4 + 36 * k;
+        let at = 4 + 40 * k;
         // Both ends inside the box (0.56 m wide, 0.55 m high and deep; a little slack).
         for j in 0..6 {
             let v = f32::from_le_bytes(word(at + 4 * j));
@@ -380,14 +380,48 @@ fn the_links_are_served_with_the_objects_at_their_ends() {
             i32::from_le_bytes(word(at + 24)),
             i32::from_le_bytes(word(at + 28)),
         );
-        // A link with a cluster at an end has no level in the patch hierarchy.
+        // A link with a cluster at an end has no level in the patch hierarchy; the box is
+        // lit by its emitting surface alone, so no link comes from a lamp, the sun or a sky.
         assert_eq!(level == -1, receiver == -1 || emitter == -1, "link {k}");
+        assert_eq!(i32::from_le_bytes(word(at + 36)), -1, "link {k}");
         levels.insert(level);
     }
     // The box's links run between root patches and down several levels of the quadtrees.
     assert!(
         levels.contains(&0) && levels.iter().any(|&l| l >= 3),
         "{levels:?}"
+    );
+}
+
+#[test]
+fn the_links_from_the_sun_and_the_sky_are_served() {
+    // The canopy's leaves are lit by a sun and a sky (lights 0 and 1): links from both come
+    // with the patches' links, their emitter end no object.
+    let viewer = start(&["canopy:30"]);
+    let address = viewer.address.as_str();
+    solved(address);
+    let (status, _, links) = get(address, "/api/links");
+    assert_eq!(status, 200);
+    let word = |at: usize| i32::from_le_bytes(<[u8; 4]>::try_from(&links[at..at + 4]).unwrap());
+    let count = word(0) as usize;
+    assert_eq!(links.len(), 4 + 40 * count);
+    let mut from = [0; 3];
+    for k in 0..count {
+        let at = 4 + 40 * k;
+        let light = word(at + 36);
+        assert!((-1..2).contains(&light), "link {k}: light {light}");
+        from[(light + 1) as usize] += 1;
+        if light >= 0 {
+            assert_eq!(
+                word(at + 28),
+                -1,
+                "link {k}: a light's link has no emitting object"
+            );
+        }
+    }
+    assert!(
+        from.iter().all(|&n| n > 0),
+        "patch, sun and sky links: {from:?}"
     );
 }
 

@@ -304,12 +304,13 @@ fn mesh_bytes(lit: &LitMesh) -> (Vec<u8>, f32) {
 /// The links of a hierarchical solution as the page draws them, little-endian: the count
 /// `N` (u32), then per link the receiver's and the emitter's centre (3 × f32 each, scene
 /// units), the receiver's and the emitter's object index (i32 each; −1 for a cluster of
-/// patches) and the link's level (i32: the quadtree depth of its finer patch, 0 between root
-/// patches; −1 for a link with a cluster at an end). At most [`MAX_LINKS`], taken at an even
-/// stride; none for the other solvers.
+/// patches or a light), the link's level (i32: the quadtree depth of its finer patch, 0
+/// between root patches; −1 for a link with a cluster at an end) and the light it brings
+/// (i32: the light's index for a link from a lamp, the sun or a sky; −1 otherwise). At most
+/// [`MAX_LINKS`], taken at an even stride; none for the other solvers.
 fn link_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
     /// Bytes of one link.
-    const LINK_BYTES: usize = 36;
+    const LINK_BYTES: usize = 40;
     let all = &solved.solution.link_segments;
     let stride = all.len().div_ceil(MAX_LINKS).max(1);
     let shown: Vec<_> = all.iter().step_by(stride).collect();
@@ -326,6 +327,7 @@ fn link_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
         out.extend(object(link.receiver_object).to_le_bytes());
         out.extend(object(link.emitter_object).to_le_bytes());
         out.extend(object(link.level).to_le_bytes());
+        out.extend(object(link.light).to_le_bytes());
     }
     out
 }

@@ -112,8 +112,13 @@ pub struct LinkSegment {
     pub emitter: DVec3,
     /// Object index of the receiving patch (`None` for a cluster of patches).
     pub receiver_object: Option<u32>,
-    /// Object index of the emitting patch (`None` for a cluster of patches).
+    /// Object index of the emitting patch (`None` for a cluster of patches or a light).
     pub emitter_object: Option<u32>,
+    /// For a light link (a lamp, the sun or a sky lighting the receiver): the light's index
+    /// in the scene's light list; the emitter end is then the lamp's position, or for the
+    /// sun and the skies a point toward where their light comes from (the sun; the receiving
+    /// side's normal for a sky) at the radius of the scene's bounding sphere.
+    pub light: Option<u32>,
     /// The link's level in the patch hierarchy: the quadtree depth of the finer of its two
     /// patches (0: between root patches; `None` for a link with a cluster at an end).
     pub level: Option<u32>,

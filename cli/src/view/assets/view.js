@@ -7,7 +7,7 @@
 // The address may ask for a view and for actions once the first final solution is drawn:
 // `?false-color` (with `&range=MIN,MAX` in lux and `&isolines=N`), `?wireframe`, `?links`
 // (all links) or `?links=picked` start with those on, `&level=N` only the links of level N
-// (−1: those with a cluster at an end);
+// (−1: those with a cluster at an end; `lights`: those from lamps, the sun and the sky);
 // `?move=NAME:X,Y,Z` moves an object or light by the offset; `?pick=X,Y` then reads the
 // surface at that point of the final solution (X, Y: fractions of the view's width and
 // height from its top left corner); `?orbit=N` draws N frames
@@ -130,22 +130,25 @@ function autoScale(mesh) {
 }
 
 // The links as `strahl view` sends them (cli/src/view/snapshot.rs, link_bytes): end points
-// (receiver, emitter), the objects at their ends (−1: a cluster) and the level (the quadtree
-// depth of the finer end; −1: a cluster at an end).
+// (receiver, emitter), the objects at their ends (−1: a cluster or a light), the level (the
+// quadtree depth of the finer end; −1: a cluster at an end) and the light a link brings
+// (−1: none; its emitter end is then the lamp, or toward the sun or the sky).
 function parseLinks(buffer) {
   const count = new Uint32Array(buffer, 0, 1)[0];
   const positions = new Float32Array(count * 6);
   const objects = new Int32Array(count * 2);
   const levels = new Int32Array(count);
+  const lights = new Int32Array(count);
   const data = new DataView(buffer, 4);
-  const size = 36;
+  const size = 40;
   for (let k = 0; k < count; k++) {
     for (let j = 0; j < 6; j++) positions[6 * k + j] = data.getFloat32(size * k + 4 * j, true);
     objects[2 * k] = data.getInt32(size * k + 24, true);
     objects[2 * k + 1] = data.getInt32(size * k + 28, true);
     levels[k] = data.getInt32(size * k + 32, true);
+    lights[k] = data.getInt32(size * k + 36, true);
   }
-  return { count, positions, objects, levels };
+  return { count, positions, objects, levels, lights };
 }
 
 // The level selector's choices: every level the links have, clusters (−1) first.
@@ -154,10 +157,13 @@ function offerLevels(links) {
   // Until links came, the selector holds only "every level": then the address chooses.
   const wanted = select.options.length > 1 ? select.value : params.get("level") || "all";
   const present = [...new Set(links.levels)].sort((a, b) => a - b);
-  select.replaceChildren(...["all", ...present.map(String)].map((value) => {
+  const lit = links.lights.some((l) => l >= 0) ? ["lights"] : [];
+  select.replaceChildren(...["all", ...lit, ...present.map(String)].map((value) => {
     const option = document.createElement("option");
     option.value = value;
-    option.textContent = value === "all" ? "every level" : value === "-1" ? "clusters" : `level ${value}`;
+    option.textContent = value === "all" ? "every level"
+      : value === "lights" ? "from lamps, sun and sky"
+      : value === "-1" ? "clusters" : `level ${value}`;
     return option;
   }));
   select.value = [...select.options].some((o) => o.value === wanted) ? wanted : "all";
@@ -325,7 +331,8 @@ function uploadLinks() {
   const chosen = [];
   for (let k = 0; k < links.count; k++) {
     const [r, e] = [links.objects[2 * k], links.objects[2 * k + 1]];
-    const ofLevel = level === "all" || level === "" || links.levels[k] === Number(level);
+    const ofLevel = level === "all" || level === ""
+      || (level === "lights" ? links.lights[k] >= 0 : links.levels[k] === Number(level));
     if (ofLevel && (!onlyPicked || r === shown.picked || e === shown.picked)) chosen.push(2 * k, 2 * k + 1);
   }
   gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, linkIndexBuffer);

@@ -23,6 +23,7 @@ use crate::radiosity::solve::{
 };
 use crate::radiosity::surface::is_textured;
 use crate::radiosity::visibility::Visibility;
+use crate::scene::LightKind;
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -812,7 +813,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         applied
     }
 
-    /// Every link not blocked as a segment between the centres of its ends (for the display
+    /// Every link not blocked as a segment between the centres of its ends, and every light
+    /// link that carries light from the receiver's centre toward its light (for the display
     /// of links).
     fn link_segments(&self) -> Vec<LinkSegment> {
         let mut link_segments: Vec<LinkSegment> = self
@@ -827,10 +829,41 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     emitter: e.centroid,
                     receiver_object: Some(r.object),
                     emitter_object: Some(e.object),
+                    light: None,
                     level: Some(r.depth.max(e.depth)),
                 }
             })
             .collect();
+        let world = self.linker.world;
+        let reach = f64::from(world.geometry.bounding_sphere().1);
+        link_segments.par_extend(
+            self.light_links
+                .par_iter()
+                .filter(|l| l.irradiance != Rgb64::BLACK)
+                .map(|l| {
+                    let (patch, side) = split_node(l.receiver as usize);
+                    let r = self.mesh.patch(patch);
+                    let emitter = match &world.scene.lights[l.light as usize].kind {
+                        LightKind::Point { position, .. }
+                        | LightKind::Lambertian { position, .. }
+                        | LightKind::Spot { position, .. } => position.as_dvec3(),
+                        LightKind::Directional { direction, .. } => {
+                            r.centroid - reach * direction.as_dvec3()
+                        }
+                        LightKind::Sky { .. } | LightKind::CieSky { .. } => {
+                            r.centroid + reach * side.normal(r)
+                        }
+                    };
+                    LinkSegment {
+                        receiver: r.centroid,
+                        emitter,
+                        receiver_object: Some(r.object),
+                        emitter_object: None,
+                        light: Some(l.light),
+                        level: Some(r.depth),
+                    }
+                }),
+        );
         if let Some(tree) = &self.clusters {
             let end = |end: End| match end {
                 End::Patch(p) => (self.mesh.patch(p).centroid, Some(self.mesh.patch(p).object)),
@@ -844,6 +877,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     emitter,
                     receiver_object,
                     emitter_object,
+                    light: None,
                     // A cluster link between two root patches is a link between roots.
                     level: (receiver_object.is_some() && emitter_object.is_some()).then_some(0),
                 }
