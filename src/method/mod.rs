@@ -29,6 +29,7 @@
 
 mod batches;
 mod error;
+mod gather_view;
 mod kind;
 mod named;
 mod outcome;
@@ -39,6 +40,7 @@ mod settings;
 
 pub use batches::{merge_batches, run_batch};
 pub use error::{MethodError, SettingError};
+pub use gather_view::FinalGatherView;
 pub use kind::MethodKind;
 pub use named::SettingValue;
 pub use outcome::{Outcome, SolvedRadiosity};

@@ -1,19 +1,23 @@
-//! Renders the viewer's current view by path tracing, on a thread of its own: pass after
-//! pass, each of [`SAMPLES_PER_PASS`] paths per pixel with a seed of its own, the running mean
-//! of the passes served as a PNG after each, so that the page shows the image as it refines.
-//! A new render (or a move) stops the one under way.
+//! Renders the viewer's current view by path tracing or by final gathering over the final
+//! solution, on a thread of its own: pass after pass, each of [`SAMPLES_PER_PASS`] camera
+//! samples per pixel with a seed of its own, the running mean of the passes served as a PNG
+//! after each, so that the page shows the image as it refines. A new render (or a move) stops
+//! the one under way.
 
 use super::super::with_threads;
+use super::snapshot::Snapshot;
 use anyhow::{Context, Result};
 use serde::Serialize;
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use strahl::image::{ToneMap, ToneMapping, encode_png};
 use strahl::method::{
-    AccelKind, Cancel, Film, ImageSize, Method, NoProgress, PathTraceSettings, World,
+    AccelKind, Cancel, Film, FinalGatherSettings, ImageSize, Method, NoProgress, PathTraceSettings,
+    World,
 };
 use strahl::scene::{Camera, Scene};
 
-/// Paths per pixel of one pass.
+/// Camera samples per pixel of one pass (paths, or final gathers of
+/// [`FinalGatherSettings::default`]'s gather rays each).
 pub const SAMPLES_PER_PASS: u32 = 4;
 
 /// Passes of a render: it stops at `SAMPLES_PER_PASS × MAX_PASSES` paths per pixel.
@@ -36,10 +40,12 @@ pub struct RenderStatus {
     pub error: Option<String>,
 }
 
-/// A render asked for: the scene seen through `camera` at its size.
+/// A render asked for: the scene seen through `camera` at its size, path-traced, or
+/// final-gathered over the final solution of `gather`.
 struct Job {
     scene: Scene,
     camera: Camera,
+    gather: Option<Arc<Snapshot>>,
 }
 
 struct State {
@@ -78,9 +84,15 @@ impl Rendering {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Starts rendering `scene` through `camera` (`width × height` pixels), stopping the
-    /// render under way. Returns the render's number.
-    pub fn start(&self, mut scene: Scene, camera: Camera) -> Result<u64, String> {
+    /// Starts rendering `scene` through `camera` (`width × height` pixels) by path tracing,
+    /// or by final gathering over the solution of `gather` (a final one, of `scene`),
+    /// stopping the render under way. Returns the render's number.
+    pub fn start(
+        &self,
+        mut scene: Scene,
+        camera: Camera,
+        gather: Option<Arc<Snapshot>>,
+    ) -> Result<u64, String> {
         let pixels = u64::from(camera.width) * u64::from(camera.height);
         if camera.width == 0 || camera.height == 0 || pixels > u64::from(MAX_PIXELS) {
             return Err(format!(
@@ -91,7 +103,11 @@ impl Rendering {
         scene.camera = camera.clone();
         let mut state = self.lock();
         state.cancel.request();
-        state.job = Some(Job { scene, camera });
+        state.job = Some(Job {
+            scene,
+            camera,
+            gather,
+        });
         state.png = None;
         state.status = RenderStatus {
             render: state.status.render + 1,
@@ -154,26 +170,60 @@ impl Rendering {
 
     /// Renders `job` (render number `render`) pass after pass until done or `cancel`led.
     fn render(&self, job: Job, cancel: &Cancel, render: u64) -> Result<()> {
-        let world = Arc::new(World::new(job.scene, AccelKind::Bvh).context("the view")?);
+        match &job.gather {
+            Some(snapshot) => {
+                let solved = snapshot
+                    .solved()
+                    .context("the solution is not a whole one")?;
+                let gather = FinalGatherSettings::default();
+                let view = solved
+                    .final_gather_view(
+                        &job.camera,
+                        gather.shading,
+                        gather.light_samples,
+                        gather.gather_rays,
+                    )
+                    .context("the view")?;
+                self.passes(render, cancel, |pass| {
+                    let seed = u64::from(pass);
+                    with_threads(self.threads, || view.render(SAMPLES_PER_PASS, seed, cancel))
+                })
+            }
+            None => {
+                let world = Arc::new(World::new(job.scene, AccelKind::Bvh).context("the view")?);
+                self.passes(render, cancel, |pass| {
+                    let method = Method::PathTrace(PathTraceSettings {
+                        size: ImageSize {
+                            width: Some(job.camera.width),
+                            height: Some(job.camera.height),
+                        },
+                        seed: u64::from(pass),
+                        samples_per_pixel: SAMPLES_PER_PASS,
+                        ..PathTraceSettings::default()
+                    });
+                    let outcome = with_threads(self.threads, || {
+                        strahl::method::run(&world, &method, &NoProgress, cancel)
+                    })?
+                    .map_err(|e| anyhow::anyhow!("{e}"))?;
+                    Ok(outcome.image.filter(|_| outcome.complete))
+                })
+            }
+        }
+    }
+
+    /// Renders passes by `pass` (its image, `None` when stopped) until [`MAX_PASSES`] or
+    /// `cancel`, serving the running mean after each.
+    fn passes(
+        &self,
+        render: u64,
+        cancel: &Cancel,
+        pass_image: impl Fn(u32) -> Result<Option<Film>>,
+    ) -> Result<()> {
         let mut mean: Option<Film> = None;
         for pass in 0..MAX_PASSES {
-            let method = Method::PathTrace(PathTraceSettings {
-                size: ImageSize {
-                    width: Some(job.camera.width),
-                    height: Some(job.camera.height),
-                },
-                seed: u64::from(pass),
-                samples_per_pixel: SAMPLES_PER_PASS,
-                ..PathTraceSettings::default()
-            });
-            let outcome = with_threads(self.threads, || {
-                strahl::method::run(&world, &method, &NoProgress, cancel)
-            })?
-            .map_err(|e| anyhow::anyhow!("{e}"))?;
-            if cancel.is_requested() || !outcome.complete {
+            let Some(film) = pass_image(pass)?.filter(|_| !cancel.is_requested()) else {
                 return Ok(());
-            }
-            let film = outcome.image.context("the path tracer made no image")?;
+            };
             let count = pass as f32 + 1.0;
             let mean = match &mut mean {
                 Some(mean) => {

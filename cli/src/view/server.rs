@@ -130,12 +130,30 @@ fn move_named(viewer: &Viewer, params: &[(String, String)]) -> Answer {
     }
 }
 
-/// `POST /api/render?o=X,Y,Z&t=X,Y,Z&fov=DEGREES&size=W,H`: renders the scene as it is now
-/// by path tracing, seen from `o` looking at `t` (y up) with a vertical field of view of
-/// `fov` degrees, `W × H` pixels; the image refines pass after pass (`GET /api/render`,
-/// `GET /api/render.png`).
+/// `POST /api/render?o=X,Y,Z&t=X,Y,Z&fov=DEGREES&size=W,H[&method=pathtrace|final-gather]`:
+/// renders the scene as it is now, seen from `o` looking at `t` (y up) with a vertical field
+/// of view of `fov` degrees, `W × H` pixels, by path tracing (the default) or by final
+/// gathering over the final solution (409 until the scene as it is now has one); the image
+/// refines pass after pass (`GET /api/render`, `GET /api/render.png`).
 fn render(viewer: &Viewer, params: &[(String, String)]) -> Answer {
-    let asked = known(params, &["o", "t", "fov", "size"]).and_then(|()| {
+    let gather = match value(params, "method") {
+        None | Some("pathtrace") => false,
+        Some("final-gather") => true,
+        Some(other) => {
+            return text(
+                400,
+                &format!("method: '{other}' is not pathtrace or final-gather\n"),
+            );
+        }
+    };
+    let solution = gather.then(|| viewer.solving.final_solution());
+    if let Some(None) = solution {
+        return text(
+            409,
+            "the scene as it is now has no final solution yet: /api/status says when it has\n",
+        );
+    }
+    let asked = known(params, &["o", "t", "fov", "size", "method"]).and_then(|()| {
         let get = |key: &str| value(params, key).ok_or_else(|| format!("a render needs {key}="));
         let point = |key: &str| {
             let v = get(key)?;
@@ -167,7 +185,7 @@ fn render(viewer: &Viewer, params: &[(String, String)]) -> Answer {
     });
     let started = asked.and_then(|camera| {
         let scene = viewer.solving.scene();
-        viewer.rendering.start(scene, camera)
+        viewer.rendering.start(scene, camera, solution.flatten())
     });
     match started {
         Ok(render) => {

@@ -181,6 +181,11 @@ impl Snapshot {
         self.readings.is_some()
     }
 
+    /// The solution it shows (none between rounds).
+    pub fn solved(&self) -> Option<&SolvedRadiosity> {
+        self.readings.as_ref().map(|r| r.borrow_owner())
+    }
+
     /// What the ray from `origin` along the unit `direction` meets.
     pub fn pick(&self, ray: &Ray) -> PickInfo {
         let hit = self

@@ -146,6 +146,14 @@ impl Solving {
         self.lock().readable.clone()
     }
 
+    /// The final solution of the scene as it is now (every move solved), if it is there.
+    pub fn final_solution(&self) -> Option<Arc<Snapshot>> {
+        let state = self.lock();
+        let status = &state.status;
+        let current = status.stage == Some(Stage::Final) && status.solved_moves == status.moves;
+        state.readable.clone().filter(|_| current)
+    }
+
     /// Shows `snapshot` (made as version `version` of `stage` after `moves` moves), unless
     /// a move came since.
     fn publish(&self, snapshot: Snapshot, version: u64, stage: Stage, moves: u64) {

@@ -504,15 +504,19 @@ function orbit(frames) {
   requestAnimationFrame(step);
 }
 
-// Renders the current view by path tracing and shows the image over the solution as it
-// refines, until closed (or a move makes it stale).
+// Renders the current view by path tracing or by final gather over the final solution and
+// shows the image over the solution as it refines, until closed (or a move makes it stale).
 let rendering = 0;
 async function renderView() {
   const image = control("rendered");
   const e = eye();
   const size = [canvas.width, canvas.height];
   const fov = (view.fov * 180) / Math.PI;
-  const query = `o=${e.join(",")}&t=${view.target.join(",")}&fov=${fov}&size=${size.join(",")}`;
+  const method = control("render-method").value;
+  const query = `o=${e.join(",")}&t=${view.target.join(",")}&fov=${fov}&size=${size.join(",")}`
+    + `&method=${method}`;
+  const what = method === "final-gather" ? "final gather" : "path tracing";
+  const each = method === "final-gather" ? "camera samples" : "paths";
   const { render } = await fetchOk(`/api/render?${query}`, { method: "POST" }).then((r) => r.json());
   rendering = render;
   image.hidden = false;
@@ -526,7 +530,7 @@ async function renderView() {
       passesShown = st.passes;
       image.src = `/api/render.png?pass=${passesShown}`;
       image.dataset.passes = passesShown;
-      timing.textContent = `path tracing: ${st.samples_per_pixel} paths per pixel${st.running ? "…" : ""}`;
+      timing.textContent = `${what}: ${st.samples_per_pixel} ${each} per pixel${st.running ? "…" : ""}`;
     }
     if (!st.running) return;
     await new Promise((done) => setTimeout(done, 300));
