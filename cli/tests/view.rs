@@ -497,19 +497,26 @@ fn a_view_is_rendered_by_final_gather_over_the_final_solution() {
             "final gather {g}, path tracing {t}"
         );
     }
-    // While a move is being solved there is no final solution of the scene as it is.
+    // While a move is being solved there is no final solution of the scene as it is: a
+    // final gather is refused then (409), or taken only once that solution is there.
     let (status, _, _) = request(address, "POST", "/api/move?name=light&by=0,0,0.05");
     assert_eq!(status, 202);
-    let (status, _, body) = request(
-        address,
-        "POST",
-        &format!("/api/render?{query}&method=final-gather"),
-    );
-    assert!(
-        status == 409 || status == 202,
-        "{status}: {}",
-        String::from_utf8_lossy(&body)
-    );
+    let ask = || {
+        request(
+            address,
+            "POST",
+            &format!("/api/render?{query}&method=final-gather"),
+        )
+    };
+    let (status, _, body) = ask();
+    let now = json(&get(address, "/api/status").2);
+    match status {
+        409 => {}
+        202 => assert!(now["stage"] == "final" && now["solved_moves"] == 1, "{now}"),
+        _ => panic!("{status}: {}", String::from_utf8_lossy(&body)),
+    }
+    solved(address);
+    assert_eq!(ask().0, 202);
 }
 
 #[test]
