@@ -154,21 +154,26 @@ fn placed_meshes_are_hit_where_their_copies_are() {
     assert!(differ * 10_000 <= n as usize, "{differ} of {n} rays differ");
 }
 
+/// The reports of `method` on the placed plants and on their copies.
+fn reports(method: &Method) -> (Report, Report) {
+    let (placed, copied) = worlds();
+    let report = |world: &Arc<World>| {
+        let outcome = run(world, method, &NoProgress, &Cancel::new()).unwrap();
+        Report::new("plot", outcome.measurement.as_ref().unwrap())
+    };
+    (report(&placed), report(&copied))
+}
+
 /// The light model gives every plant the same light in both worlds within four standard
 /// errors of the difference, and the same area.
 #[test]
 fn the_light_model_sees_placed_meshes_as_their_copies() {
-    let (placed, copied) = worlds();
     let method = Method::LightTrace(LightTraceSettings {
         photons: 400_000,
         seed: 3,
         ..Default::default()
     });
-    let report = |world: &Arc<World>| {
-        let outcome = run(world, &method, &NoProgress, &Cancel::new()).unwrap();
-        Report::new("plot", outcome.measurement.as_ref().unwrap())
-    };
-    let (a, b) = (report(&placed), report(&copied));
+    let (a, b) = reports(&method);
     for (x, y) in a.objects.iter().zip(&b.objects) {
         assert_eq!(x.name, y.name);
         let (area_a, area_b) = (x.area.unwrap(), y.area.unwrap());
@@ -192,13 +197,8 @@ fn the_light_model_sees_placed_meshes_as_their_copies() {
 /// shadows: every object's absorbed power within 0.5 %.
 #[test]
 fn radiosity_sees_placed_meshes_as_their_copies() {
-    let (placed, copied) = worlds();
     let method = Method::Radiosity(RadiositySettings::new(SolverKind::Hierarchical));
-    let report = |world: &Arc<World>| {
-        let outcome = run(world, &method, &NoProgress, &Cancel::new()).unwrap();
-        Report::new("plot", outcome.measurement.as_ref().unwrap())
-    };
-    let (a, b) = (report(&placed), report(&copied));
+    let (a, b) = reports(&method);
     for (x, y) in a.objects.iter().zip(&b.objects) {
         let (pa, pb) = (x.absorbed_power.g, y.absorbed_power.g);
         assert!((pa / pb - 1.0).abs() < 0.005, "{}: {pa} vs {pb}", x.name);
@@ -211,16 +211,11 @@ fn radiosity_sees_placed_meshes_as_their_copies() {
 /// in another order; measured: all 26 within 0.68 % and 0.56 standard errors).
 #[test]
 fn the_surface_tracer_sees_placed_meshes_as_their_copies() {
-    let (placed, copied) = worlds();
     let method = Method::SurfaceTrace(SurfaceTraceSettings {
         points: 4096,
         ..SurfaceTraceSettings::default()
     });
-    let report = |world: &Arc<World>| {
-        let outcome = run(world, &method, &NoProgress, &Cancel::new()).unwrap();
-        Report::new("plot", outcome.measurement.as_ref().unwrap())
-    };
-    let (a, b) = (report(&placed), report(&copied));
+    let (a, b) = reports(&method);
     assert_eq!(a.objects.len(), 26);
     for (x, y) in a.objects.iter().zip(&b.objects) {
         let (pa, pb) = (x.incident_power.g, y.incident_power.g);

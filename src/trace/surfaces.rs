@@ -278,7 +278,7 @@ fn measure_surface(
         }
         let material = SurfaceMaterial::at(scene, &hit);
         let m = &scene.materials[hit.material as usize];
-        let (mut incident, mut reflected) = (Rgb64::BLACK, Rgb64::BLACK);
+        let (mut incident, mut incident_indirect) = (Rgb64::BLACK, Rgb64::BLACK);
         for (side, front) in [true, false].into_iter().enumerate() {
             let normal = if front { hit.ng } else { -hit.ng };
             let stream = 3 * stream + 1 + side as u64;
@@ -292,13 +292,13 @@ fn measure_surface(
             };
             let e = direct + indirect;
             incident += e;
-            reflected += indirect;
+            incident_indirect += indirect;
             sums.direct += direct;
             sums.absorbed += (Rgb64::WHITE - scattered.to_f64()) * e;
             sums.emitted += emitted_toward(scene, m, hit.uv, front).to_f64() * PI;
         }
         sums.incident.add(incident);
-        sums.indirect.add(reflected);
+        sums.indirect.add(incident_indirect);
     }
     sums
 }

@@ -49,12 +49,19 @@ pub struct RenderStatus {
     pub error: Option<String>,
 }
 
-/// A render asked for: the scene seen through `camera` at its size, path-traced, or
-/// final-gathered over the final solution of `gather`.
+/// What a render shows: a scene, path-traced, or a final solution of the scene as it is
+/// now, final-gathered.
+pub enum Source {
+    /// The scene, every move included.
+    PathTrace(Box<Scene>),
+    /// A final solution (a snapshot whose solution is whole).
+    FinalGather(Arc<Snapshot>),
+}
+
+/// A render asked for: `source` seen through `camera` at its size.
 struct Job {
-    scene: Scene,
+    source: Source,
     camera: Camera,
-    gather: Option<Arc<Snapshot>>,
 }
 
 struct State {
@@ -93,15 +100,9 @@ impl Rendering {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Starts rendering `scene` through `camera` (`width × height` pixels) by path tracing,
-    /// or by final gathering over the solution of `gather` (a final one, of `scene`),
-    /// stopping the render under way. Returns the render's number.
-    pub fn start(
-        &self,
-        mut scene: Scene,
-        camera: Camera,
-        gather: Option<Arc<Snapshot>>,
-    ) -> Result<u64, String> {
+    /// Starts rendering `source` through `camera` (`width × height` pixels), stopping the
+    /// render under way. Returns the render's number.
+    pub fn start(&self, source: Source, camera: Camera) -> Result<u64, String> {
         let pixels = u64::from(camera.width) * u64::from(camera.height);
         if camera.width == 0 || camera.height == 0 || pixels > u64::from(MAX_PIXELS) {
             return Err(format!(
@@ -109,14 +110,9 @@ impl Rendering {
                 camera.width, camera.height
             ));
         }
-        scene.camera = camera.clone();
         let mut state = self.lock();
         state.cancel.request();
-        state.job = Some(Job {
-            scene,
-            camera,
-            gather,
-        });
+        state.job = Some(Job { source, camera });
         state.png = None;
         state.status = RenderStatus {
             render: state.status.render + 1,
@@ -179,8 +175,8 @@ impl Rendering {
 
     /// Renders `job` (render number `render`) pass after pass until done or `cancel`led.
     fn render(&self, job: Job, cancel: &Cancel, render: u64) -> Result<()> {
-        match &job.gather {
-            Some(snapshot) => {
+        match job.source {
+            Source::FinalGather(snapshot) => {
                 let solved = snapshot
                     .solved()
                     .context("the solution is not a whole one")?;
@@ -200,8 +196,9 @@ impl Rendering {
                     })
                 })
             }
-            None => {
-                let world = Arc::new(World::new(job.scene, AccelKind::Bvh).context("the view")?);
+            Source::PathTrace(mut scene) => {
+                scene.camera = job.camera.clone();
+                let world = Arc::new(World::new(*scene, AccelKind::Bvh).context("the view")?);
                 self.passes(render, cancel, SAMPLES_PER_PASS, |pass| {
                     let method = Method::PathTrace(PathTraceSettings {
                         size: ImageSize {

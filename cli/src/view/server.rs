@@ -3,6 +3,7 @@
 //! Only these paths exist; nothing is read from disk on a request.
 
 use super::Viewer;
+use super::rendering::Source;
 use super::snapshot::Snapshot;
 use std::io::Cursor;
 use std::time::Duration;
@@ -136,23 +137,6 @@ fn move_named(viewer: &Viewer, params: &[(String, String)]) -> Answer {
 /// gathering over the final solution (409 until the scene as it is now has one); the image
 /// refines pass after pass (`GET /api/render`, `GET /api/render.png`).
 fn render(viewer: &Viewer, params: &[(String, String)]) -> Answer {
-    let gather = match value(params, "method") {
-        None | Some("pathtrace") => false,
-        Some("final-gather") => true,
-        Some(other) => {
-            return text(
-                400,
-                &format!("method: '{other}' is not pathtrace or final-gather\n"),
-            );
-        }
-    };
-    let solution = gather.then(|| viewer.solving.final_solution());
-    if let Some(None) = solution {
-        return text(
-            409,
-            "the scene as it is now has no final solution yet: /api/status says when it has\n",
-        );
-    }
     let asked = known(params, &["o", "t", "fov", "size", "method"]).and_then(|()| {
         let get = |key: &str| value(params, key).ok_or_else(|| format!("a render needs {key}="));
         let point = |key: &str| {
@@ -183,10 +167,30 @@ fn render(viewer: &Viewer, params: &[(String, String)]) -> Answer {
             height,
         })
     });
-    let started = asked.and_then(|camera| {
-        let scene = viewer.solving.scene();
-        viewer.rendering.start(scene, camera, solution.flatten())
-    });
+    let camera = match asked {
+        Ok(camera) => camera,
+        Err(problem) => return text(400, &format!("{problem}\n")),
+    };
+    let source = match value(params, "method") {
+        None | Some("pathtrace") => Source::PathTrace(Box::new(viewer.solving.scene())),
+        Some("final-gather") => match viewer.solving.final_solution() {
+            Some(solution) => Source::FinalGather(solution),
+            None => {
+                return text(
+                    409,
+                    "the scene as it is now has no final solution yet: /api/status says when \
+                     it has\n",
+                );
+            }
+        },
+        Some(other) => {
+            return text(
+                400,
+                &format!("method: '{other}' is not pathtrace or final-gather\n"),
+            );
+        }
+    };
+    let started = viewer.rendering.start(source, camera);
     match started {
         Ok(render) => {
             let (status, kind, body) = json(&serde_json::json!({ "render": render }));
