@@ -651,8 +651,10 @@ fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
     let legend = dom.split("id=\"legend\"").nth(1).expect("a legend");
     assert!(!legend.starts_with(" hidden"), "{dom}");
     assert!(legend.contains(">lux<"), "{dom}");
+    let false_shot = dir.join("false-colour.png");
+    let screenshot = format!("--screenshot={}", false_shot.display());
     headless(&url, &dir.join("profile-false-shot"), &[&screenshot]);
-    let film = strahl::image::load(&shot).unwrap();
+    let film = strahl::image::load(&false_shot).unwrap();
     let left = film.pixels()[(300 * film.width() + 160) as usize];
     assert!(
         left.b > left.r || left.g > left.r,
@@ -660,7 +662,7 @@ fn a_real_browser_runs_the_page_and_draws_the_lit_box() {
     );
 
     // The wireframe and the links drawn over the solid view change much of the picture.
-    let solid = strahl::image::load(&dir.join("view.png")).ok();
+    let solid = strahl::image::load(&shot).ok();
     let differing = |query: &str, profile: &str| {
         let other = dir.join(format!("{profile}.png"));
         let shot = format!("--screenshot={}", other.display());
@@ -775,4 +777,85 @@ fn the_page_lists_the_sensors_and_draws_the_chosen_range_with_isolines() {
     let sensors = dom.split("id=\"sensors\"").nth(1).expect("the sensors");
     assert!(sensors.contains("data-count=\"1\""), "{dom}");
     assert!(sensors.contains("middle: 8583 lux"), "{dom}");
+}
+
+/// The luminances of `film` (linear) over the pixels `x × y`, row by row.
+fn luminances(
+    film: &strahl::measure::Film,
+    x: std::ops::Range<u32>,
+    y: std::ops::Range<u32>,
+) -> Vec<f64> {
+    y.flat_map(|y| x.clone().map(move |x| (x, y)))
+        .map(|(x, y)| f64::from(film.pixels()[(y * film.width() + x) as usize].luminance()))
+        .collect()
+}
+
+fn mean(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len() as f64
+}
+
+/// The root mean square of the differences between `a` and `b`, over `b`'s mean.
+fn relative_rms_difference(a: &[f64], b: &[f64]) -> f64 {
+    let squares: Vec<f64> = a.iter().zip(b).map(|(a, b)| (a - b).powi(2)).collect();
+    mean(&squares).sqrt() / mean(b)
+}
+
+#[test]
+fn textured_surfaces_show_their_textures_lit_by_the_solution_through_the_tone_mapping_chosen() {
+    let viewer = start(&["cornell-textured"]);
+    solved(&viewer.address);
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-view-textures-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shot = |query: &str, name: &str| {
+        let file = dir.join(format!("{name}.png"));
+        let url = format!("http://{}/?still&{query}", viewer.address);
+        let screenshot = format!("--screenshot={}", file.display());
+        headless(&url, &dir.join(format!("profile-{name}")), &[&screenshot]);
+        strahl::image::load(&file).unwrap()
+    };
+    // Linear tone mapping at +1 EV, as `strahl render` maps the same solution seen from the
+    // same camera (the page's window is 800 × 600, its vertical field of view the camera's).
+    let textured = shot("tonemap=linear&exposure=1", "textured");
+    let flat = shot("tonemap=linear&exposure=1&textures=off", "flat");
+    let rendered = dir.join("rendered.png");
+    let status = Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .args(["render", "cornell-textured", "--method", "radiosity"])
+        .args(["--tonemap", "linear", "--exposure", "1"])
+        .args(["--width", "800", "--height", "600", "-q", "-o"])
+        .arg(&rendered)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let rendered = strahl::image::load(&rendered).unwrap();
+    // The checkered floor (front left), clear of the panel: the page shows what the
+    // render shows, pixel by pixel within the rasterisers' differences; without the
+    // lightmaps the checkers' edges are as sharp as the leaves that resolve them.
+    let region = |film: &strahl::measure::Film| luminances(film, 130..390, 520..580);
+    let (page, flat, cli) = (region(&textured), region(&flat), region(&rendered));
+    let (textured_off, flat_off) = (
+        relative_rms_difference(&page, &cli),
+        relative_rms_difference(&flat, &cli),
+    );
+    eprintln!(
+        "floor: mean {:.4} on the page, {:.4} rendered; RMS difference from the render \
+         {textured_off:.4} with textures, {flat_off:.4} without",
+        mean(&page),
+        mean(&cli)
+    );
+    assert!((mean(&page) / mean(&cli) - 1.0).abs() < 0.02);
+    assert!(
+        textured_off < 0.5 * flat_off,
+        "{textured_off} vs {flat_off}"
+    );
+    // The other tone mappings change the picture as their definitions say: automatic
+    // exposure brightens this box (its log-average luminance is under 0.18 / 2), the
+    // logarithmic mapping up to the lamp darkens it.
+    let floor = |film: &strahl::measure::Film| mean(&region(film));
+    let linear = floor(&shot("tonemap=linear", "linear"));
+    let auto = floor(&shot("tonemap=auto", "auto"));
+    let log = floor(&shot("tonemap=log", "log"));
+    eprintln!("floor: linear {linear:.4}, auto {auto:.4}, log {log:.4}");
+    assert!(auto > 1.5 * linear, "{auto} vs {linear}");
+    assert!(log < 0.8 * linear, "{log} vs {linear}");
 }

@@ -61,12 +61,12 @@ pub use settings::{
 // only.
 pub use crate::accel::AccelKind;
 pub use crate::choice::{Choice, UnknownName};
-pub use crate::color::{LUMINOUS_EFFICACY, Rgb64};
+pub use crate::color::{LUMINOUS_EFFICACY, Rgb, Rgb64};
 pub use crate::geometry::Ray;
 pub use crate::measure::{
-    BandFigures, BandMeasurement, BandValues, Film, LitMesh, Measurement, Photometric,
-    RoundSolution, SensorBand, SensorReading, ValueImage, peak_resident_bytes, resident_bytes,
-    usable_memory_bytes,
+    BandFigures, BandMeasurement, BandValues, Film, LightmappedSurface, LitMesh, Measurement,
+    Photometric, RoundSolution, SensorBand, SensorReading, ValueImage, peak_resident_bytes,
+    resident_bytes, usable_memory_bytes,
 };
 pub use crate::progress::{Cancel, NoProgress, ProgressListener};
 pub use crate::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, RefinePass};

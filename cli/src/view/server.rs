@@ -93,6 +93,7 @@ fn get(viewer: &Viewer, path: &str, params: &[(String, String)]) -> Answer {
         },
         "/api/scene" => solution(|s| (200, "application/json", s.scene.clone())),
         "/api/mesh" => solution(|s| (200, "application/octet-stream", s.mesh.clone())),
+        "/api/lightmaps" => solution(|s| (200, "application/octet-stream", s.lightmaps.clone())),
         "/api/links" => solution(|s| (200, "application/octet-stream", s.links.clone())),
         "/api/render" => json(&viewer.rendering.status()),
         "/api/render.png" => match viewer.rendering.png() {

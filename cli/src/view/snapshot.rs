@@ -1,5 +1,5 @@
-//! One solution as the viewer serves it: the scene's camera and report (JSON), the lit mesh
-//! and the links (binary), and readings along rays. Made once per solution, read by every
+//! One solution as the viewer serves it: the scene's camera and report (JSON), the lit mesh,
+//! the lightmaps of its textured surfaces and the links (binary), and readings along rays. Made once per solution, read by every
 //! request until the next solution replaces it.
 
 use anyhow::Result;
@@ -36,6 +36,9 @@ pub struct Snapshot {
     pub scene: Vec<u8>,
     /// `/api/mesh`: the lit mesh, binary ([`mesh_bytes`]).
     pub mesh: Vec<u8>,
+    /// `/api/lightmaps`: the textured surfaces' lightmaps and where the mesh lies in them,
+    /// binary ([`lightmap_bytes`]; none between rounds).
+    pub lightmaps: Vec<u8>,
     /// `/api/links`: the links, binary ([`link_bytes`]; none between rounds).
     pub links: Vec<u8>,
     /// The solution and its probe, made once, read by picks (none between rounds).
@@ -131,7 +134,11 @@ impl Snapshot {
         report: &Report,
         shading: Shading,
     ) -> Result<Self> {
-        let lit = solved.lit_mesh(false);
+        // Textures lit by the solution: each textured surface's lightmap, baked at its
+        // texture's resolution (only where the scene has textures: the bake needs a lookup
+        // over the leaves).
+        let lit = solved.lit_mesh(!solved.world().scene.textures.is_empty());
+        let lightmaps = lightmap_bytes(&lit);
         let links = link_bytes(&solved);
         let counted = solved.solution.link_segments.len();
         let about = About {
@@ -146,6 +153,7 @@ impl Snapshot {
         Ok(Snapshot {
             scene,
             mesh,
+            lightmaps,
             links,
             readings: Some(Readings::new(solved, |solved| solved.probe(shading))),
             objects,
@@ -170,6 +178,7 @@ impl Snapshot {
         Ok(Snapshot {
             scene,
             mesh,
+            lightmaps: lightmap_bytes(&round.mesh),
             links: 0u32.to_le_bytes().to_vec(),
             readings: None,
             objects,
@@ -256,11 +265,7 @@ fn described(
 /// lux (the top of the false-colour range: the small, bright patches beside a lamp would
 /// squeeze the rest into the scale's lowest colours).
 fn mesh_bytes(lit: &LitMesh) -> (Vec<u8>, f32) {
-    let triangles: Vec<[u32; 3]> = lit
-        .polygons
-        .iter()
-        .flat_map(|p| (1..p.len() - 1).map(move |k| [p[0], p[k], p[k + 1]]))
-        .collect();
+    let triangles: Vec<[u32; 3]> = triangles(lit).map(|(t, _)| t).collect();
     let lux: Vec<f32> = lit
         .irradiance
         .iter()
@@ -306,6 +311,55 @@ fn mesh_bytes(lit: &LitMesh) -> (Vec<u8>, f32) {
     (out, top)
 }
 
+/// The triangles of `lit`'s polygons (fans from each polygon's first corner), in the order
+/// [`mesh_bytes`] and [`lightmap_bytes`] serve them, with the index of each one's polygon.
+fn triangles(lit: &LitMesh) -> impl Iterator<Item = ([u32; 3], usize)> + '_ {
+    lit.polygons
+        .iter()
+        .enumerate()
+        .flat_map(|(k, p)| (1..p.len() - 1).map(move |j| ([p[0], p[j], p[j + 1]], k)))
+}
+
+/// The lightmaps of `lit`'s textured surfaces as the page reads them, little-endian: the
+/// count `S` of surfaces (u32); when `S > 0`, the vertex and triangle counts of the mesh they
+/// go with (u32 each: the page checks them against the mesh it drew), per vertex of
+/// [`mesh_bytes`] its place in its surface's lightmap (2 × f32; `(0, 0)` off lightmapped surfaces), per triangle the surface
+/// it lies on (i32; −1: shown by its corners' radiance), then per surface its width `W` and
+/// height `H` (u32 each) and `W × H` texels (3 × f32, linear radiance, W·sr⁻¹·m⁻², the
+/// bottom row first, so that the texture coordinate `(0, 0)` is the first texel).
+fn lightmap_bytes(lit: &LitMesh) -> Vec<u8> {
+    let mut out = Vec::new();
+    out.extend((lit.surfaces.len() as u32).to_le_bytes());
+    if lit.surfaces.is_empty() {
+        return out;
+    }
+    let floats = |out: &mut Vec<u8>, values: &[f32]| {
+        values.iter().for_each(|v| out.extend(v.to_le_bytes()));
+    };
+    out.extend((lit.positions.len() as u32).to_le_bytes());
+    out.extend((triangles(lit).count() as u32).to_le_bytes());
+    for uv in &lit.lightmap_texcoords {
+        floats(&mut out, &uv.to_array());
+    }
+    for (_, polygon) in triangles(lit) {
+        let surface = lit.polygon_surface[polygon].map_or(-1, |s| s as i32);
+        out.extend(surface.to_le_bytes());
+    }
+    for surface in &lit.surfaces {
+        let map = &surface.lightmap;
+        let (w, h) = (map.width(), map.height());
+        out.extend(w.to_le_bytes());
+        out.extend(h.to_le_bytes());
+        for row in (0..h as usize).rev() {
+            let texels = &map.pixels()[row * w as usize..(row + 1) * w as usize];
+            for t in texels {
+                floats(&mut out, &[t.r, t.g, t.b]);
+            }
+        }
+    }
+    out
+}
+
 /// The links of a hierarchical solution as the page draws them, little-endian: the count
 /// `N` (u32), then per link the receiver's and the emitter's centre (3 × f32 each, scene
 /// units), the receiver's and the emitter's object index (i32 each; −1 for a cluster of
@@ -340,8 +394,46 @@ fn link_bytes(solved: &SolvedRadiosity) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
-    use strahl::method::Rgb64;
+    use glam::{Vec2, Vec3};
+    use strahl::method::{Film, LightmappedSurface, Rgb, Rgb64};
+
+    #[test]
+    fn lightmaps_are_served_with_each_vertex_place_and_each_triangle_surface_bottom_row_first() {
+        let mut lit = LitMesh::default();
+        let b = [Rgb64::splat(1.0); 4];
+        let square = [Vec3::ZERO, Vec3::X, Vec3::new(1.0, 0.0, 1.0), Vec3::Z];
+        // An untextured triangle, then a lightmapped square (two triangles).
+        lit.push_polygon(0, &square[..3], Vec3::Y, (&b[..3], &b[..3]));
+        let uv = [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
+        lit.push_mapped_polygon(1, &square, Vec3::Y, (&b, &b), (&uv, &uv), Some(0));
+        let top = Rgb::new(1.0, 2.0, 3.0);
+        let bottom = Rgb::new(4.0, 5.0, 6.0);
+        lit.surfaces.push(LightmappedSurface {
+            name: "square".into(),
+            base_texture: None,
+            alpha_texture: None,
+            lightmap: Film::from_pixels(1, 2, vec![top, bottom]).unwrap(),
+        });
+        let bytes = lightmap_bytes(&lit);
+        let word = |k: usize| u32::from_le_bytes(bytes[4 * k..4 * k + 4].try_into().unwrap());
+        let float = |k: usize| f32::from_le_bytes(bytes[4 * k..4 * k + 4].try_into().unwrap());
+        // One surface, for 7 vertices and 3 triangles.
+        assert_eq!((word(0), word(1), word(2)), (1, 7, 3));
+        // The vertices' places: none for the triangle's three, then the square's corners.
+        let places: Vec<f32> = (3..17).map(float).collect();
+        assert_eq!(places[..6], [0.0; 6]);
+        assert_eq!(places[6..], [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0]);
+        // The triangles' surfaces.
+        let surfaces: Vec<i32> = (17..20).map(|k| word(k) as i32).collect();
+        assert_eq!(surfaces, [-1, 0, 0]);
+        // The lightmap: 1 × 2, its bottom row first.
+        assert_eq!((word(20), word(21)), (1, 2));
+        let texels: Vec<f32> = (22..28).map(float).collect();
+        assert_eq!(texels, [4.0, 5.0, 6.0, 1.0, 2.0, 3.0]);
+        assert_eq!(bytes.len(), 28 * 4);
+        // Without textured surfaces: the count alone.
+        assert_eq!(lightmap_bytes(&LitMesh::default()), 0u32.to_le_bytes());
+    }
 
     #[test]
     fn a_round_is_served_flat_without_report_links_or_readings() {

@@ -1,14 +1,19 @@
 // strahl view: the radiosity solution served by `strahl view`, drawn with WebGL2, redrawn
 // whenever the server has a newer one (a preview, then the final solution, after a move).
 // Drag to orbit, shift-drag (or right-drag) to pan, wheel to zoom, arrow keys and
-// PageUp/PageDown to walk; a click reads the illuminance where it lands. False colour shows
-// the illuminance on the scale `strahl render --false-color` uses.
+// PageUp/PageDown to walk; a click reads the illuminance where it lands. Textured surfaces
+// show their textures lit by the solution (lightmaps baked by the server), and every
+// surface goes through the tone mapping `strahl render --tonemap` names, over the mesh's
+// luminances. False colour shows the illuminance on the scale `strahl render --false-color`
+// uses.
 //
 // The address may ask for a view and for actions once the first final solution is drawn:
 // `?false-color` (with `&range=MIN,MAX` in lux and `&isolines=N`), `?wireframe`, `?links`
 // (all links) or `?links=picked` start with those on, `&level=N` only the links of level N
 // (−1: those with a cluster at an end; `lights`: those from lamps, the sun and the sky);
-// `?move=NAME:X,Y,Z` moves an object or light by the offset; `?pick=X,Y` then reads the
+// `?tonemap=linear|log|reinhard|auto` and `&exposure=EV` choose the tone mapping
+// (automatic exposure unless asked), `?textures=off` shows textured surfaces by their
+// corners' radiance instead of their lightmaps; `?move=NAME:X,Y,Z` moves an object or light by the offset; `?pick=X,Y` then reads the
 // surface at that point of the final solution (X, Y: fractions of the view's width and
 // height from its top left corner); `?orbit=N` draws N frames
 // turning round the target and shows the frame times; `?still` stops listening for newer
@@ -26,22 +31,33 @@ const VERTEX = `#version 300 es
 in vec3 position;
 in vec3 radiance;
 in float lux;
+in vec2 lightmapAt;
 uniform mat4 viewProjection;
-uniform float scale;
-out vec3 colour;
+out vec3 vertexRadiance;
 out float illuminance;
+out vec2 texel;
 void main() {
-  colour = radiance * scale;
+  vertexRadiance = radiance;
   illuminance = lux;
+  texel = lightmapAt;
   gl_Position = viewProjection * vec4(position, 1.0);
   gl_PointSize = 9.0;
 }`;
 
 const FRAGMENT = `#version 300 es
 precision highp float;
-in vec3 colour;
+in vec3 vertexRadiance;
 in float illuminance;
+in vec2 texel;
 uniform bool lines;
+uniform bool textured;
+uniform sampler2D lightmap;
+// The tone mapping (0 linear, 1 logarithmic, 2 Reinhard, 3 automatic exposure, as
+// strahl render --tonemap defines them), the radiance scale it applies (2^EV, times
+// 0.18 over the log-average luminance for 2 and 3) and, for 1, ln(1 + Lmax·scale).
+uniform int toneMap;
+uniform float scale;
+uniform float logDenominator;
 uniform vec4 lineColour;
 uniform bool falseColour;
 uniform vec2 range;
@@ -58,6 +74,17 @@ vec3 scaleColour(float t) {
     }
   }
   return stopColour[5];
+}
+// Display-linear colour (0–1) of radiance c.
+vec3 toneMapped(vec3 c) {
+  float l = dot(c, vec3(0.2126, 0.7152, 0.0722));
+  if (toneMap == 1 || toneMap == 2) {
+    if (!(l > 0.0)) return vec3(0.0);
+    float s = l * scale;
+    float mapped = toneMap == 1 ? log(1.0 + s) / logDenominator : s / (1.0 + s);
+    return clamp(c * (mapped / l), 0.0, 1.0);
+  }
+  return clamp(c * scale, 0.0, 1.0);
 }
 vec3 srgb(vec3 c) {
   return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
@@ -76,8 +103,10 @@ void main() {
     }
     result = vec4(c, 1.0);
   } else {
-    // Reinhard per channel, then the sRGB curve.
-    result = vec4(srgb(colour / (1.0 + colour)), 1.0);
+    // A textured surface shows its lightmap (the texture lit by the solution), every other
+    // its corners' radiance.
+    vec3 radiance = textured ? texture(lightmap, texel).rgb : vertexRadiance;
+    result = vec4(srgb(toneMapped(radiance)), 1.0);
   }
 }`;
 
@@ -118,15 +147,62 @@ function parseMesh(buffer) {
   return { vertices, triangles, positions, radiance, lux, indices };
 }
 
-// The exposure that puts the mean luminance of the lit vertices at middle grey.
-function autoScale(mesh) {
-  let sum = 0, count = 0;
-  for (let v = 0; v < mesh.vertices; v++) {
-    const r = mesh.radiance;
-    const y = 0.2126 * r[3 * v] + 0.7152 * r[3 * v + 1] + 0.0722 * r[3 * v + 2];
-    if (y > 0) { sum += y; count++; }
+// The lightmaps as `strahl view` sends them (cli/src/view/snapshot.rs, lightmap_bytes), for
+// `mesh`: null when there are none or they belong to another solution than the mesh.
+function parseLightmaps(buffer, mesh) {
+  const data = new DataView(buffer);
+  const surfaces = data.getUint32(0, true);
+  if (surfaces === 0) return null;
+  const [vertices, triangles] = [data.getUint32(4, true), data.getUint32(8, true)];
+  if (vertices !== mesh.vertices || triangles !== mesh.triangles) return null;
+  let at = 12;
+  const uv = new Float32Array(buffer.slice(at, at + 8 * vertices));
+  at += 8 * vertices;
+  const surfaceOf = new Int32Array(buffer.slice(at, at + 4 * triangles));
+  at += 4 * triangles;
+  const maps = [];
+  for (let k = 0; k < surfaces; k++) {
+    const [width, height] = [data.getUint32(at, true), data.getUint32(at + 4, true)];
+    at += 8;
+    maps.push({ width, height, texels: new Float32Array(buffer.slice(at, at + 12 * width * height)) });
+    at += 12 * width * height;
   }
-  return count > 0 ? 0.18 / (sum / count) : 1;
+  return { uv, surfaceOf, maps };
+}
+
+// What the tone mappings need of `mesh`: the log-average of the vertices' positive
+// luminances, each weighted by the area it stands for (a third of its triangles'), and the
+// largest luminance; as `strahl render --tonemap` takes them over an image's pixels.
+function luminanceStatistics(mesh) {
+  const weight = new Float64Array(mesh.vertices);
+  const p = mesh.positions, ix = mesh.indices;
+  for (let t = 0; t < ix.length; t += 3) {
+    const [a, b, c] = [ix[t], ix[t + 1], ix[t + 2]].map((v) => [p[3 * v], p[3 * v + 1], p[3 * v + 2]]);
+    const n = cross(sub(b, a), sub(c, a));
+    const third = Math.hypot(n[0], n[1], n[2]) / 6;
+    for (const v of [ix[t], ix[t + 1], ix[t + 2]]) weight[v] += third;
+  }
+  let sum = 0, total = 0, max = 0;
+  const r = mesh.radiance;
+  for (let v = 0; v < mesh.vertices; v++) {
+    const y = 0.2126 * r[3 * v] + 0.7152 * r[3 * v + 1] + 0.0722 * r[3 * v + 2];
+    if (!(y > 0) || !Number.isFinite(y)) continue;
+    max = Math.max(max, y);
+    if (weight[v] > 0) { sum += weight[v] * Math.log(y); total += weight[v]; }
+  }
+  return { logAverage: total > 0 ? Math.exp(sum / total) : 0, max };
+}
+
+// The tone mapping chosen, as the shader takes it: its number, radiance scale and the
+// logarithmic mapping's denominator (see FRAGMENT).
+const TONE_MAPS = ["linear", "log", "reinhard", "auto"];
+function toneUniforms() {
+  const { logAverage, max } = shown.luminance;
+  const operator = Math.max(0, TONE_MAPS.indexOf(control("tonemap").value));
+  const exposure = Math.pow(2, Number(control("exposure").value));
+  const keyed = operator >= 2 ? (logAverage > 0 ? 0.18 / logAverage : 0) : 1;
+  const scale = keyed * exposure;
+  return { operator, scale, logDenominator: Math.log1p(max * scale) || 1 };
 }
 
 // The links as `strahl view` sends them (cli/src/view/snapshot.rs, link_bytes): end points
@@ -241,24 +317,35 @@ const fetchOk = async (url, options) => {
 };
 
 // What is drawn: the latest solution loaded, its GPU buffers and the links.
-const shown = { scene: null, report: null, mesh: null, links: null, picked: -1, baseScale: 1, version: 0 };
+const shown = {
+  scene: null, report: null, mesh: null, lightmaps: null, links: null, picked: -1, version: 0,
+  luminance: { logAverage: 0, max: 0 },
+};
 let prog, vao, linkVao, triangleBuffer, lineBuffer, lineCount = 0, linkIndexBuffer, linkCount = 0;
 let sensorVao, sensorCount = 0;
+// The triangles by what shows them: `{ surface, start, count }` in the triangle buffer
+// (surface −1: their corners' radiance; else that lightmap, `textures[surface]`).
+let triangleGroups = [], textures = [];
 const control = (id) => document.getElementById(id);
 
 // Loads the latest solution and draws it; resolves to its scene description.
 async function load() {
   const wantLinks = control("links").checked || params.has("links");
-  const [scene, meshBytes, linkBytes] = await Promise.all([
+  const [scene, meshBytes, lightmapBytes, linkBytes] = await Promise.all([
     fetchOk("/api/scene").then((r) => r.json()),
     fetchOk("/api/mesh").then((r) => r.arrayBuffer()),
+    fetchOk("/api/lightmaps").then((r) => r.arrayBuffer()),
     wantLinks ? fetchOk("/api/links").then((r) => r.arrayBuffer()) : null,
   ]);
   const mesh = parseMesh(meshBytes);
+  const lightmaps = parseLightmaps(lightmapBytes, mesh);
   const links = linkBytes && parseLinks(linkBytes);
   if (links) offerLevels(links);
   const first = shown.scene === null;
-  Object.assign(shown, { scene, mesh, links, version: scene.version });
+  Object.assign(shown, { scene, mesh, lightmaps, links, version: scene.version });
+  // The tone mapping's statistics come from the latest whole solution (the flat ones between
+  // rounds would change the exposure as the solve goes on).
+  if (scene.stage !== "round" || shown.luminance.max === 0) shown.luminance = luminanceStatistics(mesh);
   // Between rounds there is no report: picks read the latest whole solution and its report.
   if (scene.report) shown.report = scene.report;
   upload();
@@ -266,7 +353,6 @@ async function load() {
     document.getElementById("title").textContent = `strahl view — ${scene.name}`;
     startFrom(scene.camera);
     fillMovable(scene.movable);
-    shown.baseScale = autoScale(mesh);
   }
   drawLegend(control("legend"), scene.false_color.stops, falseRange(), isolineCount());
   listSensors(shown.report);
@@ -290,14 +376,53 @@ function upload() {
   attribute("position", mesh.positions, 3);
   attribute("radiance", mesh.radiance, 3);
   attribute("lux", mesh.lux, 1);
+  const { lightmaps } = shown;
+  attribute("lightmapAt", lightmaps ? lightmaps.uv : new Float32Array(2 * mesh.vertices), 2);
   gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triangleBuffer);
-  gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, mesh.indices, gl.STATIC_DRAW);
+  gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, groupedTriangles(mesh, lightmaps), gl.STATIC_DRAW);
+  uploadTextures(lightmaps);
   const lineIndices = edges(mesh.indices);
   gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, lineBuffer);
   gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, lineIndices, gl.STATIC_DRAW);
   lineCount = lineIndices.length;
   uploadLinks();
   uploadSensors();
+}
+
+// The triangle indices ordered by what shows them (see `triangleGroups`).
+function groupedTriangles(mesh, lightmaps) {
+  if (!lightmaps) {
+    triangleGroups = [{ surface: -1, start: 0, count: mesh.indices.length }];
+    return mesh.indices;
+  }
+  const order = [...Array(mesh.triangles).keys()];
+  order.sort((a, b) => lightmaps.surfaceOf[a] - lightmaps.surfaceOf[b] || a - b);
+  const indices = new Uint32Array(mesh.indices.length);
+  triangleGroups = [];
+  order.forEach((t, k) => {
+    indices.set(mesh.indices.subarray(3 * t, 3 * t + 3), 3 * k);
+    const surface = lightmaps.surfaceOf[t];
+    const last = triangleGroups[triangleGroups.length - 1];
+    if (last && last.surface === surface) last.count += 3;
+    else triangleGroups.push({ surface, start: 3 * k, count: 3 });
+  });
+  return indices;
+}
+
+// The lightmaps as textures: linear radiance in half floats (filterable in WebGL2).
+function uploadTextures(lightmaps) {
+  textures.forEach((t) => gl.deleteTexture(t));
+  textures = (lightmaps ? lightmaps.maps : []).map((map) => {
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, t);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGB16F, map.width, map.height, 0, gl.RGB, gl.FLOAT, map.texels);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    return t;
+  });
 }
 
 // The sensors of the latest report, as points.
@@ -386,7 +511,11 @@ function draw() {
   const matrix = multiply(perspective(view.fov, canvas.width / canvas.height, near, far),
                           lookAt(eye(), view.target, [0, 1, 0]));
   gl.uniformMatrix4fv(uniform("viewProjection"), false, matrix);
-  gl.uniform1f(uniform("scale"), shown.baseScale * Math.pow(2, Number(control("exposure").value)));
+  const tone = toneUniforms();
+  gl.uniform1i(uniform("toneMap"), tone.operator);
+  gl.uniform1f(uniform("scale"), tone.scale);
+  gl.uniform1f(uniform("logDenominator"), tone.logDenominator);
+  gl.uniform1i(uniform("lightmap"), 0);
   const falseColour = control("false-colour").checked;
   gl.uniform1i(uniform("falseColour"), falseColour ? 1 : 0);
   const range = falseRange();
@@ -400,7 +529,15 @@ function draw() {
   gl.enable(gl.POLYGON_OFFSET_FILL);
   gl.polygonOffset(1, 1);
   gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triangleBuffer);
-  gl.drawElements(gl.TRIANGLES, shown.mesh.indices.length, gl.UNSIGNED_INT, 0);
+  const showTextures = control("textures").checked && !falseColour;
+  for (const group of triangleGroups) {
+    const textured = showTextures && group.surface >= 0;
+    gl.uniform1i(uniform("textured"), textured ? 1 : 0);
+    gl.activeTexture(gl.TEXTURE0);
+    gl.bindTexture(gl.TEXTURE_2D, textured ? textures[group.surface] : null);
+    gl.drawElements(gl.TRIANGLES, group.count, gl.UNSIGNED_INT, 4 * group.start);
+  }
+  gl.uniform1i(uniform("textured"), 0);
   gl.uniform1i(uniform("lines"), 1);
   if (control("wireframe").checked) {
     gl.uniform4f(uniform("lineColour"), 0, 0, 0, 1);
@@ -557,8 +694,11 @@ async function main() {
   control("wireframe").checked = params.has("wireframe");
   control("links").checked = params.has("links");
   control("links-picked").checked = params.get("links") === "picked";
+  control("textures").checked = params.get("textures") !== "off";
+  if (TONE_MAPS.includes(params.get("tonemap"))) control("tonemap").value = params.get("tonemap");
+  if (params.has("exposure") && Number.isFinite(Number(params.get("exposure")))) control("exposure").value = params.get("exposure");
 
-  for (const id of ["wireframe", "exposure", "false-colour"]) {
+  for (const id of ["wireframe", "exposure", "false-colour", "textures", "tonemap"]) {
     control(id).addEventListener(id === "exposure" ? "input" : "change", redraw);
   }
   const [rangeMin, rangeMax] = (params.get("range") || "").split(",");
