@@ -1,12 +1,14 @@
 //! Form factors per second on the Cornell box meshed 16 × 16 per root patch: the analytic
 //! form factor with visibility (adaptive rays), with and without shaft culling, over a fixed
-//! set of facing leaf pairs; and the whole Cornell box solved to 1 % on a 32 × 32 mesh.
+//! set of facing leaf pairs; the whole Cornell box solved to 1 % on a 32 × 32 mesh; and
+//! the Cornell box solved again by hierarchical radiosity after its light moved, with the
+//! patch links kept from the solve before and from scratch.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::sync::Arc;
 use strahl::accel::AccelKind;
-use strahl::method::{RadiositySettings, solve_radiosity};
+use strahl::method::{KeptLinks, Method, RadiositySettings, run_keeping, solve_radiosity};
 use strahl::progress::Cancel;
 use strahl::progress::NoProgress;
 use strahl::radiosity::solve::SolverKind;
@@ -141,5 +143,43 @@ fn solve_cornell(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench, solve_cornell);
+/// The Cornell box at the defaults solved again after its light moved 5 cm back and forth,
+/// each solve taking the patch links of the one before (`links_kept`), or none
+/// (`from_scratch`, the same links computed anew; the same solution bit for bit).
+fn solve_after_a_move(c: &mut Criterion) {
+    let scene = builtin::load("cornell")
+        .expect("built-in scene")
+        .expect("valid scene");
+    let mut moved = scene.clone();
+    moved
+        .move_named("light", glam::Vec3::new(0.0, 0.0, 0.05))
+        .expect("a light");
+    let worlds: Vec<Arc<World>> = [scene, moved]
+        .into_iter()
+        .map(|s| Arc::new(World::new(s, AccelKind::Bvh).expect("world")))
+        .collect();
+    let method = Method::Radiosity(RadiositySettings::new(SolverKind::Hierarchical));
+    let mut group = c.benchmark_group("radiosity_after_a_move");
+    group.sample_size(10);
+    for keep in [true, false] {
+        let mut kept = KeptLinks::new();
+        let mut turn = 0;
+        let name = if keep { "links_kept" } else { "from_scratch" };
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                turn += 1;
+                if !keep {
+                    kept = KeptLinks::new();
+                }
+                let world = &worlds[turn % 2];
+                let outcome = run_keeping(world, &method, &NoProgress, &Cancel::new(), &mut kept)
+                    .expect("solve");
+                black_box(outcome.measurement.is_some())
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, solve_cornell, solve_after_a_move);
 criterion_main!(benches);

@@ -297,12 +297,19 @@ fn floor_lux(address: &str, x: f64, z: f64) -> f64 {
 /// The same by a solve from scratch of the built-in box with the light moved `by`, at the
 /// defaults the viewer solves with.
 fn floor_lux_from_scratch(by: glam::Vec3, x: f32, z: f32) -> f64 {
-    use strahl::method::{AccelKind, Cancel, Method, NoProgress, RadiositySettings, World};
+    use strahl::method::{
+        AccelKind, Cancel, KeptLinks, Method, NoProgress, RadiositySettings, World,
+    };
     let mut scene = strahl::scene::open("cornell", &Default::default()).unwrap();
     scene.move_named("light", by).unwrap();
     let world = std::sync::Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
     let method = Method::Radiosity(RadiositySettings::default());
-    let outcome = strahl::method::run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+    // The viewer's solver from scratch: no links kept from a solve before (the viewer keeps
+    // them, which asks for its rays seeded by what the patches are).
+    let mut none = KeptLinks::new();
+    let outcome =
+        strahl::method::run_keeping(&world, &method, &NoProgress, &Cancel::new(), &mut none)
+            .unwrap();
     let ray = strahl::method::Ray::new(glam::Vec3::new(x, 0.3, z), glam::Vec3::NEG_Y);
     let hit = outcome
         .radiosity

@@ -48,7 +48,7 @@ pub use parts::{Parts, run_with_parts};
 pub use render_batches::{
     RenderBatchSettings, RenderPartial, merge_render_batches, run_render_batch,
 };
-pub use run::{run, solve_radiosity};
+pub use run::{run, run_keeping, solve_radiosity};
 pub use settings::{
     Antialias, FinalGatherSettings, ImageSize, LinkSelection, MIN_AREA, MIN_ERROR,
     MIN_SURFACE_ERROR, MIN_SURFACE_GATHER, MIN_TOLERANCE, PathTraceSettings,
@@ -69,7 +69,9 @@ pub use crate::measure::{
     resident_bytes, usable_memory_bytes,
 };
 pub use crate::progress::{Cancel, NoProgress, ProgressListener};
-pub use crate::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, RefinePass};
+pub use crate::radiosity::solve::hierarchical::{
+    HierarchicalSettings, KeptLinks, Oracle, RefinePass,
+};
 pub use crate::radiosity::solve::{
     DisplaySettings, Iteration, LinkDisplay, MatrixSettings, Probe, ProbeHit, RoundStats, Shading,
     ShootingSettings, Solution, SolverKind, SystemOptions,

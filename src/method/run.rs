@@ -10,7 +10,9 @@ use crate::choice::Choice;
 use crate::final_gather::gather_surfaces;
 use crate::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
 use crate::progress::{Cancel, ProgressListener};
-use crate::radiosity::solve::hierarchical::{solve_hierarchical, solve_hierarchical_shooting};
+use crate::radiosity::solve::hierarchical::{
+    KeptLinks, solve_hierarchical_keeping, solve_hierarchical_shooting,
+};
 use crate::radiosity::solve::{
     DisplaySettings, LinkDisplay, RadiositySystem, SolveError, SolverKind, solve_matrix,
     solve_progressive,
@@ -36,6 +38,32 @@ pub fn run(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<Outcome, MethodError> {
+    run_with(world, method, progress, cancel, None)
+}
+
+/// [`run`] for a scene solved again and again as its objects move (the viewer): hierarchical
+/// radiosity takes the patch links `kept` from the solve before wherever nothing moved
+/// between their ends, and keeps this solve's for the next ([`KeptLinks`]). The outcome is
+/// the same, bit for bit, as this call's with no links kept, in less time; its rays are
+/// seeded by what the patches are rather than by their indices, so it is as accurate as
+/// [`run`]'s and not the same bit for bit. The other methods run as [`run`] runs them.
+pub fn run_keeping(
+    world: &Arc<World>,
+    method: &Method,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+    kept: &mut KeptLinks,
+) -> Result<Outcome, MethodError> {
+    run_with(world, method, progress, cancel, Some(kept))
+}
+
+fn run_with(
+    world: &Arc<World>,
+    method: &Method,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+    kept: Option<&mut KeptLinks>,
+) -> Result<Outcome, MethodError> {
     method.check()?;
     check_periodic(world, method)?;
     let start = Instant::now();
@@ -47,7 +75,7 @@ pub fn run(
         Method::SensorTrace(s) => sensor_trace(world, s),
         Method::LightTrace(s) => light_trace(world, s, progress, cancel)?,
         Method::SurfaceTrace(s) => surface_trace(world, s, progress, cancel)?,
-        Method::Radiosity(s) => radiosity(world, s, progress, cancel)?,
+        Method::Radiosity(s) => radiosity(world, s, progress, cancel, kept)?,
     };
     outcome.seconds = start.elapsed().as_secs_f64();
     Ok(outcome)
@@ -108,13 +136,14 @@ fn radiosity(
     s: &RadiositySettings,
     progress: &dyn ProgressListener,
     cancel: &Cancel,
+    kept: Option<&mut KeptLinks>,
 ) -> Result<Outcome, MethodError> {
     // The solvers reflect diffusely only; the final gather traces rays and would otherwise
     // add the specular lobes' light at its first hits (the corridor of RenderPark's corpus:
     // +12 … +21 % on its gathered objects).
     let diffuse = world.diffuse().map_err(SolveError::from)?.map(Arc::new);
     let world = diffuse.as_ref().unwrap_or(world);
-    let solved = solve_radiosity(world, s, progress, cancel)?;
+    let solved = solve_radiosity_keeping(world, s, progress, cancel, kept)?;
     let mut complete = !solved.solution.interrupted;
     let mut summary = solved.summary();
     let gathered = if s.surface_gather.is_on() && complete {
@@ -153,7 +182,7 @@ fn radiosity(
 }
 
 /// Meshes and solves `world` by the radiosity solver of `settings` (progress phases: the
-/// hierarchical solvers' own, [`solve_hierarchical`] and [`solve_hierarchical_shooting`],
+/// hierarchical solvers' own, [`solve_hierarchical_keeping`] and [`solve_hierarchical_shooting`],
 /// `shooting` or `form factors`); cancelling keeps the state reached.
 pub fn solve_radiosity(
     world: &Arc<World>,
@@ -161,12 +190,28 @@ pub fn solve_radiosity(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<SolvedRadiosity, MethodError> {
+    solve_radiosity_keeping(world, settings, progress, cancel, None)
+}
+
+/// [`solve_radiosity`], hierarchical radiosity with the links `kept` ([`run_keeping`]).
+fn solve_radiosity_keeping(
+    world: &Arc<World>,
+    settings: &RadiositySettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+    kept: Option<&mut KeptLinks>,
+) -> Result<SolvedRadiosity, MethodError> {
     settings.check()?;
     let options = settings.system;
     let (system, solution) = match settings.solver {
-        SolverKind::Hierarchical => {
-            solve_hierarchical(world, options, &settings.hierarchical, progress, cancel)?
-        }
+        SolverKind::Hierarchical => solve_hierarchical_keeping(
+            world,
+            options,
+            &settings.hierarchical,
+            progress,
+            cancel,
+            kept,
+        )?,
         SolverKind::HierarchicalShooting => solve_hierarchical_shooting(
             world,
             options,

@@ -115,6 +115,18 @@ impl Patch {
         &self.corners[..self.sides as usize]
     }
 
+    /// A 64-bit hash of what the patch is — its object and its corners times `scale`, bit
+    /// for bit — the same for the same patch in every mesh of a scene whatever its index
+    /// there (a mesh made again after an object moved numbers its patches anew).
+    pub fn geometry_key(&self, scale: f64) -> u64 {
+        let words = std::iter::once(u64::from(self.object)).chain(
+            self.corners()
+                .iter()
+                .flat_map(|&c| (c * scale).to_array().map(f64::to_bits)),
+        );
+        words.fold(0x243F_6A88_85A3_08D3, |h, w| crate::sampling::hash64(h ^ w))
+    }
+
     /// The texture coordinates of the corners.
     pub fn uvs(&self) -> &[DVec2] {
         &self.uvs[..self.sides as usize]
@@ -335,9 +347,24 @@ pub struct PatchMesh {
     /// Objects left out because they have no finite surface (infinite planes). They still
     /// block light in visibility tests.
     pub skipped_objects: Vec<u32>,
+    /// The scale the patches' keys take their corners in ([`PatchMesh::patch_key`]): one
+    /// over the power of two at or below the diagonal of the faces' bounding box, so that a
+    /// scene scaled by a power of two keys its patches alike (0 in a mesh not made from a
+    /// scene: the corners as they are).
+    pub key_scale: f64,
 }
 
 impl PatchMesh {
+    /// What patch `id` is: [`Patch::geometry_key`] in the mesh's [`PatchMesh::key_scale`].
+    pub fn patch_key(&self, id: PatchId) -> u64 {
+        let scale = if self.key_scale > 0.0 {
+            self.key_scale
+        } else {
+            1.0
+        };
+        self.patch(id).geometry_key(scale)
+    }
+
     /// The patch mesh of `scene`: every planar face (polygons, mesh faces, parallelograms,
     /// box faces, curved shapes tessellated with `options.segments`) becomes a root patch,
     /// non-planar quads and faces with more than four corners become triangle fans; then every
@@ -376,6 +403,14 @@ impl PatchMesh {
         }
         if options.contact_splits {
             faces = split_at_contacts(faces);
+        }
+        let corners = faces.iter().flat_map(|f| f.corners.iter());
+        let (lo, hi) = corners.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &c| {
+            (lo.min(c), hi.max(c))
+        });
+        let diagonal = (hi - lo).length();
+        if diagonal.is_finite() && diagonal > 0.0 {
+            mesh.key_scale = (-diagonal.log2().floor()).exp2();
         }
         for face in faces {
             // A piece cut from a face is subdivided to the patch size the whole face would

@@ -14,8 +14,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 use strahl::method::{
-    AccelKind, Cancel, Method, ProgressListener, RoundSolution, Shading, SolverKind, SurfaceGather,
-    World,
+    AccelKind, Cancel, KeptLinks, Method, ProgressListener, RoundSolution, Shading, SolverKind,
+    SurfaceGather, World,
 };
 use strahl::report::Report;
 use strahl::scene::{MoveError, Scene};
@@ -51,6 +51,10 @@ pub struct Status {
     /// (absent until served).
     pub preview_seconds: Option<f64>,
     pub final_seconds: Option<f64>,
+    /// Patch links the latest solve took from the solve before (where nothing moved between
+    /// their ends) and computed.
+    pub links_kept: u64,
+    pub links_computed: u64,
 }
 
 /// The solver's state, shared with the requests.
@@ -90,6 +94,8 @@ pub struct Solving {
     /// Work units of the running phase done and in all (atomic: every worker thread adds).
     done: AtomicU64,
     total: AtomicU64,
+    /// The patch links of the last solve, for the next (only the solver thread takes it).
+    kept: Mutex<KeptLinks>,
 }
 
 impl Solving {
@@ -124,6 +130,7 @@ impl Solving {
             news: Condvar::new(),
             done: AtomicU64::new(0),
             total: AtomicU64::new(0),
+            kept: Mutex::new(KeptLinks::new()),
         }
     }
 
@@ -298,10 +305,16 @@ impl Solving {
                 scene: &world.scene,
                 moves,
             };
+            // Links kept from the solve before wherever the moves did not reach them: the
+            // same solution as without, in less time (`method::run_keeping`).
+            let mut kept =
+                std::mem::take(&mut *self.kept.lock().unwrap_or_else(|e| e.into_inner()));
             let outcome = with_threads(self.threads, || {
-                strahl::method::run(&world, &method, &observer, cancel)
-            })?
-            .map_err(radiosity::method_error)?;
+                strahl::method::run_keeping(&world, &method, &observer, cancel, &mut kept)
+            });
+            let links = (kept.reused(), kept.computed());
+            *self.kept.lock().unwrap_or_else(|e| e.into_inner()) = kept;
+            let outcome = outcome?.map_err(radiosity::method_error)?;
             if cancel.is_requested() {
                 return Ok(());
             }
@@ -322,6 +335,8 @@ impl Solving {
             let version = self.next_version();
             let snapshot = Snapshot::new(version, moves, stage, solved, &report, self.shading)?;
             self.publish(snapshot, version, stage, moves);
+            let status = &mut self.lock().status;
+            (status.links_kept, status.links_computed) = links;
         }
         Ok(())
     }

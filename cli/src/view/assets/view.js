@@ -799,7 +799,9 @@ async function main() {
       timing.dataset.first ??= ms;
       timing.dataset[scene.stage] ??= ms;
       const at = (key) => timing.dataset[key] ?? "–";
-      timing.textContent = `after the move: first drawn in ${at("first")} ms, preview in ${at("preview")} ms, final in ${at("final")} ms (server ${st.preview_seconds?.toFixed(3) ?? "–"} / ${st.final_seconds?.toFixed(3) ?? "–"} s)`;
+      const links = st.links_kept + st.links_computed;
+      const kept = links > 0 ? `; ${st.links_kept} of ${links} patch links kept from the solve before` : "";
+      timing.textContent = `after the move: first drawn in ${at("first")} ms, preview in ${at("preview")} ms, final in ${at("final")} ms (server ${st.preview_seconds?.toFixed(3) ?? "–"} / ${st.final_seconds?.toFixed(3) ?? "–"} s${kept})`;
     }
     if (scene.stage !== "final" || st.moves !== scene.moves) return false;
     if (asked && movesWanted === null) {

@@ -60,7 +60,7 @@ const PARTLY_SHADOWED_SAMPLES: u32 = 2;
 const FIRST_LOOK_RAYS: u32 = 16;
 
 /// What is known of a pair's visibility before its link is computed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Prior {
     /// Nothing: its rays will tell.
     Unknown,

@@ -37,6 +37,7 @@
 mod clusters;
 mod fine_gather;
 mod importance;
+mod kept;
 mod links;
 mod near_rays;
 mod nodes;
@@ -44,10 +45,11 @@ mod oracle;
 mod shooting;
 mod solver;
 
+pub use kept::KeptLinks;
 pub use near_rays::NEAR_RAYS_FROM;
 pub use oracle::Oracle;
 pub use shooting::solve_hierarchical_shooting;
-pub use solver::solve_hierarchical;
+pub use solver::{solve_hierarchical, solve_hierarchical_keeping};
 
 /// Which links a refinement pass judges.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -73,7 +73,7 @@ pub fn solve_hierarchical_shooting(
     let start = Instant::now();
     progress.phase("meshing");
     progress.start(0);
-    let (mesh, visibility) = prepare(world, &options)?;
+    let (mesh, visibility) = prepare(world, &options, false)?;
     let light_settings = HierarchicalSettings {
         refine_pass: RefinePass::All,
         ..*settings
@@ -409,7 +409,7 @@ mod tests {
         let scene = builtin::load("cornell").unwrap().unwrap();
         let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
         let options = SystemOptions::default();
-        let (mesh, visibility) = prepare(&world, &options).unwrap();
+        let (mesh, visibility) = prepare(&world, &options, false).unwrap();
         let settings = HierarchicalSettings::default();
         let mut solver = Solver::new(&world, mesh, &visibility, &options, &settings);
         solver.link_root_lights(&crate::progress::NoProgress, &Cancel::new());

@@ -4,6 +4,7 @@
 use super::clusters::{ClusterLink, ClusterTree, End, Split};
 use super::fine_gather::FineGather;
 use super::importance::Importance;
+use super::kept::{KeptLinks, KeptView};
 use super::links::{LightLink, Link, Linker, Prior};
 use super::near_rays::{NearRays, REFERENCE_SHARE};
 use super::nodes::{Nodes, node, split_node};
@@ -84,19 +85,28 @@ pub(super) struct Solver<'w, 'v> {
     /// The emitters' pieces of the final gather, once refinement is done.
     fine: Option<FineGather>,
     pub(super) settings: HierarchicalSettings,
+    /// The links kept from the solve before, and those this one makes (`kept.rs`).
+    kept: Option<KeptView>,
 }
 
 /// The root patches of `world`'s scene meshed by `options`, and the visibility estimator
-/// for links between their nodes.
+/// for links between their nodes (its rays seeded by what the patches are where
+/// `by_geometry`, as links kept between solves need: [`Visibility::seeded_by_geometry`]).
 pub(super) fn prepare(
     world: &Arc<World>,
     options: &SystemOptions,
+    by_geometry: bool,
 ) -> Result<(PatchMesh, Arc<Visibility>), SolveError> {
     let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
     if mesh.roots.is_empty() {
         return Err(SolveError::NoPatches);
     }
     let visibility = Visibility::new(world, options.visibility, options.mesh.segments)?;
+    let visibility = if by_geometry {
+        visibility.seeded_by_geometry()
+    } else {
+        visibility
+    };
     Ok((mesh, Arc::new(visibility)))
 }
 
@@ -115,11 +125,30 @@ pub fn solve_hierarchical(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<(RadiositySystem, Solution), SolveError> {
+    solve_hierarchical_keeping(world, options, settings, progress, cancel, None)
+}
+
+/// [`solve_hierarchical`], taking the patch links `kept` from the solve before where
+/// nothing moved between their ends and keeping this solve's for the next (`kept.rs`): the
+/// same solution, bit for bit, as this solve with no links kept, in less time. Its rays are
+/// seeded by what the patches are, not by their indices ([`Visibility::seeded_by_geometry`]):
+/// as accurate as [`solve_hierarchical`]'s solution, not the same bit for bit.
+pub fn solve_hierarchical_keeping(
+    world: &Arc<World>,
+    options: SystemOptions,
+    settings: &HierarchicalSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+    mut kept: Option<&mut KeptLinks>,
+) -> Result<(RadiositySystem, Solution), SolveError> {
     let start = Instant::now();
     progress.phase("meshing");
     progress.start(0);
-    let (mesh, visibility) = prepare(world, &options)?;
+    let (mesh, visibility) = prepare(world, &options, kept.is_some())?;
     let mut solver = Solver::new(world, mesh, &visibility, &options, settings);
+    if let Some(kept) = kept.as_deref_mut() {
+        solver.kept = Some(kept.begin(&world.scene, &options, &solver.mesh, &visibility));
+    }
     progress.finish();
     let setup = start.elapsed().as_secs_f64();
     let mut rounds: Vec<RoundStats> = Vec::new();
@@ -194,6 +223,9 @@ pub fn solve_hierarchical(
     }
     let convergence = rounds.iter().map(|r| r.residual).collect();
     let kind = SolverKind::Hierarchical;
+    if let (Some(kept), Some(view)) = (kept, solver.kept.take()) {
+        kept.end(view);
+    }
     solver.into_solution(
         Arc::clone(&visibility),
         kind,
@@ -264,6 +296,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             fine: None,
             settings: *settings,
             mesh,
+            kept: None,
         };
         solver.limits = solver.limits();
         solver
@@ -493,11 +526,23 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// order, computed in parallel.
     pub(super) fn create_links(&self, pairs: &[(usize, usize, Prior)]) -> Vec<Link> {
         let (mesh, linker) = (&self.mesh, &self.linker);
-        pairs
+        let Some(kept) = &self.kept else {
+            return pairs
+                .par_iter()
+                .with_max_len(UNEVEN_RUN)
+                .filter_map(|&(r, e, prior)| linker.link(mesh, r, e, prior))
+                .collect();
+        };
+        // The two sides of one patch never link: nothing to keep.
+        let made: Vec<_> = pairs
             .par_iter()
             .with_max_len(UNEVEN_RUN)
-            .filter_map(|&(r, e, prior)| linker.link(mesh, r, e, prior))
-            .collect()
+            .filter(|&&(r, e, _)| split_node(r).0 != split_node(e).0)
+            .map(|&(r, e, prior)| kept.link(mesh, (r, e, prior), || linker.link(mesh, r, e, prior)))
+            .collect();
+        let (links, made): (Vec<Option<Link>>, Vec<_>) = made.into_iter().unzip();
+        kept.keep(made);
+        links.into_iter().flatten().collect()
     }
 
     /// The light links of `pairs` (receiver, light), in order, computed in parallel.
