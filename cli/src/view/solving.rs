@@ -334,9 +334,12 @@ impl Solving {
             let report = Report::new(&name, measured);
             let version = self.next_version();
             let snapshot = Snapshot::new(version, moves, stage, solved, &report, self.shading)?;
+            // The counts first: a page that sees the solution reads its counts with it.
+            {
+                let status = &mut self.lock().status;
+                (status.links_kept, status.links_computed) = links;
+            }
             self.publish(snapshot, version, stage, moves);
-            let status = &mut self.lock().status;
-            (status.links_kept, status.links_computed) = links;
         }
         Ok(())
     }
