@@ -295,11 +295,10 @@ impl KeptView {
             .get(&key)
             .filter(|_| {
                 // The box around both ends first: the shaft lies inside it.
-                let near: Vec<&Bounds> =
-                    self.moved.iter().filter(|b| b.overlaps(&around)).collect();
-                near.is_empty() || {
+                let mut near = self.moved.iter().filter(|b| b.overlaps(&around)).peekable();
+                near.peek().is_none() || {
                     let shaft = Shaft::between_polygons(r, e);
-                    !near.iter().any(|b| shaft.may_intersect(b))
+                    !near.any(|b| shaft.may_intersect(b))
                 }
             })
             .and_then(|kept| match kept.link {
