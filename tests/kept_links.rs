@@ -79,6 +79,18 @@ fn a_moved_block_is_solved_with_the_links_it_does_not_reach_kept_as_from_scratch
 }
 
 #[test]
+fn a_moved_sphere_is_solved_with_the_links_it_does_not_reach_kept_as_from_scratch() {
+    // A curved shape is meshed anew where it moved: its facets are new patches (keyed by
+    // their corners), the others' links to and from it computed again.
+    let share = moved_and_solved_again("spheres:6", "sphere-2", Vec3::new(0.1, 0.05, -0.1));
+    eprintln!(
+        "spheres:6, a sphere moved: {:.1} % of the links kept",
+        100.0 * share
+    );
+    assert!(share > 0.2, "{share}");
+}
+
+#[test]
 fn a_scene_changed_otherwise_than_by_moves_keeps_no_links() {
     let mut scene = open("cornell", &Default::default()).unwrap();
     let mut kept = KeptLinks::new();
