@@ -3,6 +3,10 @@
 //! [`GATHER_SAMPLES_PER_PASS`] final gathers of [`GATHER_RAYS`] rays) per pixel with a seed of
 //! its own, the running mean of the passes served as a PNG after each, so that the page shows
 //! the image as it refines. A new render (or a move) stops the one under way.
+//!
+//! Renders and moves are ordered by the scene's move count: a move stops a render of a scene
+//! with fewer moves, and a render asked for a scene with fewer moves than one already seen is
+//! refused (its scene was taken before a move that has stopped renders since).
 
 use super::super::with_threads;
 use super::snapshot::Snapshot;
@@ -58,6 +62,15 @@ pub enum Source {
     FinalGather(Arc<Snapshot>),
 }
 
+/// Why a render was not started.
+#[derive(Debug)]
+pub enum Refused {
+    /// The size asked for is none or too large.
+    Size(String),
+    /// The scene moved after the render's source was taken.
+    Moved,
+}
+
 /// A render asked for: `source` seen through `camera` at its size.
 struct Job {
     source: Source,
@@ -70,6 +83,8 @@ struct State {
     png: Option<Arc<Vec<u8>>>,
     cancel: Arc<Cancel>,
     status: RenderStatus,
+    /// The most moves of a scene rendered or stopped for.
+    moves: u64,
     shutdown: bool,
 }
 
@@ -90,6 +105,7 @@ impl Rendering {
                 png: None,
                 cancel: Arc::new(Cancel::new()),
                 status: RenderStatus::default(),
+                moves: 0,
                 shutdown: false,
             }),
             work: Condvar::new(),
@@ -100,17 +116,21 @@ impl Rendering {
         self.state.lock().unwrap_or_else(|e| e.into_inner())
     }
 
-    /// Starts rendering `source` through `camera` (`width × height` pixels), stopping the
-    /// render under way. Returns the render's number.
-    pub fn start(&self, source: Source, camera: Camera) -> Result<u64, String> {
+    /// Starts rendering `source` (the scene after `moves` moves) through `camera`
+    /// (`width × height` pixels), stopping the render under way. Returns the render's number.
+    pub fn start(&self, source: Source, camera: Camera, moves: u64) -> Result<u64, Refused> {
         let pixels = u64::from(camera.width) * u64::from(camera.height);
         if camera.width == 0 || camera.height == 0 || pixels > u64::from(MAX_PIXELS) {
-            return Err(format!(
+            return Err(Refused::Size(format!(
                 "a render is 1 to {MAX_PIXELS} pixels ({} × {} asked for)",
                 camera.width, camera.height
-            ));
+            )));
         }
         let mut state = self.lock();
+        if moves < state.moves {
+            return Err(Refused::Moved);
+        }
+        state.moves = moves;
         state.cancel.request();
         state.job = Some(Job { source, camera });
         state.png = None;
@@ -123,11 +143,15 @@ impl Rendering {
         Ok(state.status.render)
     }
 
-    /// Stops the render under way (a move makes its image stale).
-    pub fn stop(&self) {
+    /// Stops the render under way if it shows the scene with fewer than `moves` moves (a
+    /// move makes its image stale); renders of such a scene asked for later are refused.
+    pub fn stop(&self, moves: u64) {
         let mut state = self.lock();
-        state.cancel.request();
-        state.job = None;
+        if moves > state.moves {
+            state.moves = moves;
+            state.cancel.request();
+            state.job = None;
+        }
     }
 
     /// The status now.
@@ -257,5 +281,34 @@ impl Rendering {
             state.status.samples_per_pixel = (pass + 1) * samples;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn asked(rendering: &Rendering, moves: u64) -> Result<u64, Refused> {
+        let scene = strahl::scene::open("cornell", &Default::default()).unwrap();
+        let camera = scene.camera.clone();
+        rendering.start(Source::PathTrace(Box::new(scene)), camera, moves)
+    }
+
+    #[test]
+    fn a_render_of_the_scene_before_a_move_is_refused_and_one_after_it_is_not_stopped() {
+        let rendering = Rendering::new(1);
+        assert_eq!(asked(&rendering, 0).unwrap(), 1);
+        // The move stops the render of the scene without it...
+        rendering.stop(1);
+        assert!(rendering.lock().job.is_none());
+        assert!(rendering.lock().cancel.is_requested());
+        // ...and a render asked with the scene taken before the move is refused.
+        assert!(matches!(asked(&rendering, 0), Err(Refused::Moved)));
+        // The scene taken after the move renders, and the move's own stop, coming after
+        // that render was asked for, leaves it running.
+        assert_eq!(asked(&rendering, 2).unwrap(), 2);
+        rendering.stop(2);
+        assert!(rendering.lock().job.is_some());
+        assert_eq!(rendering.status().render, 2);
     }
 }

@@ -3,7 +3,7 @@
 //! Only these paths exist; nothing is read from disk on a request.
 
 use super::Viewer;
-use super::rendering::Source;
+use super::rendering::{Refused, Source};
 use super::snapshot::Snapshot;
 use std::io::Cursor;
 use std::time::Duration;
@@ -123,7 +123,7 @@ fn move_named(viewer: &Viewer, params: &[(String, String)]) -> Answer {
         Ok((name, by)) => match viewer.solving.move_named(name, by) {
             Ok(moves) => {
                 // The view rendered before the move is no longer the scene.
-                viewer.rendering.stop();
+                viewer.rendering.stop(moves);
                 let (status, kind, body) = json(&serde_json::json!({ "moves": moves }));
                 (if status == 200 { 202 } else { status }, kind, body)
             }
@@ -172,10 +172,16 @@ fn render(viewer: &Viewer, params: &[(String, String)]) -> Answer {
         Ok(camera) => camera,
         Err(problem) => return text(400, &format!("{problem}\n")),
     };
-    let source = match value(params, "method") {
-        None | Some("pathtrace") => Source::PathTrace(Box::new(viewer.solving.scene())),
+    let (source, moves) = match value(params, "method") {
+        None | Some("pathtrace") => {
+            let (scene, moves) = viewer.solving.scene();
+            (Source::PathTrace(Box::new(scene)), moves)
+        }
         Some("final-gather") => match viewer.solving.final_solution() {
-            Some(solution) => Source::FinalGather(solution),
+            Some(solution) => {
+                let moves = solution.moves();
+                (Source::FinalGather(solution), moves)
+            }
             None => {
                 return text(
                     409,
@@ -191,13 +197,16 @@ fn render(viewer: &Viewer, params: &[(String, String)]) -> Answer {
             );
         }
     };
-    let started = viewer.rendering.start(source, camera);
-    match started {
+    match viewer.rendering.start(source, camera, moves) {
         Ok(render) => {
             let (status, kind, body) = json(&serde_json::json!({ "render": render }));
             (if status == 200 { 202 } else { status }, kind, body)
         }
-        Err(problem) => text(400, &format!("{problem}\n")),
+        Err(Refused::Size(problem)) => text(400, &format!("{problem}\n")),
+        Err(Refused::Moved) => text(
+            409,
+            "the scene moved while the render was asked for: ask again\n",
+        ),
     }
 }
 

@@ -44,6 +44,8 @@ pub struct Snapshot {
     /// The solution and its probe, made once, read by picks (none between rounds).
     readings: Option<Readings>,
     objects: Vec<String>,
+    /// The moves it was solved with, counted from the start.
+    moves: u64,
 }
 
 self_cell::self_cell!(
@@ -157,6 +159,7 @@ impl Snapshot {
             links,
             readings: Some(Readings::new(solved, |solved| solved.probe(shading))),
             objects,
+            moves,
         })
     }
 
@@ -182,7 +185,13 @@ impl Snapshot {
             links: 0u32.to_le_bytes().to_vec(),
             readings: None,
             objects,
+            moves,
         })
+    }
+
+    /// The moves it was solved with, counted from the start.
+    pub fn moves(&self) -> u64 {
+        self.moves
     }
 
     /// Whether picks can read it (false between rounds).

@@ -143,9 +143,10 @@ impl Solving {
         self.lock().snapshot.clone()
     }
 
-    /// The scene as it is now, every move included.
-    pub fn scene(&self) -> Scene {
-        self.lock().scene.clone()
+    /// The scene as it is now, with the number of moves it includes.
+    pub fn scene(&self) -> (Scene, u64) {
+        let state = self.lock();
+        (state.scene.clone(), state.status.moves)
     }
 
     /// The latest whole solution, if any.
