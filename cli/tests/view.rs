@@ -866,3 +866,72 @@ fn textured_surfaces_show_their_textures_lit_by_the_solution_through_the_tone_ma
     assert!(auto > 1.5 * linear, "{auto} vs {linear}");
     assert!(log < 0.8 * linear, "{log} vs {linear}");
 }
+
+#[test]
+fn surfaces_cut_by_an_alpha_texture_show_their_holes_as_a_render_does() {
+    // A dark grille over a lit floor, cut into stripes by a grey mask (white: present,
+    // black: cut away; 4 × 1 texels, repeating twice across the grille).
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("strahl-view-cut-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("stripes.pgm"), "P2\n4 1\n255\n255 0 255 0\n").unwrap();
+    let scene = dir.join("grille.toml");
+    std::fs::write(
+        &scene,
+        "[camera]\nposition = [0, 2.2, 2.2]\nlook_at = [0, 0, 0]\nfov = 50\n\n\
+         [materials.floor]\ndiffuse = 0.8\n\n\
+         [materials.grille]\ndiffuse = 0.1\nalpha_texture = \"stripes.pgm\"\n\n\
+         [[objects]]\nname = \"floor\"\ntype = \"quad\"\nmaterial = \"floor\"\n\
+         vertices = [[-1, 0, 1], [1, 0, 1], [1, 0, -1], [-1, 0, -1]]\n\n\
+         [[objects]]\nname = \"grille\"\ntype = \"quad\"\nmaterial = \"grille\"\n\
+         vertices = [[-0.6, 0.5, 0.6], [0.6, 0.5, 0.6], [0.6, 0.5, -0.6], [-0.6, 0.5, -0.6]]\n\
+         uvs = [[0, 0], [2, 0], [2, 1], [0, 1]]\n\n\
+         [[lights]]\nname = \"bulb\"\ntype = \"point\"\nposition = [0.3, 2.5, 0.2]\nintensity = 5\n",
+    )
+    .unwrap();
+    let viewer = start(&[scene.to_str().unwrap()]);
+    solved(&viewer.address);
+    let shot = dir.join("page.png");
+    let url = format!("http://{}/?still&tonemap=linear&exposure=1", viewer.address);
+    let screenshot = format!("--screenshot={}", shot.display());
+    headless(&url, &dir.join("profile"), &[&screenshot]);
+    let page = strahl::image::load(&shot).unwrap();
+    let rendered = dir.join("rendered.png");
+    let status = Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .arg("render")
+        .arg(&scene)
+        .args([
+            "--method",
+            "radiosity",
+            "--tonemap",
+            "linear",
+            "--exposure",
+            "1",
+        ])
+        .args(["--width", "800", "--height", "600", "-q", "-o"])
+        .arg(&rendered)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let rendered = strahl::image::load(&rendered).unwrap();
+    // The grille's middle, clear of the panel: the floor through its holes, its dark
+    // stripes between them, as the render shows them.
+    let region = |film: &strahl::measure::Film| luminances(film, 330..520, 270..320);
+    let (page, cli) = (region(&page), region(&rendered));
+    let off = relative_rms_difference(&page, &cli);
+    let bright = |values: &[f64]| {
+        let half = 0.5 * values.iter().cloned().fold(0.0, f64::max);
+        values.iter().filter(|&&v| v > half).count() as f64 / values.len() as f64
+    };
+    eprintln!(
+        "grille: mean {:.4} on the page, {:.4} rendered; RMS difference {off:.4}; \
+         share seen through holes {:.3} on the page, {:.3} rendered",
+        mean(&page),
+        mean(&cli),
+        bright(&page),
+        bright(&cli)
+    );
+    assert!((mean(&page) / mean(&cli) - 1.0).abs() < 0.05);
+    assert!((bright(&page) - bright(&cli)).abs() < 0.05);
+    assert!(off < 0.25, "{off}");
+}

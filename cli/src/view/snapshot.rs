@@ -8,7 +8,7 @@ use strahl::method::{
     LUMINOUS_EFFICACY, LitMesh, Probe, Ray, RoundSolution, Shading, SolvedRadiosity,
 };
 use strahl::report::Report;
-use strahl::scene::Scene;
+use strahl::scene::{ALPHA_CUTOFF, Scene, Texture, TextureId, Wrap};
 
 /// The share of the surface area whose illuminance the false-colour range holds.
 const TOP_QUANTILE: f64 = 0.99;
@@ -140,7 +140,7 @@ impl Snapshot {
         // texture's resolution (only where the scene has textures: the bake needs a lookup
         // over the leaves).
         let lit = solved.lit_mesh(!solved.world().scene.textures.is_empty());
-        let lightmaps = lightmap_bytes(&lit);
+        let lightmaps = lightmap_bytes(&lit, &solved.world().scene.textures);
         let links = link_bytes(&solved);
         let counted = solved.solution.link_segments.len();
         let about = About {
@@ -177,11 +177,12 @@ impl Snapshot {
             report: None,
             links: (0, 0),
         };
+        let lightmaps = lightmap_bytes(&round.mesh, &scene.textures);
         let (scene, mesh, objects) = described(scene, &round.mesh, about)?;
         Ok(Snapshot {
             scene,
             mesh,
-            lightmaps: lightmap_bytes(&round.mesh),
+            lightmaps,
             links: 0u32.to_le_bytes().to_vec(),
             readings: None,
             objects,
@@ -336,7 +337,14 @@ fn triangles(lit: &LitMesh) -> impl Iterator<Item = ([u32; 3], usize)> + '_ {
 /// it lies on (i32; −1: shown by its corners' radiance), then per surface its width `W` and
 /// height `H` (u32 each) and `W × H` texels (3 × f32, linear radiance, W·sr⁻¹·m⁻², the
 /// bottom row first, so that the texture coordinate `(0, 0)` is the first texel).
-fn lightmap_bytes(lit: &LitMesh) -> Vec<u8> {
+///
+/// Then the cut-outs: per vertex its material's texture coordinates (2 × f32), per surface
+/// the cut-out mask its material's alpha texture makes (i32, an index into the masks; −1:
+/// none), the count `M` of masks (u32) and per mask its width and height (u32 each), its
+/// wrapping (u32: 0 repeat, 1 clamp) and a byte per texel, 1 where the surface is present
+/// (alpha at least [`ALPHA_CUTOFF`], as ray queries test it) and 0 where it is cut away,
+/// the bottom row first. Each alpha texture is sent once, whatever the surfaces using it.
+fn lightmap_bytes(lit: &LitMesh, textures: &[Texture]) -> Vec<u8> {
     let mut out = Vec::new();
     out.extend((lit.surfaces.len() as u32).to_le_bytes());
     if lit.surfaces.is_empty() {
@@ -364,6 +372,34 @@ fn lightmap_bytes(lit: &LitMesh) -> Vec<u8> {
             for t in texels {
                 floats(&mut out, &[t.r, t.g, t.b]);
             }
+        }
+    }
+    for uv in &lit.texcoords {
+        floats(&mut out, &uv.to_array());
+    }
+    let mut masks: Vec<TextureId> = Vec::new();
+    for surface in &lit.surfaces {
+        let mask = surface
+            .alpha_texture
+            .filter(|&t| (t as usize) < textures.len())
+            .map_or(-1, |t| match masks.iter().position(|&m| m == t) {
+                Some(k) => k as i32,
+                None => {
+                    masks.push(t);
+                    masks.len() as i32 - 1
+                }
+            });
+        out.extend(mask.to_le_bytes());
+    }
+    out.extend((masks.len() as u32).to_le_bytes());
+    for &t in &masks {
+        let texture = &textures[t as usize];
+        let (w, h) = (texture.width, texture.height);
+        out.extend(w.to_le_bytes());
+        out.extend(h.to_le_bytes());
+        out.extend(u32::from(texture.wrap == Wrap::Clamp).to_le_bytes());
+        for y in (0..i64::from(h)).rev() {
+            out.extend((0..i64::from(w)).map(|x| u8::from(texture.texel(x, y)[3] >= ALPHA_CUTOFF)));
         }
     }
     out
@@ -423,7 +459,7 @@ mod tests {
             alpha_texture: None,
             lightmap: Film::from_pixels(1, 2, vec![top, bottom]).unwrap(),
         });
-        let bytes = lightmap_bytes(&lit);
+        let bytes = lightmap_bytes(&lit, &[]);
         let word = |k: usize| u32::from_le_bytes(bytes[4 * k..4 * k + 4].try_into().unwrap());
         let float = |k: usize| f32::from_le_bytes(bytes[4 * k..4 * k + 4].try_into().unwrap());
         // One surface, for 7 vertices and 3 triangles.
@@ -439,9 +475,30 @@ mod tests {
         assert_eq!((word(20), word(21)), (1, 2));
         let texels: Vec<f32> = (22..28).map(float).collect();
         assert_eq!(texels, [4.0, 5.0, 6.0, 1.0, 2.0, 3.0]);
-        assert_eq!(bytes.len(), 28 * 4);
+        // The material's texture coordinates (the same as the lightmap's here), no mask.
+        let material: Vec<f32> = (28..42).map(float).collect();
+        assert_eq!(material, places);
+        assert_eq!((word(42) as i32, word(43)), (-1, 0));
+        assert_eq!(bytes.len(), 44 * 4);
         // Without textured surfaces: the count alone.
-        assert_eq!(lightmap_bytes(&LitMesh::default()), 0u32.to_le_bytes());
+        assert_eq!(lightmap_bytes(&LitMesh::default(), &[]), 0u32.to_le_bytes());
+
+        // Two surfaces cut by one alpha texture (2 × 2: alpha 0.4 and 0.6 in its top row,
+        // 0.5 and 0.1 in its bottom row) send it once, as a mask, its bottom row first.
+        let alpha = [[0.4, 0.6], [0.5, 0.1]];
+        let textures = [Texture::from_fn("leaf", 2, 2, |x, y| {
+            [1.0, 1.0, 1.0, alpha[y as usize][x as usize]]
+        })];
+        lit.surfaces[0].alpha_texture = Some(0);
+        lit.surfaces.push(lit.surfaces[0].clone());
+        let bytes = lightmap_bytes(&lit, &textures);
+        let word = |k: usize| u32::from_le_bytes(bytes[4 * k..4 * k + 4].try_into().unwrap());
+        // After the header, places and surfaces (20 words), the two 1 × 2 lightmaps (8 words
+        // each) and the material's places (14 words): both surfaces take mask 0, one mask of
+        // 2 × 2 texels, repeating.
+        assert_eq!((word(50), word(51)), (0, 0));
+        assert_eq!((word(52), word(53), word(54), word(55)), (1, 2, 2, 0));
+        assert_eq!(bytes[56 * 4..], [1, 0, 0, 1]);
     }
 
     #[test]

@@ -269,7 +269,11 @@ fn render(mesh: &PatchMesh, lookup: &RadiosityLookup, charts: &[Chart], size: [u
                 for i in 0..w {
                     let p = nearest_point(patch.corners(), normal, chart.texel_point(i, j));
                     let ray = Ray::new((p + normal * reach).as_vec3(), (-normal).as_vec3());
-                    let radiance = lookup.hit(&ray).map_or(Rgb::BLACK, |hit| hit.radiance);
+                    // Under a cut-out, the surface's own radiance (not what lies behind it):
+                    // a viewer filtering the lightmap mixes it into the texels beside.
+                    let radiance = lookup
+                        .hit_even_where_cut(&ray)
+                        .map_or(Rgb::BLACK, |hit| hit.radiance);
                     texels.push((chart.at[0] + i, chart.at[1] + j, radiance));
                 }
             }

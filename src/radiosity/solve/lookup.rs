@@ -133,6 +133,18 @@ impl<'s> RadiosityLookup<'s> {
     /// The first leaf `ray` meets where its surface is present (an alpha texture's cut-away
     /// parts let the ray pass), and the radiance of the value there.
     pub fn hit(&self, ray: &Ray) -> Option<LeafHit<'_>> {
+        self.first_hit(ray, true)
+    }
+
+    /// The first leaf `ray` meets, cut away or not, and the radiance there as if its surface
+    /// were present (what a lightmap holds under a cut-out: never shown, but filtered into
+    /// the texels beside it).
+    pub fn hit_even_where_cut(&self, ray: &Ray) -> Option<LeafHit<'_>> {
+        self.first_hit(ray, false)
+    }
+
+    /// The first leaf `ray` meets, passing through cut-away parts when `pass_cut_outs`.
+    fn first_hit(&self, ray: &Ray, pass_cut_outs: bool) -> Option<LeafHit<'_>> {
         let scene = &self.system.world().scene;
         let mut ray = *ray;
         let mut travelled = 0.0;
@@ -145,7 +157,9 @@ impl<'s> RadiosityLookup<'s> {
             let [b1, b2] = hit.local.map(f64::from);
             let uvs = corner_ids.map(|c| patch.uvs()[c as usize]);
             let uv = uvs[0] * (1.0 - b1 - b2) + uvs[1] * b1 + uvs[2] * b2;
-            let alpha = scene.materials[patch.material as usize].alpha_texture;
+            let alpha = scene.materials[patch.material as usize]
+                .alpha_texture
+                .filter(|_| pass_cut_outs);
             match alpha.and_then(|t| scene.textures.get(t as usize)) {
                 Some(t) if !t.is_present(uv.as_vec2()) => {
                     let triangle = &self.triangles.triangles[hit.prim as usize];

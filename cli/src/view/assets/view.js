@@ -32,14 +32,17 @@ in vec3 position;
 in vec3 radiance;
 in float lux;
 in vec2 lightmapAt;
+in vec2 materialAt;
 uniform mat4 viewProjection;
 out vec3 vertexRadiance;
 out float illuminance;
 out vec2 texel;
+out vec2 materialTexel;
 void main() {
   vertexRadiance = radiance;
   illuminance = lux;
   texel = lightmapAt;
+  materialTexel = materialAt;
   gl_Position = viewProjection * vec4(position, 1.0);
   gl_PointSize = 9.0;
 }`;
@@ -49,9 +52,14 @@ precision highp float;
 in vec3 vertexRadiance;
 in float illuminance;
 in vec2 texel;
+in vec2 materialTexel;
 uniform bool lines;
 uniform bool textured;
 uniform sampler2D lightmap;
+// A surface cut by its material's alpha texture: the mask (1 present, 0 cut away, nearest
+// texel, as strahl's ray queries test it) at the material's texture coordinates.
+uniform bool cut;
+uniform sampler2D mask;
 // The tone mapping (0 linear, 1 logarithmic, 2 Reinhard, 3 automatic exposure, as
 // strahl render --tonemap defines them), the radiance scale it applies (2^EV, times
 // 0.18 over the log-average luminance for 2 and 3) and, for 1, ln(1 + Lmax·scale).
@@ -90,6 +98,7 @@ vec3 srgb(vec3 c) {
   return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));
 }
 void main() {
+  if (cut && !lines && texture(mask, materialTexel).r < 0.5) discard;
   if (lines) {
     result = lineColour;
   } else if (falseColour) {
@@ -167,7 +176,22 @@ function parseLightmaps(buffer, mesh) {
     maps.push({ width, height, texels: new Float32Array(buffer.slice(at, at + 12 * width * height)) });
     at += 12 * width * height;
   }
-  return { uv, surfaceOf, maps };
+  // The cut-outs: the material's texture coordinates, each surface's mask (−1: none), the
+  // masks.
+  const materialUv = new Float32Array(buffer.slice(at, at + 8 * vertices));
+  at += 8 * vertices;
+  const maskOf = new Int32Array(buffer.slice(at, at + 4 * surfaces));
+  at += 4 * surfaces;
+  const maskCount = data.getUint32(at, true);
+  at += 4;
+  const masks = [];
+  for (let k = 0; k < maskCount; k++) {
+    const [width, height, clamp] = [0, 4, 8].map((o) => data.getUint32(at + o, true));
+    at += 12;
+    masks.push({ width, height, clamp: clamp === 1, present: new Uint8Array(buffer.slice(at, at + width * height)) });
+    at += width * height;
+  }
+  return { uv, surfaceOf, maps, materialUv, maskOf, masks };
 }
 
 // What the tone mappings need of `mesh`: the log-average of the vertices' positive
@@ -325,7 +349,7 @@ let prog, vao, linkVao, triangleBuffer, lineBuffer, lineCount = 0, linkIndexBuff
 let sensorVao, sensorCount = 0;
 // The triangles by what shows them: `{ surface, start, count }` in the triangle buffer
 // (surface −1: their corners' radiance; else that lightmap, `textures[surface]`).
-let triangleGroups = [], textures = [];
+let triangleGroups = [], textures = [], masks = [];
 const control = (id) => document.getElementById(id);
 
 // Loads the latest solution and draws it; resolves to its scene description.
@@ -378,6 +402,7 @@ function upload() {
   attribute("lux", mesh.lux, 1);
   const { lightmaps } = shown;
   attribute("lightmapAt", lightmaps ? lightmaps.uv : new Float32Array(2 * mesh.vertices), 2);
+  attribute("materialAt", lightmaps ? lightmaps.materialUv : new Float32Array(2 * mesh.vertices), 2);
   gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, triangleBuffer);
   gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, groupedTriangles(mesh, lightmaps), gl.STATIC_DRAW);
   uploadTextures(lightmaps);
@@ -421,6 +446,21 @@ function uploadTextures(lightmaps) {
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);
+    return t;
+  });
+  // The cut-out masks: a byte a texel, 255 where the surface is present.
+  masks.forEach((t) => gl.deleteTexture(t));
+  masks = (lightmaps ? lightmaps.masks : []).map((mask) => {
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, t);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    const present = mask.present.map((p) => 255 * p);
+    gl.texImage2D(gl.TEXTURE_2D, 0, gl.R8, mask.width, mask.height, 0, gl.RED, gl.UNSIGNED_BYTE, present);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    const wrap = mask.clamp ? gl.CLAMP_TO_EDGE : gl.REPEAT;
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, wrap);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, wrap);
     return t;
   });
 }
@@ -516,6 +556,7 @@ function draw() {
   gl.uniform1f(uniform("scale"), tone.scale);
   gl.uniform1f(uniform("logDenominator"), tone.logDenominator);
   gl.uniform1i(uniform("lightmap"), 0);
+  gl.uniform1i(uniform("mask"), 1);
   const falseColour = control("false-colour").checked;
   gl.uniform1i(uniform("falseColour"), falseColour ? 1 : 0);
   const range = falseRange();
@@ -535,9 +576,16 @@ function draw() {
     gl.uniform1i(uniform("textured"), textured ? 1 : 0);
     gl.activeTexture(gl.TEXTURE0);
     gl.bindTexture(gl.TEXTURE_2D, textured ? textures[group.surface] : null);
+    // Cut-outs cut in every view, textures shown or not.
+    const mask = group.surface >= 0 ? shown.lightmaps.maskOf[group.surface] : -1;
+    gl.uniform1i(uniform("cut"), mask >= 0 ? 1 : 0);
+    gl.activeTexture(gl.TEXTURE1);
+    gl.bindTexture(gl.TEXTURE_2D, mask >= 0 ? masks[mask] : null);
+    gl.activeTexture(gl.TEXTURE0);
     gl.drawElements(gl.TRIANGLES, group.count, gl.UNSIGNED_INT, 4 * group.start);
   }
   gl.uniform1i(uniform("textured"), 0);
+  gl.uniform1i(uniform("cut"), 0);
   gl.uniform1i(uniform("lines"), 1);
   if (control("wireframe").checked) {
     gl.uniform4f(uniform("lineColour"), 0, 0, 0, 1);
