@@ -27,6 +27,7 @@ use crate::scene::Scene;
 use crate::world::{SurfaceMaterial, World};
 use rayon::prelude::*;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 /// Fixed-point units of the total emitted power (largest channel).
@@ -42,6 +43,8 @@ const BATCHES: u64 = 200;
 /// Photons per progress step are at most this many, so that a stop request is answered
 /// within a fraction of a second however many photons the run has.
 const MAX_BATCH: u64 = 1 << 18;
+/// Photons a thread takes at a time (about 0.1 ms of tracing in a sparse canopy).
+const PHOTON_RUN: u64 = 256;
 /// Memory budget of the per-worker tallies, bytes.
 const TALLY_BUDGET: usize = 256 << 20;
 
@@ -800,13 +803,18 @@ impl<'a> Tracer<'a> {
 
     /// Traces the photons `photons` on the current rayon pool; returns their tally and how
     /// many were traced (fewer when `cancel` stopped it).
+    ///
+    /// A tally per thread; the threads take the photons of each progress step in runs of
+    /// [`PHOTON_RUN`] as they come free (photons differ in cost, so equal shares would leave
+    /// one thread waiting for the other). Which thread traces a photon does not change the
+    /// sums: every photon is traced from its own index, and the tallies are integers.
     fn trace(
         &self,
         photons: std::ops::Range<u64>,
         progress: &dyn ProgressListener,
         cancel: &Cancel,
     ) -> (Vec<Tally>, u64) {
-        let workers = rayon::current_num_threads().max(1) * 4;
+        let workers = rayon::current_num_threads().max(1);
         let sensors = self.world.scene.sensors.len();
         let groups = self.groups.len();
         let per_tally = self.table.len().max(1) * std::mem::size_of::<FixedBalance>()
@@ -819,18 +827,19 @@ impl<'a> Tracer<'a> {
         let mut done = photons.start;
         while done < photons.end && !cancel.is_requested() {
             let end = (done + batch).min(photons.end);
-            let span = end - done;
-            workers
-                .par_iter_mut()
-                .enumerate()
-                .for_each(|(slot, worker)| {
-                    let from = done + span * slot as u64 / slots as u64;
-                    let to = done + span * (slot as u64 + 1) / slots as u64;
-                    for i in from..to {
+            let next = AtomicU64::new(done);
+            workers.par_iter_mut().for_each(|worker| {
+                loop {
+                    let from = next.fetch_add(PHOTON_RUN, Ordering::Relaxed);
+                    if from >= end {
+                        break;
+                    }
+                    for i in from..(from + PHOTON_RUN).min(end) {
                         self.trace_photon(i, worker);
                     }
-                });
-            progress.advance(span);
+                }
+            });
+            progress.advance(end - done);
             done = end;
         }
         progress.finish();
