@@ -914,9 +914,9 @@ fn surfaces_cut_by_an_alpha_texture_show_their_holes_as_a_render_does() {
         .unwrap();
     assert!(status.success());
     let rendered = strahl::image::load(&rendered).unwrap();
-    // The grille's middle, clear of the panel: the floor through its holes, its dark
+    // The grille right of the panel: the floor through its holes, its dark
     // stripes between them, as the render shows them.
-    let region = |film: &strahl::measure::Film| luminances(film, 330..520, 270..320);
+    let region = |film: &strahl::measure::Film| luminances(film, 425..560, 150..320);
     let (page, cli) = (region(&page), region(&rendered));
     let off = relative_rms_difference(&page, &cli);
     let bright = |values: &[f64]| {
@@ -931,7 +931,10 @@ fn surfaces_cut_by_an_alpha_texture_show_their_holes_as_a_render_does() {
         bright(&page),
         bright(&cli)
     );
-    assert!((mean(&page) / mean(&cli) - 1.0).abs() < 0.05);
-    assert!((bright(&page) - bright(&cli)).abs() < 0.05);
-    assert!(off < 0.25, "{off}");
+    // Measured: means within 1.1 %, shares 0.432 / 0.436, RMS 7.7 % (a grille drawn whole
+    // shows no holes; one whose lightmap held the floor's light under its holes showed its
+    // stripes lit by the floor's light filtered into them: +21 % in the mean).
+    assert!((mean(&page) / mean(&cli) - 1.0).abs() < 0.03);
+    assert!((bright(&page) - bright(&cli)).abs() < 0.03);
+    assert!(off < 0.15, "{off}");
 }

@@ -2,7 +2,7 @@
 //! surfaces and sensors, a radiosity solution — whichever the method makes — with whether
 //! it ran to the end and one phrase on the work done.
 
-use crate::final_gather::FinalGather;
+use crate::final_gather::{FinalGather, SurfaceGather, gather_surfaces};
 use crate::measure::{Film, LitMesh, Measurement, Photometric, SensorReading, ValueImage};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::{
@@ -91,6 +91,26 @@ impl SolvedRadiosity {
     /// The power per reported surface and the sensors' irradiance.
     pub fn measurement(&self) -> Measurement {
         self.solution.measurement(&self.system)
+    }
+
+    /// The measurement with the irradiance of the reported surfaces `gather` selects
+    /// measured anew by a final gather over the solution (its points drawn from `seed`), as
+    /// [`super::run`] reports a radiosity method asking for one, and a phrase on the gather;
+    /// `None` when `cancel`led. `progress` hears the gather's points.
+    pub fn gathered_measurement(
+        &self,
+        gather: SurfaceGather,
+        seed: u64,
+        progress: &dyn ProgressListener,
+        cancel: &Cancel,
+    ) -> Option<(Measurement, String)> {
+        let (system, solution) = (&self.system, &self.solution);
+        let gathered = gather_surfaces(system, solution, gather, seed, progress, cancel)?;
+        let phrase = format!(
+            "; final gather at {} surfaces, {} points, {:.2} s",
+            gathered.surfaces, gathered.points, gathered.seconds
+        );
+        Some((solution.measurement_with(system, &gathered), phrase))
     }
 
     /// The leaf patches as a mesh with radiosity per vertex (and per-patch lightmaps when

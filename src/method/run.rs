@@ -7,7 +7,6 @@ use super::settings::{
 };
 use super::{Method, MethodError, MethodKind};
 use crate::choice::Choice;
-use crate::final_gather::gather_surfaces;
 use crate::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::hierarchical::{
@@ -148,19 +147,15 @@ fn radiosity(
     let mut summary = solved.summary();
     let gathered = if s.surface_gather.is_on() && complete {
         progress.phase("gathering");
-        let (system, solution) = (&solved.system, &solved.solution);
         let seed = s.system.visibility.seed;
-        gather_surfaces(system, solution, s.surface_gather, seed, progress, cancel)
+        solved.gathered_measurement(s.surface_gather, seed, progress, cancel)
     } else {
         None
     };
-    let measurement = match &gathered {
-        Some(g) => {
-            summary += &format!(
-                "; final gather at {} surfaces, {} points, {:.2} s",
-                g.surfaces, g.points, g.seconds
-            );
-            solved.solution.measurement_with(&solved.system, g)
+    let measurement = match gathered {
+        Some((measurement, phrase)) => {
+            summary += &phrase;
+            measurement
         }
         None => {
             let mut measurement = solved.measurement();

@@ -2,8 +2,9 @@
 //! the lightmaps of its textured surfaces and the links (binary), and readings along rays. Made once per solution, read by every
 //! request until the next solution replaces it.
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use serde::Serialize;
+use std::sync::Arc;
 use strahl::method::{
     LUMINOUS_EFFICACY, LitMesh, Probe, Ray, RoundSolution, Shading, SolvedRadiosity,
 };
@@ -26,7 +27,10 @@ pub enum Stage {
     Round,
     /// A quick, coarser solve shown first after the scene changed.
     Preview,
-    /// The solve at the settings asked for.
+    /// The solve at the settings asked for, its report still the solution's own while the
+    /// final gather at the reported surfaces measures them anew (only when it does).
+    Solved,
+    /// The solve at the settings asked for, with its report.
     Final,
 }
 
@@ -41,11 +45,18 @@ pub struct Snapshot {
     pub lightmaps: Vec<u8>,
     /// `/api/links`: the links, binary ([`link_bytes`]; none between rounds).
     pub links: Vec<u8>,
-    /// The solution and its probe, made once, read by picks (none between rounds).
-    readings: Option<Readings>,
+    /// The solution and its probe, made once, read by picks (none between rounds); shared
+    /// with the snapshot of the same solution whose report was gathered.
+    readings: Option<Arc<Readings>>,
     objects: Vec<String>,
     /// The moves it was solved with, counted from the start.
     moves: u64,
+    /// The top of the false-colour range, lux ([`mesh_bytes`]), and the links served and in
+    /// the solution.
+    brightest: f32,
+    links_counted: (usize, usize),
+    /// The version whose mesh, lightmaps and links these are.
+    mesh_version: u64,
 }
 
 self_cell::self_cell!(
@@ -61,6 +72,7 @@ self_cell::self_cell!(
 /// What a snapshot says of itself besides the scene.
 struct About<'a> {
     version: u64,
+    mesh_version: u64,
     moves: u64,
     stage: Stage,
     summary: String,
@@ -74,6 +86,9 @@ struct SceneInfo<'a> {
     name: &'a str,
     /// Counts the solutions served, from 1.
     version: u64,
+    /// The version whose mesh, lightmaps and links `/api/mesh`, `/api/lightmaps` and
+    /// `/api/links` serve with it (an earlier one when only the report changed).
+    mesh_version: u64,
     /// The moves it was solved with, counted from the start.
     moves: u64,
     /// Preview or final.
@@ -143,23 +158,61 @@ impl Snapshot {
         let lightmaps = lightmap_bytes(&lit, &solved.world().scene.textures);
         let links = link_bytes(&solved);
         let counted = solved.solution.link_segments.len();
+        let links_counted = (counted.min(MAX_LINKS), counted);
+        let (mesh, brightest) = mesh_bytes(&lit);
         let about = About {
             version,
+            mesh_version: version,
             moves,
             stage,
             summary: solved.summary(),
             report: Some(report),
-            links: (counted.min(MAX_LINKS), counted),
+            links: links_counted,
         };
-        let (scene, mesh, objects) = described(&solved.world().scene, &lit, about)?;
+        let (scene, objects) = described(&solved.world().scene, brightest, about)?;
         Ok(Snapshot {
             scene,
             mesh,
             lightmaps,
             links,
-            readings: Some(Readings::new(solved, |solved| solved.probe(shading))),
+            readings: Some(Arc::new(Readings::new(solved, |solved| {
+                solved.probe(shading)
+            }))),
             objects,
             moves,
+            brightest,
+            links_counted,
+            mesh_version: version,
+        })
+    }
+
+    /// This solution (stage [`Stage::Solved`]) with `report`, its final-gathered report, and
+    /// the solve's phrase `summary`, as version `version` of the final stage: the same mesh,
+    /// lightmaps, links and readings. Refused for a solution between rounds.
+    pub fn with_report(&self, version: u64, report: &Report, summary: String) -> Result<Self> {
+        let readings = self.readings.clone().context("a solution between rounds")?;
+        let about = About {
+            version,
+            mesh_version: self.mesh_version,
+            moves: self.moves,
+            stage: Stage::Final,
+            summary,
+            report: Some(report),
+            links: self.links_counted,
+        };
+        let scene = &readings.borrow_owner().world().scene;
+        let (scene, objects) = described(scene, self.brightest, about)?;
+        Ok(Snapshot {
+            scene,
+            mesh: self.mesh.clone(),
+            lightmaps: self.lightmaps.clone(),
+            links: self.links.clone(),
+            readings: Some(readings),
+            objects,
+            moves: self.moves,
+            brightest: self.brightest,
+            links_counted: self.links_counted,
+            mesh_version: self.mesh_version,
         })
     }
 
@@ -168,6 +221,7 @@ impl Snapshot {
     pub fn round(version: u64, moves: u64, scene: &Scene, round: &RoundSolution) -> Result<Self> {
         let about = About {
             version,
+            mesh_version: version,
             moves,
             stage: Stage::Round,
             summary: format!(
@@ -178,7 +232,8 @@ impl Snapshot {
             links: (0, 0),
         };
         let lightmaps = lightmap_bytes(&round.mesh, &scene.textures);
-        let (scene, mesh, objects) = described(scene, &round.mesh, about)?;
+        let (mesh, brightest) = mesh_bytes(&round.mesh);
+        let (scene, objects) = described(scene, brightest, about)?;
         Ok(Snapshot {
             scene,
             mesh,
@@ -187,12 +242,20 @@ impl Snapshot {
             readings: None,
             objects,
             moves,
+            brightest,
+            links_counted: (0, 0),
+            mesh_version: version,
         })
     }
 
     /// The moves it was solved with, counted from the start.
     pub fn moves(&self) -> u64 {
         self.moves
+    }
+
+    /// The version whose mesh, lightmaps and links it serves.
+    pub fn mesh_version(&self) -> u64 {
+        self.mesh_version
     }
 
     /// Whether picks can read it (false between rounds).
@@ -230,21 +293,17 @@ impl Snapshot {
     }
 }
 
-/// `/api/scene` and `/api/mesh` of `scene` lit as `lit`, described by `about`, and the
-/// object names by index.
-fn described(
-    scene: &Scene,
-    lit: &LitMesh,
-    about: About,
-) -> Result<(Vec<u8>, Vec<u8>, Vec<String>)> {
+/// `/api/scene` of `scene` (its mesh's false-colour range topped at `brightest` lux),
+/// described by `about`, and the object names by index.
+fn described(scene: &Scene, brightest: f32, about: About) -> Result<(Vec<u8>, Vec<String>)> {
     let objects: Vec<String> = (0..scene.objects.len())
         .map(|k| scene.object_name(k))
         .collect();
     let c = &scene.camera;
-    let (mesh, brightest) = mesh_bytes(lit);
     let info = SceneInfo {
         name: &scene.name,
         version: about.version,
+        mesh_version: about.mesh_version,
         moves: about.moves,
         stage: about.stage,
         camera: CameraInfo {
@@ -263,7 +322,7 @@ fn described(
         objects: &objects,
         links: about.links,
     };
-    Ok((serde_json::to_vec(&info)?, mesh, objects))
+    Ok((serde_json::to_vec(&info)?, objects))
 }
 
 /// The lit mesh as the page reads it, little-endian: the vertex count `V` and triangle count
@@ -541,5 +600,47 @@ mod tests {
         assert!(!snapshot.readable());
         let ray = Ray::new(Vec3::new(0.5, 1.0, 0.5), Vec3::NEG_Y);
         assert!(!snapshot.pick(&ray).hit);
+    }
+
+    #[test]
+    fn a_final_solve_shown_before_its_gather_keeps_its_mesh_when_its_report_comes() {
+        use std::sync::Arc;
+        use strahl::method::{AccelKind, Cancel, Method, NoProgress, RadiositySettings, World};
+        let scene = strahl::scene::open("cornell", &Default::default()).unwrap();
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+        let settings = RadiositySettings::default();
+        let method = Method::Radiosity(settings.without_surface_gather());
+        let outcome = strahl::method::run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+        let solved = outcome.radiosity.unwrap();
+        let own = Report::new("cornell", &solved.measurement());
+        let shown = Snapshot::new(5, 1, Stage::Solved, solved, &own, Shading::Smooth).unwrap();
+        let solution = shown.solved().unwrap();
+        let (gathered, phrase) = solution
+            .gathered_measurement(settings.surface_gather, 0, &NoProgress, &Cancel::new())
+            .unwrap();
+        let report = Report::new("cornell", &gathered);
+        let summary = solution.summary() + &phrase;
+        let last = shown.with_report(6, &report, summary).unwrap();
+        let info: serde_json::Value = serde_json::from_slice(&last.scene).unwrap();
+        assert_eq!(info["stage"], "final");
+        assert_eq!(
+            (info["version"].as_u64(), info["mesh_version"].as_u64()),
+            (Some(6), Some(5))
+        );
+        assert_eq!(info["moves"].as_u64(), Some(1));
+        assert!(info["summary"].as_str().unwrap().contains("final gather at"));
+        assert_eq!(info["report"], serde_json::to_value(&report).unwrap());
+        assert_ne!(
+            serde_json::to_value(&report).unwrap(),
+            serde_json::to_value(&own).unwrap(),
+            "the gather measured nothing anew"
+        );
+        assert_eq!((&last.mesh, &last.links), (&shown.mesh, &shown.links));
+        assert_eq!(last.lightmaps, shown.lightmaps);
+        // Picks read the same solution.
+        let ray = Ray::new(Vec3::new(0.278, 0.3, 0.28), Vec3::NEG_Y);
+        let (a, b) = (last.pick(&ray), shown.pick(&ray));
+        assert!(a.hit);
+        assert_eq!(serde_json::to_value(a).unwrap(), serde_json::to_value(b).unwrap());
     }
 }

@@ -33,6 +33,9 @@ const ROUND_INTERVAL: Duration = Duration::from_millis(250);
 pub struct Status {
     /// The latest solution's version (0: none yet).
     pub version: u64,
+    /// The version whose mesh, lightmaps and links it shows (an earlier one when only its
+    /// report is new).
+    pub mesh_version: u64,
     /// Its stage.
     pub stage: Option<Stage>,
     /// Moves asked for so far.
@@ -47,9 +50,11 @@ pub struct Status {
     pub total: u64,
     /// Why the last solve failed, if it did.
     pub error: Option<String>,
-    /// Seconds from the last move to its preview and to its final solution being served
-    /// (absent until served).
+    /// Seconds from the last move to its preview, to its final solve (shown with the
+    /// solution's own report while the final gather at the reported surfaces runs; absent
+    /// when there is none) and to its final solution being served (absent until served).
     pub preview_seconds: Option<f64>,
+    pub solved_seconds: Option<f64>,
     pub final_seconds: Option<f64>,
     /// Patch links the latest solve took from the solve before (where nothing moved between
     /// their ends) and computed.
@@ -164,7 +169,7 @@ impl Solving {
 
     /// Shows `snapshot` (made as version `version` of `stage` after `moves` moves), unless
     /// a move came since.
-    fn publish(&self, snapshot: Snapshot, version: u64, stage: Stage, moves: u64) {
+    fn publish(&self, snapshot: Arc<Snapshot>, version: u64, stage: Stage, moves: u64) {
         let mut state = self.lock();
         if state.status.moves != moves {
             return;
@@ -172,15 +177,16 @@ impl Solving {
         let since_move = state.moved_at.map(|t| t.elapsed().as_secs_f64());
         let status = &mut state.status;
         status.version = version;
+        status.mesh_version = snapshot.mesh_version();
         status.stage = Some(stage);
         status.solved_moves = moves;
         status.error = None;
         match stage {
             Stage::Round => {}
             Stage::Preview => status.preview_seconds = since_move,
+            Stage::Solved => status.solved_seconds = since_move,
             Stage::Final => status.final_seconds = since_move,
         }
-        let snapshot = Arc::new(snapshot);
         if snapshot.readable() {
             state.readable = Some(Arc::clone(&snapshot));
         }
@@ -226,6 +232,7 @@ impl Solving {
         state.status.moves += 1;
         state.moved_at = Some(Instant::now());
         state.status.preview_seconds = None;
+        state.status.solved_seconds = None;
         state.status.final_seconds = None;
         state.cancel.request();
         self.work.notify_all();
@@ -278,18 +285,27 @@ impl Solving {
     }
 
     /// The stages of a solve: a preview where the solver refines by an error threshold, then
-    /// the solve asked for.
+    /// the solve asked for — without its final gather at the reported surfaces, when it has
+    /// one, which then follows over the solution shown (see [`Solving::gathered`]).
     fn stages(&self) -> Vec<(Stage, Method)> {
         let mut stages = Vec::new();
-        if let Method::Radiosity(settings) = &self.method
-            && settings.solver == SolverKind::Hierarchical
-        {
-            let mut preview = *settings;
-            preview.hierarchical.error *= PREVIEW_COARSER;
-            preview.surface_gather = SurfaceGather::OFF;
-            stages.push((Stage::Preview, Method::Radiosity(preview)));
+        match &self.method {
+            Method::Radiosity(settings) => {
+                if settings.solver == SolverKind::Hierarchical {
+                    let mut preview = *settings;
+                    preview.hierarchical.error *= PREVIEW_COARSER;
+                    preview.surface_gather = SurfaceGather::OFF;
+                    stages.push((Stage::Preview, Method::Radiosity(preview)));
+                }
+                if settings.surface_gather.is_on() {
+                    let solved = settings.without_surface_gather();
+                    stages.push((Stage::Solved, Method::Radiosity(solved)));
+                } else {
+                    stages.push((Stage::Final, self.method.clone()));
+                }
+            }
+            _ => stages.push((Stage::Final, self.method.clone())),
         }
-        stages.push((Stage::Final, self.method.clone()));
         stages
     }
 
@@ -324,7 +340,7 @@ impl Solving {
                 .measurement
                 .as_ref()
                 .context("the solver measured no surfaces")?;
-            if first && stage == Stage::Final {
+            if first && stage != Stage::Preview {
                 radiosity::finish_solve(
                     &solved,
                     self.export.as_deref(),
@@ -335,13 +351,66 @@ impl Solving {
             let report = Report::new(&name, measured);
             let version = self.next_version();
             let snapshot = Snapshot::new(version, moves, stage, solved, &report, self.shading)?;
+            let snapshot = Arc::new(snapshot);
             // The counts first: a page that sees the solution reads its counts with it.
             {
                 let status = &mut self.lock().status;
                 (status.links_kept, status.links_computed) = links;
             }
-            self.publish(snapshot, version, stage, moves);
+            if stage == Stage::Solved {
+                self.gathered(snapshot, version, &name, &observer, cancel)?;
+            } else {
+                self.publish(snapshot, version, stage, moves);
+            }
         }
+        Ok(())
+    }
+
+    /// The final gather at the reported surfaces over `solved`, the final solve with its
+    /// solution's own report (version `version`, stage [`Stage::Solved`]), and the solution
+    /// shown with the gathered report as the final one; `progress` hears the gather. When
+    /// the gather takes longer than [`ROUND_INTERVAL`], the solve is shown while it runs (on
+    /// `blocks:216` the gather takes most of a move's time; on the Cornell box, a few
+    /// hundredths of a second, showing the solve first would only make the page draw it
+    /// twice).
+    fn gathered(
+        &self,
+        solved: Arc<Snapshot>,
+        version: u64,
+        name: &str,
+        progress: &Observer,
+        cancel: &Cancel,
+    ) -> Result<()> {
+        let Method::Radiosity(settings) = &self.method else {
+            return Ok(());
+        };
+        let solution = solved
+            .solved()
+            .context("the solve made no whole solution")?;
+        progress.phase("gathering");
+        let seed = settings.system.visibility.seed;
+        let gathered = std::thread::scope(|scope| {
+            let (done, finished) = std::sync::mpsc::channel();
+            scope.spawn(move || {
+                let gathered = with_threads(self.threads, || {
+                    solution.gathered_measurement(settings.surface_gather, seed, progress, cancel)
+                });
+                // The receiver waits until this is sent: it cannot be gone.
+                let _ = done.send(gathered);
+            });
+            if let Ok(gathered) = finished.recv_timeout(ROUND_INTERVAL) {
+                return gathered;
+            }
+            self.publish(Arc::clone(&solved), version, Stage::Solved, solved.moves());
+            finished.recv().context("the final gather stopped")?
+        })?;
+        let Some((measurement, phrase)) = gathered.filter(|_| !cancel.is_requested()) else {
+            return Ok(());
+        };
+        let report = Report::new(name, &measurement);
+        let version = self.next_version();
+        let snapshot = solved.with_report(version, &report, solution.summary() + &phrase)?;
+        self.publish(Arc::new(snapshot), version, Stage::Final, solved.moves());
         Ok(())
     }
 }
@@ -389,9 +458,10 @@ impl ProgressListener for Observer<'_> {
         let version = self.solving.next_version();
         let made = Snapshot::round(version, self.moves, self.scene, solution);
         match made {
-            Ok(snapshot) => self
-                .solving
-                .publish(snapshot, version, Stage::Round, self.moves),
+            Ok(snapshot) => {
+                self.solving
+                    .publish(Arc::new(snapshot), version, Stage::Round, self.moves)
+            }
             Err(e) => self.solving.lock().status.error = Some(format!("{e:#}")),
         }
     }

@@ -352,27 +352,39 @@ let sensorVao, sensorCount = 0;
 let triangleGroups = [], textures = [], masks = [];
 const control = (id) => document.getElementById(id);
 
-// Loads the latest solution and draws it; resolves to its scene description.
-async function load() {
+// Loads the latest solution (`st`, the status that announced it) and draws it; resolves to
+// its scene description. A solution whose report alone is new (the final gather's, after the
+// final solve was shown) keeps the mesh, lightmaps and links drawn.
+async function load(st) {
   const wantLinks = control("links").checked || params.has("links");
-  const [scene, meshBytes, lightmapBytes, linkBytes] = await Promise.all([
-    fetchOk("/api/scene").then((r) => r.json()),
-    fetchOk("/api/mesh").then((r) => r.arrayBuffer()),
-    fetchOk("/api/lightmaps").then((r) => r.arrayBuffer()),
-    wantLinks ? fetchOk("/api/links").then((r) => r.arrayBuffer()) : null,
-  ]);
-  const mesh = parseMesh(meshBytes);
-  const lightmaps = parseLightmaps(lightmapBytes, mesh);
-  const links = linkBytes && parseLinks(linkBytes);
-  if (links) offerLevels(links);
   const first = shown.scene === null;
-  Object.assign(shown, { scene, mesh, lightmaps, links, version: scene.version });
-  // The tone mapping's statistics come from the latest whole solution (the flat ones between
-  // rounds would change the exposure as the solve goes on).
-  if (scene.stage !== "round" || shown.luminance.max === 0) shown.luminance = luminanceStatistics(mesh);
+  const keep = (meshVersion) => !first && meshVersion === shown.meshVersion && (shown.links || !wantLinks);
+  let scene = keep(st.mesh_version) ? await fetchOk("/api/scene").then((r) => r.json()) : null;
+  const sameMesh = scene !== null && keep(scene.mesh_version);
   // Between rounds there is no report: picks read the latest whole solution and its report.
-  if (scene.report) shown.report = scene.report;
-  upload();
+  const report = (scene) => scene.report || shown.report;
+  if (sameMesh) {
+    Object.assign(shown, { scene, version: scene.version, report: report(scene) });
+  } else {
+    let meshBytes, lightmapBytes, linkBytes;
+    [scene, meshBytes, lightmapBytes, linkBytes] = await Promise.all([
+      fetchOk("/api/scene").then((r) => r.json()),
+      fetchOk("/api/mesh").then((r) => r.arrayBuffer()),
+      fetchOk("/api/lightmaps").then((r) => r.arrayBuffer()),
+      wantLinks ? fetchOk("/api/links").then((r) => r.arrayBuffer()) : null,
+    ]);
+    const mesh = parseMesh(meshBytes);
+    const lightmaps = parseLightmaps(lightmapBytes, mesh);
+    const links = linkBytes && parseLinks(linkBytes);
+    if (links) offerLevels(links);
+    Object.assign(shown, {
+      scene, mesh, lightmaps, links, version: scene.version, meshVersion: scene.mesh_version, report: report(scene),
+    });
+    // The tone mapping's statistics come from the latest whole solution (the flat ones
+    // between rounds would change the exposure as the solve goes on).
+    if (scene.stage !== "round" || shown.luminance.max === 0) shown.luminance = luminanceStatistics(mesh);
+    upload();
+  }
   if (first) {
     document.getElementById("title").textContent = `strahl view — ${scene.name}`;
     startFrom(scene.camera);
@@ -508,7 +520,8 @@ function uploadLinks() {
 function describeSolution() {
   const { scene, mesh, links } = shown;
   const linkText = links ? `; ${linkCount / 2} of ${scene.links[1]} links shown` : "";
-  const what = scene.stage === "round" ? "solving, flat between rounds" : `${scene.report.solver}, ${scene.stage} solution`;
+  const stage = scene.stage === "solved" ? "final solution, its report being gathered" : `${scene.stage} solution`;
+  const what = scene.stage === "round" ? "solving, flat between rounds" : `${scene.report.solver}, ${stage}`;
   status.textContent = `${what}: ${mesh.triangles} triangles${linkText}; ${scene.summary}`;
   status.dataset.version = scene.version;
   status.dataset.stage = scene.stage;
@@ -629,7 +642,7 @@ async function watch(onSolution) {
     }
     if (st.error) status.textContent = `error: ${st.error}`;
     if (st.version !== shown.version && st.version > 0) {
-      const scene = await load();
+      const scene = await load(st);
       if (await onSolution(scene, st)) return;
     } else if (st.solving) {
       const share = st.total > 0 ? ` ${st.done}/${st.total}` : "";
@@ -647,7 +660,7 @@ function fillMovable(names) {
 let movedAt = null;
 async function moveBy(name, by) {
   movedAt = performance.now();
-  for (const key of ["first", "round", "preview", "final"]) delete timing.dataset[key];
+  for (const key of ["first", "round", "preview", "solved", "final"]) delete timing.dataset[key];
   timing.textContent = `moving ${name}…`;
   await fetchOk(`/api/move?name=${encodeURIComponent(name)}&by=${by.join(",")}`, { method: "POST" });
 }
@@ -849,7 +862,11 @@ async function main() {
       const at = (key) => timing.dataset[key] ?? "–";
       const links = st.links_kept + st.links_computed;
       const kept = links > 0 ? `; ${st.links_kept} of ${links} patch links kept from the solve before` : "";
-      timing.textContent = `after the move: first drawn in ${at("first")} ms, preview in ${at("preview")} ms, final in ${at("final")} ms (server ${st.preview_seconds?.toFixed(3) ?? "–"} / ${st.final_seconds?.toFixed(3) ?? "–"} s${kept})`;
+      // The final solve is shown before its report is gathered when it has that step.
+      const solved = timing.dataset.solved ? `, final solve in ${at("solved")} ms` : "";
+      const server = [st.preview_seconds, st.solved_seconds, st.final_seconds]
+        .filter((t, k) => k !== 1 || t != null).map((t) => t?.toFixed(3) ?? "–").join(" / ");
+      timing.textContent = `after the move: first drawn in ${at("first")} ms, preview in ${at("preview")} ms${solved}, final in ${at("final")} ms (server ${server} s${kept})`;
     }
     if (scene.stage !== "final" || st.moves !== scene.moves) return false;
     if (asked && movesWanted === null) {
