@@ -807,6 +807,30 @@ fn relative_rms_difference(a: &[f64], b: &[f64]) -> f64 {
     mean(&squares).sqrt() / mean(b)
 }
 
+/// `scene` rendered by `strahl render --method radiosity` as the page shows it in a headless
+/// window (800 × 600, the scene camera's field of view, linear tone mapping at +1 EV), into
+/// `dir`, read back as linear RGB.
+fn rendered_as_the_page(scene: &std::ffi::OsStr, dir: &std::path::Path) -> strahl::measure::Film {
+    let rendered = dir.join("rendered.png");
+    let status = Command::new(env!("CARGO_BIN_EXE_strahl"))
+        .arg("render")
+        .arg(scene)
+        .args([
+            "--method",
+            "radiosity",
+            "--tonemap",
+            "linear",
+            "--exposure",
+            "1",
+        ])
+        .args(["--width", "800", "--height", "600", "-q", "-o"])
+        .arg(&rendered)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    strahl::image::load(&rendered).unwrap()
+}
+
 #[test]
 fn textured_surfaces_show_their_textures_lit_by_the_solution_through_the_tone_mapping_chosen() {
     let viewer = start(&["cornell-textured"]);
@@ -825,16 +849,7 @@ fn textured_surfaces_show_their_textures_lit_by_the_solution_through_the_tone_ma
     // same camera (the page's window is 800 × 600, its vertical field of view the camera's).
     let textured = shot("tonemap=linear&exposure=1", "textured");
     let flat = shot("tonemap=linear&exposure=1&textures=off", "flat");
-    let rendered = dir.join("rendered.png");
-    let status = Command::new(env!("CARGO_BIN_EXE_strahl"))
-        .args(["render", "cornell-textured", "--method", "radiosity"])
-        .args(["--tonemap", "linear", "--exposure", "1"])
-        .args(["--width", "800", "--height", "600", "-q", "-o"])
-        .arg(&rendered)
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let rendered = strahl::image::load(&rendered).unwrap();
+    let rendered = rendered_as_the_page(std::ffi::OsStr::new("cornell-textured"), &dir);
     // The checkered floor (front left), clear of the panel: the page shows what the
     // render shows, pixel by pixel within the rasterisers' differences; without the
     // lightmaps the checkers' edges are as sharp as the leaves that resolve them.
@@ -896,24 +911,7 @@ fn surfaces_cut_by_an_alpha_texture_show_their_holes_as_a_render_does() {
     let screenshot = format!("--screenshot={}", shot.display());
     headless(&url, &dir.join("profile"), &[&screenshot]);
     let page = strahl::image::load(&shot).unwrap();
-    let rendered = dir.join("rendered.png");
-    let status = Command::new(env!("CARGO_BIN_EXE_strahl"))
-        .arg("render")
-        .arg(&scene)
-        .args([
-            "--method",
-            "radiosity",
-            "--tonemap",
-            "linear",
-            "--exposure",
-            "1",
-        ])
-        .args(["--width", "800", "--height", "600", "-q", "-o"])
-        .arg(&rendered)
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let rendered = strahl::image::load(&rendered).unwrap();
+    let rendered = rendered_as_the_page(scene.as_os_str(), &dir);
     // The grille right of the panel: the floor through its holes, its dark
     // stripes between them, as the render shows them.
     let region = |film: &strahl::measure::Film| luminances(film, 425..560, 150..320);

@@ -628,7 +628,12 @@ mod tests {
             (Some(6), Some(5))
         );
         assert_eq!(info["moves"].as_u64(), Some(1));
-        assert!(info["summary"].as_str().unwrap().contains("final gather at"));
+        assert!(
+            info["summary"]
+                .as_str()
+                .unwrap()
+                .contains("final gather at")
+        );
         assert_eq!(info["report"], serde_json::to_value(&report).unwrap());
         assert_ne!(
             serde_json::to_value(&report).unwrap(),
@@ -641,6 +646,9 @@ mod tests {
         let ray = Ray::new(Vec3::new(0.278, 0.3, 0.28), Vec3::NEG_Y);
         let (a, b) = (last.pick(&ray), shown.pick(&ray));
         assert!(a.hit);
-        assert_eq!(serde_json::to_value(a).unwrap(), serde_json::to_value(b).unwrap());
+        assert_eq!(
+            serde_json::to_value(a).unwrap(),
+            serde_json::to_value(b).unwrap()
+        );
     }
 }
