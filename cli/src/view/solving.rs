@@ -159,11 +159,13 @@ impl Solving {
         self.lock().readable.clone()
     }
 
-    /// The final solution of the scene as it is now (every move solved), if it is there.
+    /// The final solution of the scene as it is now (every move solved), if it is there
+    /// (its report may still be being gathered: the light is the same).
     pub fn final_solution(&self) -> Option<Arc<Snapshot>> {
         let state = self.lock();
         let status = &state.status;
-        let current = status.stage == Some(Stage::Final) && status.solved_moves == status.moves;
+        let last = matches!(status.stage, Some(Stage::Solved | Stage::Final));
+        let current = last && status.solved_moves == status.moves;
         state.readable.clone().filter(|_| current)
     }
 
