@@ -74,3 +74,14 @@ fn accelerators_agree_on_spheres() {
 fn accelerators_agree_on_neon() {
     check_scene("neon");
 }
+
+#[test]
+fn accelerators_agree_on_a_canopy_whose_hierarchy_is_built_on_several_threads() {
+    // 20,000 triangles: the BVH builds the two subtrees of every node over 4,096 references
+    // or more at once, here on three threads.
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(3)
+        .build()
+        .unwrap();
+    pool.install(|| check_scene("canopy:10000"));
+}

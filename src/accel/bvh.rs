@@ -11,6 +11,7 @@
 use super::{AccelStats, Accelerator, PrimHit, PrimitiveSet, keep_closest};
 use crate::geometry::{Aabb, Ray, Ray8, TRIANGLE_LANES, Triangle, Triangle8};
 use glam::{Vec3, Vec4};
+use rayon::prelude::*;
 use wide::{CmpLe, f32x8};
 
 /// Build options of the BVH.
@@ -75,6 +76,9 @@ const ROBUST_FAR: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f3
 
 /// Binary tree depth limit (leaves are forced beyond it); bounds the traversal stack.
 const MAX_BINARY_DEPTH: usize = 64;
+/// References under a node from which its two subtrees are built at once (a few hundred
+/// microseconds of building each).
+const PARALLEL_BUILD: usize = 4096;
 /// Children per wide node.
 const WIDTH: usize = 8;
 /// Traversal stack size: every wide node visited pushes at most `WIDTH − 1` entries more than
@@ -193,11 +197,16 @@ pub struct Bvh {
     max_depth: usize,
 }
 
+/// Builds the binary hierarchy over `refs`, the primitive references from `offset` on in the
+/// whole list, in depth-first order (a node's left child right after it). Subtrees of at
+/// least [`PARALLEL_BUILD`] references are built by builders of their own on the rayon pool
+/// and appended in order: the same nodes, to the last bit, for any thread count.
 struct Builder<'a> {
     options: &'a BvhOptions,
-    bounds: Vec<Aabb>,
-    centroids: Vec<Vec3>,
-    refs: Vec<u32>,
+    bounds: &'a [Aabb],
+    centroids: &'a [Vec3],
+    refs: &'a mut [u32],
+    offset: usize,
     nodes: Vec<BinaryNode>,
     max_depth: usize,
 }
@@ -212,30 +221,36 @@ impl Bvh {
     /// Builds the hierarchy over `prims`.
     pub fn build<P: PrimitiveSet>(prims: &P, options: &BvhOptions) -> Self {
         let n = prims.len();
-        let bounds: Vec<Aabb> = (0..n as u32).map(|i| prims.bounds(i)).collect();
+        let bounds: Vec<Aabb> = (0..n as u32)
+            .into_par_iter()
+            .map(|i| prims.bounds(i))
+            .collect();
         let (finite, unbounded): (Vec<u32>, Vec<u32>) = (0..n as u32).partition(|&i| {
             let b = &bounds[i as usize];
             !b.is_empty() && b.min.is_finite() && b.max.is_finite()
         });
-        let centroids = bounds.iter().map(Aabb::center).collect();
-        let mut builder = Builder {
-            options,
-            bounds,
-            centroids,
-            refs: finite,
-            nodes: Vec::with_capacity(2 * n / options.max_leaf_size.max(1) + 1),
-            max_depth: 0,
-        };
+        let centroids: Vec<Vec3> = bounds.par_iter().map(Aabb::center).collect();
+        let mut refs = finite;
         let mut nodes = Vec::new();
         let mut max_depth = 0;
-        if !builder.refs.is_empty() {
-            builder.build_node(0, builder.refs.len(), 0);
+        if !refs.is_empty() {
+            let count = refs.len();
+            let mut builder = Builder {
+                options,
+                bounds: &bounds,
+                centroids: &centroids,
+                refs: &mut refs,
+                offset: 0,
+                nodes: Vec::with_capacity(2 * n / options.max_leaf_size.max(1) + 1),
+                max_depth: 0,
+            };
+            builder.build_node(0, count, 0);
             collapse(&builder.nodes, 0, 0, &mut nodes, &mut max_depth);
         }
-        let blocks = pack_plain_triangles(prims, &mut nodes, &builder.refs);
+        let blocks = pack_plain_triangles(prims, &mut nodes, &refs);
         Bvh {
             nodes,
-            refs: builder.refs,
+            refs,
             blocks,
             unbounded,
             max_depth,
@@ -481,7 +496,47 @@ impl Builder<'_> {
     }
 
     fn push_leaf(&mut self, node: usize, bounds: Aabb, start: usize, end: usize) {
-        self.nodes[node] = BinaryNode::new(bounds, start as u32, (end - start) as u32);
+        let first = self.offset + start;
+        self.nodes[node] = BinaryNode::new(bounds, first as u32, (end - start) as u32);
+    }
+
+    /// The subtrees over `refs[start..mid]` and `refs[mid..end]` (at `depth`), each by a
+    /// builder of its own, both at once; appends their nodes, left then right, and returns
+    /// the right one's index.
+    fn build_both(&mut self, start: usize, mid: usize, end: usize, depth: usize) -> usize {
+        let (options, bounds, centroids) = (self.options, self.bounds, self.centroids);
+        let (left, right) = self.refs[start..end].split_at_mut(mid - start);
+        let [mut left, mut right] = [(left, start), (right, mid)].map(|(refs, at)| Builder {
+            options,
+            bounds,
+            centroids,
+            refs,
+            offset: self.offset + at,
+            nodes: Vec::new(),
+            max_depth: 0,
+        });
+        rayon::join(
+            || left.build_node(0, mid - start, depth),
+            || right.build_node(0, end - mid, depth),
+        );
+        let [left, right] = [left, right].map(|b| (b.nodes, b.max_depth));
+        self.append(left);
+        self.append(right)
+    }
+
+    /// Appends the `nodes` of a subtree `depth` deep, their children's indices moved to
+    /// where they land; returns where its root landed.
+    fn append(&mut self, (nodes, depth): (Vec<BinaryNode>, usize)) -> usize {
+        let base = self.nodes.len();
+        self.nodes.extend(nodes.iter().map(|n| {
+            if n.count() == 0 {
+                BinaryNode::new(n.bounds(), n.index() + base as u32, 0)
+            } else {
+                *n
+            }
+        }));
+        self.max_depth = self.max_depth.max(depth);
+        base
     }
 
     /// Builds the subtree over `refs[start..end]` and returns its node index.
@@ -511,8 +566,12 @@ impl Builder<'_> {
                 }
             },
         };
-        self.build_node(start, mid, depth + 1);
-        let right = self.build_node(mid, end, depth + 1);
+        let right = if count >= PARALLEL_BUILD {
+            self.build_both(start, mid, end, depth + 1)
+        } else {
+            self.build_node(start, mid, depth + 1);
+            self.build_node(mid, end, depth + 1)
+        };
         self.nodes[node] = BinaryNode::new(bounds, right as u32, 0);
         node
     }
