@@ -4,7 +4,7 @@
 
 use anyhow::{Context, Result};
 use serde::Serialize;
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 use strahl::method::{
     LUMINOUS_EFFICACY, LitMesh, Probe, Ray, RoundSolution, Shading, SolvedRadiosity,
 };
@@ -61,13 +61,20 @@ pub struct Snapshot {
 
 self_cell::self_cell!(
     /// A solution and the probe that reads it along rays (which holds a lookup structure
-    /// over its leaves, built once rather than for every pick).
+    /// over its leaves: built at the first pick, then kept — a solution shown is not always
+    /// read, and on the Cornell box the structure costs the final solution 20–26 ms).
     struct Readings {
         owner: SolvedRadiosity,
-        #[covariant]
-        dependent: Probe,
+        #[not_covariant]
+        dependent: LazyProbe,
     }
 );
+
+/// The probe of a [`Readings`] solution, once a pick asks for it, and how it reads.
+struct LazyProbe<'s> {
+    probe: OnceLock<Probe<'s>>,
+    shading: Shading,
+}
 
 /// What a snapshot says of itself besides the scene.
 struct About<'a> {
@@ -175,8 +182,9 @@ impl Snapshot {
             mesh,
             lightmaps,
             links,
-            readings: Some(Arc::new(Readings::new(solved, |solved| {
-                solved.probe(shading)
+            readings: Some(Arc::new(Readings::new(solved, |_| LazyProbe {
+                probe: OnceLock::new(),
+                shading,
             }))),
             objects,
             moves,
@@ -270,10 +278,13 @@ impl Snapshot {
 
     /// What the ray from `origin` along the unit `direction` meets.
     pub fn pick(&self, ray: &Ray) -> PickInfo {
-        let hit = self
-            .readings
-            .as_ref()
-            .and_then(|readings| readings.borrow_dependent().at(ray));
+        let hit = self.readings.as_ref().and_then(|readings| {
+            readings.with_dependent(|solved, lazy| {
+                lazy.probe
+                    .get_or_init(|| solved.probe(lazy.shading))
+                    .at(ray)
+            })
+        });
         match hit {
             None => PickInfo {
                 hit: false,
