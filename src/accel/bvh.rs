@@ -76,8 +76,9 @@ const ROBUST_FAR: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f3
 
 /// Binary tree depth limit (leaves are forced beyond it); bounds the traversal stack.
 const MAX_BINARY_DEPTH: usize = 64;
-/// References under a node from which its two subtrees are built at once (a few hundred
-/// microseconds of building each).
+/// References under a node from which its two subtrees are built at once (a few
+/// milliseconds of building each: `field`'s 320,002 triangles take about 80 ns a reference
+/// and level on one thread).
 const PARALLEL_BUILD: usize = 4096;
 /// Children per wide node.
 const WIDTH: usize = 8;

@@ -43,7 +43,8 @@ const BATCHES: u64 = 200;
 /// Photons per progress step are at most this many, so that a stop request is answered
 /// within a fraction of a second however many photons the run has.
 const MAX_BATCH: u64 = 1 << 18;
-/// Photons a thread takes at a time (about 0.1 ms of tracing in a sparse canopy).
+/// Photons a thread takes at a time (about 0.06 ms of tracing in `canopy:3000`, 0.24 µs a
+/// photon).
 const PHOTON_RUN: u64 = 256;
 /// Memory budget of the per-worker tallies, bytes.
 const TALLY_BUDGET: usize = 256 << 20;

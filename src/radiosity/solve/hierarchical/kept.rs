@@ -226,9 +226,13 @@ impl KeptLinks {
     ) -> KeptView {
         let now = Basis::of(scene, options, mesh);
         let moved = self.basis.as_ref().and_then(|before| before.moved_to(&now));
-        let links = match moved {
-            Some(_) => std::mem::take(&mut self.links),
-            None => HashMap::new(),
+        // Taken out either way: a solve that fails before `end` leaves none behind to be
+        // taken later for a scene they were not made for.
+        let links = std::mem::take(&mut self.links);
+        let links = if moved.is_some() {
+            links
+        } else {
+            HashMap::new()
         };
         self.basis = Some(now);
         KeptView {
