@@ -157,6 +157,36 @@ fn radiosity_gives_the_plate_the_diffuse_horizontal_irradiance() {
     }
 }
 
+/// A black 1 m² vertical plate facing the sun's azimuth, alone under the CIE sky, takes on its
+/// two sides what a fine quadrature of the sky gives either normal, by radiosity: its light
+/// links' points have one sky direction each, half of them under the horizon (where the sky is
+/// black), and must not count as shadowed (they read 50 % too little before).
+#[test]
+fn radiosity_gives_a_vertical_plate_what_the_sky_sends_either_side() {
+    for (sky, elevation) in cases() {
+        let mut scene = plate_under(sky, elevation).scene.clone();
+        let toward = facing_sun(elevation);
+        let (u, _) = toward.any_orthonormal_pair();
+        scene.objects[0].shape = Shape::Parallelogram {
+            origin: -0.5 * (u + Vec3::Y),
+            edge_u: u,
+            edge_v: Vec3::Y,
+        };
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+        let expected = quadrature(sky, elevation, toward.as_dvec3())
+            + quadrature(sky, elevation, -toward.as_dvec3());
+        let (power, _) = plate_power(&measure(
+            &world,
+            Method::Radiosity(RadiositySettings::default()),
+        ));
+        eprintln!(
+            "vertical plate {sky:?} {elevation}°: {power:.4} W against {expected:.4} ({:+.2} %)",
+            100.0 * (power / expected - 1.0)
+        );
+        assert!((power / expected - 1.0).abs() < 0.01);
+    }
+}
+
 /// The sensors' readings (green) and standard errors by the direct or the path tracer.
 fn sensors(world: &Arc<World>, path_tracing: bool) -> Vec<(f64, f64)> {
     let method = Method::SensorTrace(SensorTraceSettings {

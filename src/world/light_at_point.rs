@@ -137,9 +137,13 @@ const FAR_END_MARGIN: f32 = 1e-5;
 
 /// The cosine-weighted share of the hemisphere over `normal` that reaches the sky, each
 /// direction also weighted by `weight` (≥ 0; 1 for a uniform sky, the radiance for another),
-/// averaged over the weighted `points` (weights summing to 1): `per_axis²` stratified
-/// directions per point, jittered by a hash of the point's place in the list and the stratum
-/// (deterministic); a point whose directions all weigh 0 adds nothing.
+/// over the weighted `points` (weights summing to 1), from `per_axis²` directions per point
+/// (`SkyDirections`: stratified over all the points together, drawn anew for every set of
+/// points; deterministic). The open weight and the whole weight are summed over all points
+/// before they are divided: a point may have a single direction (a patch's 8 × 8 points have
+/// one each), and one whose directions all fall where the weight is 0 (under the horizon of
+/// a CIE sky) tells nothing of the share; counting it as closed read a vertical leaf's sky
+/// light half as large as it is.
 pub fn sky_share(
     world: &World,
     points: &[(DVec3, f64)],
@@ -147,16 +151,13 @@ pub fn sky_share(
     per_axis: u32,
     weight: impl Fn(Vec3) -> f64,
 ) -> f64 {
-    let n = per_axis.max(1);
     let frame = Frame::from_normal(normal.as_vec3());
-    let unit = |h: u64| (h >> 40) as f32 * (1.0 / 16_777_216.0);
-    let mut share = 0.0;
+    let directions = SkyDirections::new(points, per_axis);
+    let (mut open_sum, mut total_sum) = (0.0, 0.0);
     for (k, &(x, w)) in points.iter().enumerate() {
         let (mut open, mut total) = (0.0, 0.0);
-        for s in 0..n * n {
-            let h = hash64((k as u64) << 32 | s as u64);
-            let jitter = Vec2::new(unit(h), unit(hash64(h)));
-            let dir = frame.to_world(cosine_hemisphere(stratified(s, n, jitter)));
+        for s in 0..directions.per_point {
+            let dir = frame.to_world(cosine_hemisphere(directions.sample(k, s)));
             let weight = weight(dir);
             if weight.is_nan() || weight <= 0.0 {
                 continue;
@@ -167,9 +168,88 @@ pub fn sky_share(
                 open += weight;
             }
         }
-        if total > 0.0 {
-            share += w * open / total;
+        open_sum += w * open;
+        total_sum += w * total;
+    }
+    if total_sum > 0.0 {
+        open_sum / total_sum
+    } else {
+        0.0
+    }
+}
+
+/// The sky directions of a set of points, as points of the unit square (to be warped to the
+/// cosine-weighted hemisphere): `per_axis²` for each point. When the count over all points
+/// is a square (a patch's 8 × 8 points with one direction each), the directions are the
+/// jittered strata of one grid of that size dealt out to the points in a scrambled order, so
+/// that the points together cover the hemisphere evenly; else each point's are a stratified
+/// grid of their own. The jitter and the order are drawn from a hash of the first point's
+/// place, so that each set of points (each patch) has directions of its own: with the same
+/// directions everywhere the whole ground of a periodic field took its sky light from the
+/// same 64 directions, 3 % too much (the black field of `tests/field.rs`).
+struct SkyDirections {
+    /// Directions per point.
+    per_point: u32,
+    /// Per axis of the per-point grid.
+    per_axis: u32,
+    /// Per axis of the shared grid; 0 when each point has its own.
+    shared_side: u64,
+    /// A multiplier coprime with the shared grid's cells, dealing them out.
+    step: u64,
+    /// Seed of the jitter and the deal.
+    seed: u64,
+}
+
+impl SkyDirections {
+    fn new(points: &[(DVec3, f64)], per_axis: u32) -> SkyDirections {
+        let per_axis = per_axis.max(1);
+        let per_point = per_axis * per_axis;
+        let count = points.len() as u64 * u64::from(per_point);
+        let side = (count as f64).sqrt().round() as u64;
+        let shared_side = if points.len() > 1 && side * side == count {
+            side
+        } else {
+            0
+        };
+        let seed = points.first().map_or(0, |&(x, _)| {
+            x.to_array()
+                .iter()
+                .fold(0x5851_F42D_4C95_7F2D, |h, c| hash64(h ^ c.to_bits()))
+        });
+        // A deal step near the golden ratio of the cells, coprime with their number.
+        let mut step = ((count as f64 * 0.618_034) as u64).max(1);
+        while count > 1 && gcd(step, count) != 1 {
+            step += 1;
+        }
+        SkyDirections {
+            per_point,
+            per_axis,
+            shared_side,
+            step,
+            seed,
         }
     }
-    share
+
+    /// Direction `s` of point `k`, a point of the unit square.
+    fn sample(&self, k: usize, s: u32) -> Vec2 {
+        let unit = |h: u64| (h >> 40) as f32 * (1.0 / 16_777_216.0);
+        let j = k as u64 * u64::from(self.per_point) + u64::from(s);
+        let h = hash64(self.seed ^ j);
+        let jitter = Vec2::new(unit(h), unit(hash64(h)));
+        if self.shared_side > 0 {
+            let cells = self.shared_side * self.shared_side;
+            let cell = (j * self.step % cells + self.seed % cells) % cells;
+            stratified(cell as u32, self.shared_side as u32, jitter)
+        } else {
+            stratified(s, self.per_axis, jitter)
+        }
+    }
+}
+
+/// The greatest common divisor of `a` and `b`.
+fn gcd(mut a: u64, mut b: u64) -> u64 {
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a
 }
