@@ -102,6 +102,11 @@ pub struct RadiosityArgs {
     /// directional lights and the sky.
     #[arg(long, default_value_t = SystemOptions::default().link_samples, value_parser = clap::value_parser!(u32).range(1..))]
     pub link_samples: u32,
+    /// A periodic scene (a plot repeated in x and z): how far around the plot its copies are
+    /// solved with it, scene units; the plot's surfaces take the light reflected beyond it
+    /// as lost [default: 1.5 × the geometry's height, at most two periods]
+    #[arg(long, value_parser = finite::<f32>)]
+    pub periodic_margin: Option<f32>,
     /// matrix: the iteration scheme.
     #[arg(long, value_parser = choice::<Iteration>(), default_value_t = MatrixSettings::default().iteration)]
     pub iteration: Iteration,
@@ -239,6 +244,7 @@ impl RadiosityArgs {
                 seed,
             },
             link_samples: self.link_samples,
+            periodic_margin: self.periodic_margin,
         };
         settings.matrix.iteration = self.iteration;
         settings.matrix.max_iterations = self.max_iterations;

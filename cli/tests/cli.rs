@@ -135,7 +135,7 @@ fn info_and_bench_report_statistics() {
 }
 
 #[test]
-fn a_periodic_field_is_solved_by_the_light_model_and_refused_by_radiosity() {
+fn a_periodic_field_is_solved_by_the_light_model_and_radiosity_and_not_rendered_by_radiosity() {
     let o = strahl(&["info", "field:100"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
@@ -166,10 +166,32 @@ fn a_periodic_field_is_solved_by_the_light_model_and_refused_by_radiosity() {
         let sigma = object["incident_power_standard_error"][1].as_f64().unwrap();
         assert!(object["absorbed_power"][1].as_f64().unwrap() > 0.0 && sigma.is_finite());
     }
-    let o = strahl(&["solve", "field:100", "--solver", "hierarchical", "-q"]);
+    // Hierarchical radiosity reports the plot's leaves and ground, not the copies around it.
+    let o = strahl(&[
+        "solve",
+        "field:100",
+        "--solver",
+        "hierarchical",
+        "-q",
+        "--report",
+        report.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&report).unwrap()).unwrap();
+    assert_eq!(json["objects"].as_array().unwrap().len(), 101);
+    let image = temp("field.png");
+    let o = strahl(&[
+        "render",
+        "field:100",
+        "--method",
+        "radiosity",
+        "-o",
+        image.to_str().unwrap(),
+    ]);
     assert!(!o.status.success());
     assert!(
-        stderr(&o).contains("does not model a periodic scene"),
+        stderr(&o).contains("does not render a periodic scene"),
         "{}",
         stderr(&o)
     );

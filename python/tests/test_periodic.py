@@ -1,6 +1,6 @@
 """Periodic scenes from arrays: a plot repeated without end in x and z, lit through the
-light model across the plot's sides; refused by the radiosity methods and for bad plots; and
-carried through a pickle (as to a Dask worker)."""
+light model and radiosity across the plot's sides; bad plots refused; and carried through a
+pickle (as to a Dask worker)."""
 
 import pickle
 
@@ -85,9 +85,17 @@ def test_a_ground_at_the_bottom_of_all_geometry_stops_the_sky_from_below():
     assert np.all(np.abs(incident - [1.0, 7.0]) <= 3 * sigma + 1e-9), (incident, sigma)
 
 
-def test_radiosity_refuses_a_periodic_scene():
-    with pytest.raises(Exception, match="periodic"):
-        _field().solve("hierarchical")
+def test_radiosity_solves_a_plot_with_copies_around_it():
+    # The plot's own objects are reported, their light exact to 0.1 % (the leaf's four
+    # quarters catch the sun through the plot's four corners); a margin of copies is a
+    # setting, a negative one refused.
+    for margin in ({}, {"periodic_margin": 0.25}):
+        result = _field().solve("hierarchical", **margin)
+        assert result.names == ["leaf", "ground"]
+        incident = result.incident_w.mean(axis=1)
+        assert np.allclose(incident, [SUN, 3 * SUN], rtol=1e-3), incident
+    with pytest.raises(ValueError, match="periodic-margin"):
+        _field().solve("hierarchical", periodic_margin=-1.0)
 
 
 def test_a_bad_plot_is_refused():

@@ -329,11 +329,17 @@ struct Surfaces {
     /// Per surface, the share of the error asked for that it is measured to (1, or
     /// [`LARGE_SURFACE_ERROR`] for the large surfaces of a solution with near links).
     error_share: Vec<f64>,
+    /// Per surface, whether it is a copy around an unrolled periodic plot.
+    copy: Vec<bool>,
 }
 
 impl Surfaces {
     fn new(system: &RadiositySystem) -> Self {
-        let table = SurfaceTable::new(&system.world().scene, &system.world().geometry);
+        let world = system.world();
+        let table = SurfaceTable::new(&world.scene, &world.geometry);
+        // The copies around an unrolled periodic plot are not reported: not gathered.
+        let own = world.own_objects() as u32;
+        let copy = table.surfaces().iter().map(|s| s.object >= own).collect();
         let of: Vec<usize> = (0..system.len())
             .map(|k| {
                 let patch = system.patch(k);
@@ -354,6 +360,7 @@ impl Surfaces {
             of,
             side_area,
             error_share: vec![1.0; table.len()],
+            copy,
         }
     }
 
@@ -368,7 +375,7 @@ impl Surfaces {
             return;
         }
         let incident = self.power(&solution.irradiance);
-        let total: f64 = incident.iter().map(|p| p.luminance()).sum();
+        let total = self.reported_total(incident.iter().map(|p| p.luminance()));
         for (share, p) in self.error_share.iter_mut().zip(&incident) {
             if p.luminance() >= LARGE_SHARE * total {
                 *share = LARGE_SURFACE_ERROR;
@@ -389,7 +396,7 @@ impl Surfaces {
     /// keep no direct light apart have every surface below the share gathered.
     fn selected(&self, system: &RadiositySystem, solution: &Solution, share: f64) -> Vec<bool> {
         if share >= 1.0 {
-            return vec![true; self.count];
+            return self.copy.iter().map(|&copy| !copy).collect();
         }
         let incident: Vec<f64> = self
             .power(&solution.irradiance)
@@ -397,14 +404,26 @@ impl Surfaces {
             .map(|p| p.luminance())
             .collect();
         let linked = self.power(&system.light_irradiance);
-        let total: f64 = incident.iter().sum();
+        let total = self.reported_total(incident.iter().copied());
         let apart = solution.direct_irradiance.is_some();
         let below = |p: f64| p < share * total || solution.near_links > 0;
         incident
             .iter()
             .zip(linked)
-            .map(|(&p, lit)| below(p) && (!apart || p - lit.luminance() >= INDIRECT_SHARE * p))
+            .zip(&self.copy)
+            .map(|((&p, lit), &copy)| {
+                !copy && below(p) && (!apart || p - lit.luminance() >= INDIRECT_SHARE * p)
+            })
             .collect()
+    }
+
+    /// The sum of `per_surface` over the reported surfaces (not the copies).
+    fn reported_total(&self, per_surface: impl Iterator<Item = f64>) -> f64 {
+        per_surface
+            .zip(&self.copy)
+            .filter(|&(_, &copy)| !copy)
+            .map(|(p, _)| p)
+            .sum()
     }
 
     /// Element `k`'s share of its side of its surface, by area.

@@ -58,15 +58,16 @@ pub enum MethodError {
     /// A scene with wavelength bands: its bands are not split into batches.
     #[error("a scene with wavelength bands is not split into batches yet: solve it in one run")]
     BandsInBatches,
-    /// The radiosity methods do not follow light across the sides of a periodic scene's plot
-    /// (the method named).
+    /// The radiosity images (the method named) do not render a periodic scene's endless
+    /// field; the radiosity solvers solve it.
     #[error(
-        "{0} does not model a periodic scene (a plot repeated in x and z): the light model \
-         (light-trace) and the ray tracers do"
+        "{0} does not render a periodic scene (a plot repeated in x and z): the ray tracers \
+         do, and the radiosity solvers solve it (solve --solver hierarchical)"
     )]
     NotPeriodic(&'static str),
-    /// The ray tracers light a periodic scene by sun and sky only (the method named): they
-    /// sample the plot's own lamps and emitting surfaces, not their copies in every plot.
+    /// The ray tracers and radiosity light a periodic scene by sun and sky only (the method
+    /// named): they light the plot's own lamps and emitting surfaces, not their copies in
+    /// every plot.
     #[error(
         "{0} lights a periodic scene (a plot repeated in x and z) by directional lights and \
          skies only; with lamps or emitting surfaces use the light model (light-trace)"

@@ -28,7 +28,7 @@ const SIZE: [&str; 2] = ["width", "height"];
 
 /// Settings of every radiosity solve: mesh, form factors, visibility, light links and each
 /// solver's iteration and refinement (see `strahl solve --help` for what each does).
-const RADIOSITY: [&str; 22] = [
+const RADIOSITY: [&str; 23] = [
     "mesh-size",
     "segments",
     "linking",
@@ -37,6 +37,7 @@ const RADIOSITY: [&str; 22] = [
     "vis-rays",
     "shaft-culling",
     "link-samples",
+    "periodic-margin",
     "iteration",
     "tolerance",
     "max-iterations",
@@ -210,6 +211,7 @@ fn set_radiosity(s: &mut RadiositySettings, v: Value<'_>) -> Result<(), SettingE
         "vis-rays" => system.visibility.rays = v.vis_rays()?,
         "shaft-culling" => system.visibility.shaft_culling = v.switch()?,
         "link-samples" => system.link_samples = v.count()?,
+        "periodic-margin" => system.periodic_margin = Some(v.real()? as f32),
         "iteration" => s.matrix.iteration = v.choice()?,
         "tolerance" => *s = s.with_tolerance(v.real()?),
         "max-iterations" => s.matrix.max_iterations = v.count()?,

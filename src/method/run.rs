@@ -23,7 +23,7 @@ use crate::trace::{
     StandardRayTracer, SurfaceTraceSettings, render, render_progressive, sensor_readings,
     trace_surfaces,
 };
-use crate::world::World;
+use crate::world::{World, margin_for};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -82,8 +82,8 @@ fn run_with(
 
 /// Whether `method` runs on `world` if its scene is periodic: the light model with any
 /// lights (a plot's lamps light every plot, as their copies do); the ray tracers (images and
-/// sensors) under sun and sky only, since they sample the plot's own lamps and would miss
-/// their copies; the radiosity methods not at all.
+/// sensors) and the radiosity solvers under sun and sky only, since they light by the plot's
+/// own lamps and would miss their copies; the radiosity images not at all.
 pub(super) fn check_periodic(world: &World, method: &Method) -> Result<(), MethodError> {
     if world.field().is_none() {
         return Ok(());
@@ -94,7 +94,8 @@ pub(super) fn check_periodic(world: &World, method: &Method) -> Result<(), Metho
         Method::RayTrace(_)
         | Method::PathTrace(_)
         | Method::SensorTrace(_)
-        | Method::SurfaceTrace(_) => {
+        | Method::SurfaceTrace(_)
+        | Method::Radiosity(_) => {
             let lamps = !world.lights.area.is_empty()
                 || world
                     .lights
@@ -107,9 +108,7 @@ pub(super) fn check_periodic(world: &World, method: &Method) -> Result<(), Metho
                 Ok(())
             }
         }
-        Method::RadiosityImage(_) | Method::FinalGather(_) | Method::Radiosity(_) => {
-            Err(MethodError::NotPeriodic(name))
-        }
+        Method::RadiosityImage(_) | Method::FinalGather(_) => Err(MethodError::NotPeriodic(name)),
     }
 }
 
@@ -197,6 +196,8 @@ fn solve_radiosity_keeping(
     kept: Option<&mut KeptLinks>,
 ) -> Result<SolvedRadiosity, MethodError> {
     settings.check()?;
+    let unrolled = unrolled(world, settings.system.periodic_margin)?;
+    let world = unrolled.as_ref().unwrap_or(world);
     let options = settings.system;
     let (system, solution) = match settings.solver {
         SolverKind::Hierarchical => solve_hierarchical_keeping(
@@ -229,6 +230,19 @@ fn solve_radiosity_keeping(
         }
     };
     Ok(SolvedRadiosity { system, solution })
+}
+
+/// A periodic `world` unrolled for radiosity ([`World::unrolled`]) with a margin of `margin`
+/// scene units, or by default one and a half times its geometry's height, at most two periods
+/// ([`margin_for`]); `None` for a world that is all there is.
+fn unrolled(world: &Arc<World>, margin: Option<f32>) -> Result<Option<Arc<World>>, MethodError> {
+    let Some(field) = world.field() else {
+        return Ok(None);
+    };
+    let margin =
+        margin.unwrap_or_else(|| margin_for(field.top - field.bottom, field.plot.period()));
+    let unrolled = world.unrolled(margin).map_err(SolveError::from)?;
+    Ok(unrolled.map(Arc::new))
 }
 
 /// The image size asked for, refusing a degenerate camera.

@@ -273,6 +273,14 @@ impl RadiositySettings {
                 return Err(SettingError::new(setting, "must be at least 1"));
             }
         }
+        if let Some(margin) = system.periodic_margin
+            && !(margin.is_finite() && margin >= 0.0)
+        {
+            return Err(SettingError::new(
+                "periodic-margin",
+                format!("must be a length of 0 or more (got {margin})"),
+            ));
+        }
         if let MeshSize::MaxEdge(length) = system.mesh.size
             && !(length.is_finite() && length > 0.0)
         {

@@ -147,8 +147,8 @@ pub fn run_suite(
 /// measuring patch to 1 % of its own light, `importance.rs`, `shooting.rs`) and to the
 /// surface tracer (as many points on a small patch as on a wall). The light model reads a
 /// point through a sensor: a 2 × 2 cm patch catches a few of millions of photons; and the
-/// recording is its own. A periodic scene's checks apply to the light model alone,
-/// the one method that follows light across the plot's sides (they read large surfaces).
+/// recording is its own. A periodic scene's checks apply to the light model alone (the
+/// one case, `beer-canopy`, is too large a plot for radiosity in a validation run).
 fn applies(case: &Case, check: &Check, method: MethodKind) -> bool {
     if case.scene.periodic.is_some() {
         return method == MethodKind::LightTrace;

@@ -109,7 +109,11 @@ pub fn sees_light(world: &World, x: DVec3, normal: DVec3, light: &LightKind) -> 
     } else {
         f32::INFINITY
     };
-    !world.occluded(&Ray::new(origin, inc.wi), t_max)
+    // An unrolled periodic world's own surfaces end at its margin; the light comes over the
+    // endless field.
+    !world
+        .plot_world()
+        .occluded(&Ray::new(origin, inc.wi), t_max)
 }
 
 /// True when nothing lies between the points `x` (unit normal `nx`) and `y` (unit normal
@@ -153,6 +157,8 @@ pub fn sky_share(
 ) -> f64 {
     let frame = Frame::from_normal(normal.as_vec3());
     let directions = SkyDirections::new(points, per_axis);
+    // The sky is seen over the endless field of an unrolled periodic world.
+    let world = world.plot_world();
     let (mut open_sum, mut total_sum) = (0.0, 0.0);
     for (k, &(x, w)) in points.iter().enumerate() {
         let (mut open, mut total) = (0.0, 0.0);

@@ -22,6 +22,7 @@ mod ray_bench;
 mod scene_geometry;
 mod sky;
 mod surface_material;
+mod unrolled;
 
 pub use light_at_point::{
     non_surface_irradiance, point_irradiance, sees_light, sees_point, sky_irradiance, sky_share,
@@ -37,6 +38,7 @@ pub use scene_geometry::{
 };
 pub use sky::{CompiledCieSky, Sky};
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
+pub use unrolled::margin_for;
 
 use crate::accel::{AccelKind, AccelStats, Accelerator, PrimHit};
 use crate::color::{Rgb, Rgb64};
@@ -64,6 +66,8 @@ pub struct World {
     build_seconds: f64,
     /// The plot of a periodic scene with its neighbours' geometry reaching into it.
     field: Option<Arc<Field>>,
+    /// The periodic world this one unrolls ([`World::unrolled`]).
+    unrolls: Option<Arc<World>>,
 }
 
 /// Refuses a material of `scene` that scatters more than it receives (scene files check
@@ -104,6 +108,7 @@ impl World {
             kind,
             build_seconds,
             field,
+            unrolls: None,
         })
     }
 
@@ -126,6 +131,8 @@ impl World {
             kind: self.kind,
             build_seconds: 0.0,
             field: self.field.clone(),
+            // An unrolled world's objects are more than its scene's own: refused above.
+            unrolls: None,
         })
     }
 
@@ -217,7 +224,15 @@ impl World {
                 object.shape = Shape::Mesh(std::sync::Arc::new(mesh.into_owned()));
             }
         }
-        World::new(scene, self.kind).map(Some)
+        let mut world = World::new(scene, self.kind)?;
+        world.unrolls = match &self.unrolls {
+            Some(plot) => Some(match plot.meshed(segments, which)? {
+                Some(meshed) => Arc::new(meshed),
+                None => Arc::clone(plot),
+            }),
+            None => None,
+        };
+        Ok(Some(world))
     }
 
     /// This world with the lobes radiosity does not model (Phong, mirror, refraction) dropped
@@ -231,7 +246,15 @@ impl World {
         }
         let mut scene = self.scene.clone();
         scene.keep_diffuse_lobes();
-        World::new(scene, self.kind).map(Some)
+        let mut world = World::new(scene, self.kind)?;
+        world.unrolls = match &self.unrolls {
+            Some(plot) => Some(match plot.diffuse()? {
+                Some(diffuse) => Arc::new(diffuse),
+                None => Arc::clone(plot),
+            }),
+            None => None,
+        };
+        Ok(Some(world))
     }
 
     /// The closest surface hit along `ray` (unbounded), described. In a periodic scene, the

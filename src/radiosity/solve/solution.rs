@@ -7,7 +7,8 @@
 //! `ρ_i`, translucency `τ_i` and the share `c_i` an alpha texture leaves in place (1 without
 //! one), the surface power is: incident `c_i A_i H_i`, absorbed `(c_i − ρ_i − τ_i) A_i H_i`,
 //! emitted `A_i E_i`, reflected (out of either side) `(ρ_i + τ_i) A_i H_i` (`E_i`, `ρ_i` and
-//! `τ_i` already include `c_i`), summed per reported surface. Scene-wide, the point,
+//! `τ_i` already include `c_i`), summed per reported surface (of a periodic scene unrolled
+//! for radiosity, its plot's own; not the copies around it). Scene-wide, the point,
 //! spot and directional lights count with the power they send into the mesh
 //! (`Σ A_i H_light,i`), and the escaped power is what is emitted but not absorbed by any
 //! patch (light leaving an open scene, plus the small imbalance of the discretisation), at
@@ -210,8 +211,12 @@ impl Solution {
     ) -> Measurement {
         let mut power = self.surface_power(system, &gathered.irradiance, &|k| gathered.direct[k]);
         let mut variances = vec![None; power.table().len()];
+        let own = system.world().own_objects() as u32;
         for k in 0..system.len() {
             let patch = system.patch(k);
+            if patch.object >= own {
+                continue;
+            }
             let weight = system.coverage[k] * system.area[k];
             let entry = &mut variances[power.table().entry(patch.object, patch.face)];
             if let Some(variance) = gathered.variance[k] {
@@ -247,11 +252,16 @@ impl Solution {
         irradiance: &[Rgb64],
         direct: &dyn Fn(usize) -> Option<Rgb64>,
     ) -> SurfacePower {
-        let world = system.world();
+        // A periodic scene's plot: its own objects, not the copies around it.
+        let world = system.world().plot_world();
+        let own = world.scene.objects.len() as u32;
         let mut power = SurfacePower::new(SurfaceTable::new(&world.scene, &world.geometry));
         let mut direct_unknown = vec![false; power.table().len()];
         for (k, &h) in irradiance.iter().enumerate() {
             let patch = system.patch(k);
+            if patch.object >= own {
+                continue;
+            }
             let entry = power.table().entry(patch.object, patch.face);
             direct_unknown[entry] |= direct(k).is_none();
             // What arrives on this side and is scattered back out of either side.
@@ -282,7 +292,8 @@ impl Solution {
     /// The statistics of the solve: time per phase, rays, leaf patches and elements (their
     /// sides), form factors, iterations, the root patches lying on others in their plane
     /// lit on the same side, the area they overlap (scene units²) and the light counted
-    /// twice there (W, luminance; [`Solution::light_counted_twice`])
+    /// twice there (W, luminance; [`Solution::light_counted_twice`]), the copies of a
+    /// periodic plot's objects solved around it (where there are any)
     /// and the convergence history (at most [`CONVERGENCE_ROWS`] rows of `[iteration,
     /// value]`, spread evenly in the logarithm of the iteration number).
     fn stats(&self, system: &RadiositySystem) -> Stats {
@@ -305,6 +316,12 @@ impl Solution {
             serde_json::json!(convergence_rows(&self.convergence)),
         );
         stats.insert("source_power", source_power(system));
+        let world = system.world();
+        let copies = world.scene.objects.len() - world.own_objects();
+        if copies > 0 {
+            // Copies of a periodic plot's objects solved around it (`World::unrolled`).
+            stats.insert("periodic_copies", copies);
+        }
         let twice = self.light_counted_twice(system);
         stats.insert("overlapping_patches", twice.patches);
         stats.insert("overlapping_area", twice.area);
@@ -337,6 +354,8 @@ impl Solution {
             ..LitMesh::default()
         };
         let irradiance = self.display_irradiance();
+        // A periodic scene's plot alone, without the copies around it.
+        let own = system.world().own_objects() as u32;
         for side in Side::BOTH {
             let smooth = |per_element: &[Rgb64]| {
                 let values: Vec<Rgb64> = (0..system.leaves.len())
@@ -347,6 +366,9 @@ impl Solution {
             let (corners, arriving) = (smooth(&display), smooth(&irradiance));
             for (k, values) in corners.iter().enumerate() {
                 let patch = system.mesh.patch(system.leaves[k]);
+                if patch.object >= own {
+                    continue;
+                }
                 let n = patch.corners().len();
                 let mut points: Vec<Vec3> = patch.corners().iter().map(|c| c.as_vec3()).collect();
                 let mut values = values[..n].to_vec();

@@ -58,6 +58,11 @@ pub struct SystemOptions {
     /// (what all points of a partly shadowed leaf see is what all of it gets); 8 × 8 brings
     /// every leaf within the light model's noise (1.8 % RMS against its 1.5 %).
     pub link_samples: u32,
+    /// How far around the plot of a periodic scene its copies are solved with it, scene
+    /// units (`World::unrolled`); `None` for one and a half times the geometry's height, at
+    /// most two periods (`crate::world::margin_for`). Ignored for a scene that is not
+    /// periodic.
+    pub periodic_margin: Option<f32>,
 }
 
 impl Default for SystemOptions {
@@ -69,6 +74,7 @@ impl Default for SystemOptions {
             form_factor: FormFactorOptions::default(),
             visibility: VisibilityOptions::default(),
             link_samples: 8,
+            periodic_margin: None,
         }
     }
 }

@@ -45,6 +45,9 @@ impl ShadingPoint {
     /// True when nothing blocks the way from this point to infinity along `dir`.
     #[inline]
     pub fn sees_along(&self, world: &World, dir: Vec3) -> bool {
-        !world.occluded(&spawn_ray(self.hit.p, self.ng, dir), f32::INFINITY)
+        // Over the endless field of an unrolled periodic world.
+        !world
+            .plot_world()
+            .occluded(&spawn_ray(self.hit.p, self.ng, dir), f32::INFINITY)
     }
 }
