@@ -298,9 +298,10 @@ fn sensors_under_the_copies_of_a_leaf_read_sun_and_sky_as_the_closed_form_says()
 /// Radiosity solves a periodic scene on the plot and copies of it in a margin around it, its
 /// light links traced through the endless field: the corner-leaf plot's black leaf catches
 /// 10 W of the sun (all four quarters of it, through the plot's four corners) and the ground
-/// the other 30 W; under a uniform sky of radiance 1/π, 1 W and 7 W (3 W from above past the
-/// leaf, 4 W onto its underside from below). The light links measure shadows on grids of
-/// points: each within 0.5 %.
+/// the other 30 W, and sensors on the ground read the sun but under the leaf's copies; under a
+/// uniform sky of radiance 1/π, 1 W and 7 W (3 W from above past the leaf, 4 W onto its
+/// underside from below). The light links measure shadows on grids of points: each within
+/// 0.5 %.
 #[test]
 fn radiosity_shades_a_plot_through_its_corner_as_the_closed_form_says() {
     for (light, leaf, ground) in [
@@ -314,13 +315,38 @@ fn radiosity_shades_a_plot_through_its_corner_as_the_closed_form_says() {
         ),
     ] {
         let mut scene = corner_leaf();
+        let sun = matches!(light, LightKind::Directional { .. });
         scene.lights = vec![Light {
             name: None,
             kind: light,
         }];
+        // Under the sun, sensors on the ground read 10 W·m⁻² but under a copy of the leaf.
+        let sensors = [
+            (1.0, 1.0, 10.0),
+            (1.0, 0.25, 10.0),
+            (0.25, 0.25, 0.0),
+            (1.75, 0.25, 0.0),
+        ];
+        if sun {
+            for &(x, z, _) in &sensors {
+                scene.sensors.push(Sensor {
+                    name: format!("({x}, {z})"),
+                    position: Vec3::new(x, 0.0, z),
+                    normal: Vec3::Y,
+                });
+            }
+        }
         let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
         let radiosity = Method::Radiosity(RadiositySettings::default());
         let outcome = run(&world, &radiosity, &NoProgress, &Cancel::new()).unwrap();
+        assert_eq!(outcome.sensors().len(), if sun { sensors.len() } else { 0 });
+        for (reading, &(x, z, expected)) in outcome.sensors().iter().zip(&sensors) {
+            let got = reading.irradiance().g;
+            assert!(
+                (got - expected).abs() < 1e-9,
+                "({x}, {z}): {got} vs {expected}"
+            );
+        }
         let measurement = outcome.measurement.as_ref().unwrap();
         let report = Report::new("corner", measurement);
         // The plot's own objects only, not the copies around it.
