@@ -18,7 +18,8 @@ use std::sync::Arc;
 /// height `height` (its vertical extent) on a plot of periods `period`: one and a half times
 /// the height, at most two periods. Measured on `field:2000` (a 2.2 m plot of a canopy 3 m
 /// high at leaf area index 1, whose horizontal mean free path is 6 m) against the light
-/// model: the leaves' incident power −3.9 % with a margin of 1 m, −0.8 % with 4.5 m.
+/// model: the leaves' incident power −9.4 % with the plot alone, −4.0 % with a margin of 1 m,
+/// −1.2 % with this one's 4.5 m (docs/VALIDATION.md, *Radiosity on a periodic plot*).
 pub fn margin_for(height: f32, period: glam::Vec2) -> f32 {
     (1.5 * height).min(2.0 * period.x.max(period.y)).max(0.0)
 }
@@ -107,7 +108,8 @@ mod tests {
     use crate::color::Rgb;
     use crate::scene::{Material, Object, Periodic, Shape};
 
-    /// A plot 2 × 2 with a unit quad (y = 0) in its corner at x, z ∈ [0.5, 1.0].
+    /// A periodic plot 2 × 2 (x, z ∈ [−1, 1]) with a 0.5 × 0.5 quad at y = 0 in its corner,
+    /// x, z ∈ [0.5, 1].
     fn plot_world() -> Arc<World> {
         let mut scene = Scene::empty("plot");
         let m = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
