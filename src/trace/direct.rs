@@ -45,7 +45,7 @@ pub fn seen_directly(
     sampler: &mut Sampler,
 ) -> (Rgb, Option<ShadingPoint>) {
     let Some(hit) = world.intersect(ray) else {
-        let sky = world.lights.sky.as_ref().filter(|_| world.escapes(ray));
+        let sky = world.lights.sky.as_ref();
         return (sky.map_or(Rgb::BLACK, |sky| sky.radiance(ray.dir)), None);
     };
     seen_at(world, hit, ray.dir, light_samples, shadows, sampler)

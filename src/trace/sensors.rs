@@ -162,7 +162,6 @@ pub fn irradiance_sample(
                 .lights
                 .sky
                 .as_ref()
-                .filter(|_| world.escapes(&ray))
                 .map_or(Rgb64::BLACK, |sky| sky.radiance(dir).to_f64() * PI);
             Rgb64::BLACK
         }

@@ -259,14 +259,21 @@ impl World {
 
     /// The closest surface hit along `ray` (unbounded), described. In a periodic scene, the
     /// closest hit in the endless field: the ray starts from its origin moved into the plot
-    /// and wraps from side to side ([`Field`]); the hit point lies in the plot.
+    /// and wraps from side to side ([`Field`]); the hit point lies in the plot. In a world
+    /// unrolled from one ([`World::unrolled`]), a ray that leaves the margin meets the field
+    /// beyond it as the plot's own surfaces ([`World::beyond_margin`]).
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         if let Some(field) = &self.field {
             return self.intersect_field(field, ray);
         }
-        self.closest_hit(ray, f32::INFINITY)
-            .map(|h| self.geometry.describe(&h, ray))
+        let hit = self
+            .closest_hit(ray, f32::INFINITY)
+            .map(|h| self.geometry.describe(&h, ray));
+        match &self.unrolls {
+            Some(plot) if hit.is_none() => self.beyond_margin(plot, ray),
+            _ => hit,
+        }
     }
 
     /// The plot of a periodic scene as ray queries see it; `None` for a scene that is all

@@ -5,9 +5,11 @@
 //! the sky still cross the endless field (they are traced in the periodic world the unrolled
 //! one keeps, [`World::plot_world`]), so every copy receives the direct light its original
 //! does, and only what the margin's outer surfaces reflect back lacks what lies beyond them.
+//! A ray traced from a surface (a gather ray, a sensor's) that leaves the margin meets the
+//! field beyond it as the plot's own surfaces, whose light the solution holds.
 
 use super::World;
-use super::scene_geometry::GeometryError;
+use super::scene_geometry::{GeometryError, SurfaceHit};
 use crate::accel::PrimitiveSet;
 use crate::geometry::{Aabb, Ray, Transform};
 use crate::scene::Scene;
@@ -85,13 +87,21 @@ impl World {
         self.unrolls.as_deref().unwrap_or(self)
     }
 
-    /// Whether `ray`, which met none of this world's surfaces, leaves the scene for the
-    /// sky: always, unless this world is unrolled and the ray meets the endless field
-    /// beyond its margin (whose light the unrolled world does not hold).
-    pub fn escapes(&self, ray: &Ray) -> bool {
-        self.unrolls
-            .as_ref()
-            .is_none_or(|plot| !plot.occluded(ray, f32::INFINITY))
+    /// Where `ray`, which met none of this unrolled world's surfaces, meets the endless field
+    /// of `plot` beyond the margin: that surface as this world holds it in the plot (the hit
+    /// in the periodic world lies in the plot; the last stretch of the ray is traced again
+    /// here, from a ten-thousandth of a period before it), at the ray's whole length. `None`
+    /// when the ray leaves the field for the sky. So what the field beyond the margin
+    /// reflects is read off the plot's own patches.
+    pub(super) fn beyond_margin(&self, plot: &World, ray: &Ray) -> Option<SurfaceHit> {
+        let far = plot.intersect(ray)?;
+        let period = plot.field().map_or(1.0, |f| f.plot.period().max_element());
+        let back = 1e-4 * period;
+        let last = Ray::new(far.p - ray.dir * back, ray.dir);
+        let hit = self.closest_hit(&last, 2.0 * back)?;
+        let mut surface = self.geometry.describe(&hit, &last);
+        surface.t = far.t;
+        Some(surface)
     }
 
     /// How many of this world's objects are the scene's own, in order (the rest copies of
@@ -147,10 +157,23 @@ mod tests {
         // The copy at x, z ∈ [−1.5, −1] is there to rays from below…
         let up = Ray::new(Vec3::new(-1.25, -1.0, -1.25), Vec3::Y);
         assert!(unrolled.occluded(&up, 10.0));
-        // …and where the margin ends the plot world still blocks a ray that runs on.
+        // …and where the margin ends the plot world still blocks a ray that runs on, which
+        // meets the quad as the plot holds it, at the ray's whole length.
         let far = Ray::new(Vec3::new(-5.25, -1.0, -5.25), Vec3::Y);
         assert!(!unrolled.occluded(&far, 10.0));
         assert!(unrolled.plot_world().occluded(&far, 10.0));
+        let hit = unrolled
+            .intersect(&far)
+            .expect("the field beyond the margin");
+        assert_eq!(hit.object, 0);
+        assert!(
+            (hit.p - Vec3::new(0.75, 0.0, 0.75)).length() < 1e-4,
+            "{:?}",
+            hit.p
+        );
+        assert!((hit.t - 1.0).abs() < 1e-4, "{}", hit.t);
+        let sky = Ray::new(Vec3::new(-5.0, -1.0, -5.0), Vec3::Y);
+        assert!(unrolled.intersect(&sky).is_none());
         assert!(world.unrolled(0.6).unwrap().is_some());
         let plain = Arc::new(World::new(Scene::empty("none"), AccelKind::Bvh).unwrap());
         assert!(plain.unrolled(1.0).unwrap().is_none());
