@@ -261,7 +261,7 @@ impl World {
     /// closest hit in the endless field: the ray starts from its origin moved into the plot
     /// and wraps from side to side ([`Field`]); the hit point lies in the plot. In a world
     /// unrolled from one ([`World::unrolled`]), a ray that leaves the margin meets the field
-    /// beyond it as the plot's own surfaces ([`World::beyond_margin`]).
+    /// beyond it as the plot's own surfaces.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceHit> {
         if let Some(field) = &self.field {
