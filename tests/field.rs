@@ -26,7 +26,7 @@ use strahl::method::{
 use strahl::progress::{Cancel, NoProgress};
 use strahl::report::Report;
 use strahl::scene::builtin::field::{FieldSpec, field};
-use strahl::scene::{CieSkyType, Light, LightKind, Material, Sensor};
+use strahl::scene::{CieSkyType, Light, LightKind, Material, Sensor, Shape};
 use strahl::validate::closed_forms::parallel_rectangle;
 use strahl::world::{LightSet, World};
 
@@ -367,6 +367,37 @@ fn radiosity_shades_a_plot_through_its_corner_as_the_closed_form_says() {
             "{totals:?}"
         );
     }
+}
+
+/// A curved shape over the plot's corner: a black sphere of radius 0.5 centred over the corner
+/// under the vertical sun, solved by radiosity on its facets. The light the plot takes in (40 W)
+/// lands on the sphere's four quarters or on the ground, the shadow of each facet missing from
+/// the ground what the facet catches (within 0.1 %), and the sphere catches the sun on its
+/// disc, π·0.5²·10 W, less what its facets' outline lacks (within 2 %).
+#[test]
+fn radiosity_shades_a_plot_by_a_sphere_over_its_corner_as_its_facets_do() {
+    let mut scene = corner_leaf();
+    scene.objects[0].shape = Shape::Sphere {
+        center: Vec3::new(0.0, 1.0, 0.0),
+        radius: 0.5,
+    };
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let radiosity = Method::Radiosity(RadiositySettings::default());
+    let outcome = run(&world, &radiosity, &NoProgress, &Cancel::new()).unwrap();
+    let report = Report::new("corner", outcome.measurement.as_ref().unwrap());
+    let get = |name: &str| {
+        report
+            .objects
+            .iter()
+            .find(|o| o.name == name)
+            .unwrap()
+            .incident_power
+            .g
+    };
+    let (sphere, ground) = (get("leaf"), get("ground"));
+    assert!((sphere + ground - 40.0).abs() < 0.04, "{sphere} + {ground}");
+    let disc = std::f64::consts::PI * 0.25 * 10.0;
+    assert!((sphere / disc - 1.0).abs() < 0.02, "{sphere} vs {disc}");
 }
 
 #[test]

@@ -16,6 +16,10 @@ use crate::scene::Scene;
 use glam::Vec3;
 use std::sync::Arc;
 
+/// Plots the margin's outer rectangle may cover at most (ten periods beyond each side of a
+/// square plot; the default margin covers at most 25 on a square plot).
+const MAX_PLOTS: f32 = 441.0;
+
 /// The width of the margin of copies around a periodic plot, scene units, for geometry of
 /// height `height` (its vertical extent) on a plot of periods `period`: one and a half times
 /// the height, at most two periods. Measured on `field:2000` (a 2.2 m plot of a canopy 3 m
@@ -43,6 +47,18 @@ impl World {
             let object = self.geometry.owner(prim).0 as usize;
             bounds[object] =
                 bounds[object].union(PrimitiveSet::bounds(self.geometry.as_ref(), prim));
+        }
+        // Every plot the margin's outer rectangle covers holds a copy of the scene: a margin
+        // of many periods would copy it without bound.
+        let plots = (1.0 + 2.0 * margin / period.x) * (1.0 + 2.0 * margin / period.y);
+        if plots.is_nan() || plots > MAX_PLOTS {
+            return Err(GeometryError::Degenerate {
+                object: "the periodic plot".into(),
+                reason: format!(
+                    "a margin of {margin} covers {plots:.0} plots around it; at most \
+                     {MAX_PLOTS} (give a smaller --periodic-margin)"
+                ),
+            });
         }
         let (lo, hi) = (
             [plot.x[0] - margin, plot.z[0] - margin],
@@ -175,6 +191,7 @@ mod tests {
         let sky = Ray::new(Vec3::new(-5.0, -1.0, -5.0), Vec3::Y);
         assert!(unrolled.intersect(&sky).is_none());
         assert!(world.unrolled(0.6).unwrap().is_some());
+        assert!(world.unrolled(25.0).is_err());
         let plain = Arc::new(World::new(Scene::empty("none"), AccelKind::Bvh).unwrap());
         assert!(plain.unrolled(1.0).unwrap().is_none());
         assert_eq!(margin_for(3.0, glam::Vec2::new(4.0, 5.0)), 4.5);
