@@ -9,12 +9,13 @@
 
 use std::path::Path;
 use std::sync::Arc;
+use strahl::measure::{BandMeasurement, BandValues, ChannelErrors, GroupMeasurement, SensorBand};
 use strahl::method::{
     AccelKind, Cancel, LightTraceSettings, Method, NoProgress, RadiositySettings, SolverKind,
     World, run_with_parts,
 };
-use strahl::report::Report;
-use strahl::scene::{BandQuantity, StandardSpectrum, load_str};
+use strahl::report::{BandObjectReport, Report};
+use strahl::scene::{BandGroup, BandQuantity, StandardSpectrum, load_str};
 
 const H: f64 = 6.626_070_15e-34;
 const C: f64 = 299_792_458.0;
@@ -339,40 +340,84 @@ radius = 0.5"#,
 
 /// Two lights of different spectra in one band: its photon flux is carried on its own and
 /// equals the sum of each light's alone (the solve is linear in the lights).
+/// A band's power and photon flux under lights of two and of three spectra are the sums of
+/// each light's alone: two photon classes are carried as each class's power, three as the
+/// power and the photon flux of all (each light's strength converted by its own spectrum).
 #[test]
 fn photons_of_lights_with_different_spectra_add_up() {
-    let lamp = |intensity: f64| {
+    let lamp = |intensity: f64, spectrum: &str| {
         format!(
             r#"
 [[lights]]
 type = "point"
 position = [0.5, 2, 0.5]
 intensity = {intensity}
-spectrum = [[400, 1], [700, 1]]"#
+spectrum = {spectrum}"#
         )
     };
+    let flat = "[[400, 1], [700, 1]]";
+    let warm = "{ blackbody_k = 3000 }";
     let black = "diffuse = 0\none_sided = true";
-    let both = solve(&square(black, &lamp(50.0)), &matrix());
-    let sun_alone = solve(&square(black, &lamp(0.0)), &matrix());
-    let lamp_alone = solve(
-        &square(black, &lamp(50.0)).replace(&format!("irradiance = {SUN}"), "irradiance = 0"),
-        &matrix(),
-    );
-    for ((b, s), l) in both
-        .bands
-        .iter()
-        .zip(&sun_alone.bands)
-        .zip(&lamp_alone.bands)
-    {
-        let (b, s, l) = (&b.objects[0], &s.objects[0], &l.objects[0]);
-        let sum = s.incident_photons_umol_s + l.incident_photons_umol_s;
-        assert!((b.incident_photons_umol_s / sum - 1.0).abs() < 1e-6);
-        assert!((b.incident_power / (s.incident_power + l.incident_power) - 1.0).abs() < 1e-6);
+    let no_sun = |text: String| text.replace(&format!("irradiance = {SUN}"), "irradiance = 0");
+    // Without the warm lamp, and with it.
+    for three in [false, true] {
+        let warm_lamp = if three { 30.0 } else { 0.0 };
+        let scene = |sun: bool, flat_lamp: f64, warm_lamp: f64| {
+            let mut lamps = lamp(flat_lamp, flat);
+            if three {
+                lamps += &lamp(warm_lamp, warm);
+            }
+            let text = square(black, &lamps);
+            if sun { text } else { no_sun(text) }
+        };
+        let quantities: Vec<BandQuantity> =
+            load_str(&scene(true, 50.0, warm_lamp), "b.toml", Path::new("."))
+                .unwrap()
+                .band_groups()
+                .unwrap()
+                .iter()
+                .flat_map(|g| {
+                    g.channels
+                        .iter()
+                        .filter(|c| c.band == 0)
+                        .map(|c| c.quantity)
+                })
+                .collect();
+        let classes = if three {
+            vec![BandQuantity::Power, BandQuantity::Photons]
+        } else {
+            vec![BandQuantity::ClassPower(0), BandQuantity::ClassPower(1)]
+        };
+        assert_eq!(quantities, classes);
+        let all = solve(&scene(true, 50.0, warm_lamp), &matrix());
+        let alone = [
+            solve(&scene(true, 0.0, 0.0), &matrix()),
+            solve(&scene(false, 50.0, 0.0), &matrix()),
+            solve(&scene(false, 0.0, warm_lamp), &matrix()),
+        ];
+        for (b, all) in all.bands.iter().enumerate() {
+            let sum = |f: fn(&BandObjectReport) -> f64| -> f64 {
+                alone.iter().map(|r| f(&r.bands[b].objects[0])).sum()
+            };
+            let o = &all.objects[0];
+            let photons = sum(|o| o.incident_photons_umol_s);
+            assert!(
+                (o.incident_photons_umol_s / photons - 1.0).abs() < 1e-6,
+                "{}",
+                all.name
+            );
+            let power = sum(|o| o.incident_power);
+            assert!(
+                (o.incident_power / power - 1.0).abs() < 1e-6,
+                "{}",
+                all.name
+            );
+        }
+        // The flat lamp's spectrum: 550 nm on average in PAR, so 4.5977 µmol per joule.
+        let l = &alone[1].bands[0].objects[0];
+        let factor = l.incident_photons_umol_s / l.incident_power;
+        assert!((factor - 550.0 / 119.626_566).abs() < 1e-5, "{factor}");
     }
-    // The lamp's flat spectrum: 550 nm on average in PAR, so 4.5977 µmol per joule.
-    let l = &lamp_alone.bands[0].objects[0];
-    let factor = l.incident_photons_umol_s / l.incident_power;
-    assert!((factor - 550.0 / 119.626_566).abs() < 1e-5, "{factor}");
 }
 
 /// What a scene with bands may not hold is refused at the file's line and field.
@@ -444,10 +489,12 @@ fn bad_band_scenes_are_refused_with_their_place() {
 }
 
 /// The light model traces the scene and its band groups along the same photons: each band's
-/// figures agree with the light model run on that band group's scene alone (other photons),
-/// surface by surface and at a sensor, within four standard errors of the difference — a
-/// translucent leaf over a grey ground, whose albedos differ by band, so that the paths are
-/// drawn by one group's weights for all.
+/// power and photon flux agree with those read from the light model run on each band group's
+/// scene alone (other photons), surface by surface and at a sensor, within four standard
+/// errors of the difference — a translucent leaf over a grey ground, whose albedos differ by
+/// band, so that the paths are drawn by one group's weights for all. Under a sun and a sky
+/// of different spectra a band is two channels, the sun's power and the sky's, so each
+/// photon carries light for about half the groups.
 #[test]
 fn one_set_of_photon_paths_serves_every_band() {
     let leaf = r#"diffuse_spectrum = [[400, 0.05], [550, 0.15], [700, 0.05], [750, 0.45], [1100, 0.45]]
@@ -480,57 +527,77 @@ normal = [0, 1, 0]
             ..LightTraceSettings::default()
         })
     };
-    let shared = solve(&text, &photons(1));
     let scene = load_str(&text, "bands.toml", Path::new(".")).unwrap();
+    let spectral = scene.spectral.clone().unwrap();
+    let world = Arc::new(World::new(scene.clone(), AccelKind::Bvh).unwrap());
+    let (_, parts) = run_with_parts(&world, &photons(1), &NoProgress, &Cancel::new()).unwrap();
+    let shared = parts.bands.unwrap();
     let groups = scene.band_groups().unwrap();
-    // Two lights of different spectra: every band's photon flux is a channel of its own.
+    // Two photon classes in every band: each class's power a channel, the sun's side by side.
     assert_eq!(groups.len(), 3);
-    for group in groups {
-        let world = Arc::new(World::new(group.scene, AccelKind::Bvh).unwrap());
-        let (outcome, _) =
-            run_with_parts(&world, &photons(2), &NoProgress, &Cancel::new()).unwrap();
-        let alone = outcome.measurement.unwrap();
-        for (c, channel) in group.channels.iter().enumerate() {
-            let band = &shared.bands[channel.band];
-            let photon = channel.quantity == BandQuantity::Photons;
-            for (e, o) in band.objects.iter().enumerate() {
-                let (value, sigma) = if photon {
-                    let area = o.incident_power / o.irradiance.unwrap();
-                    (
-                        o.incident_photons_umol_s,
-                        o.photon_irradiance_standard_error.unwrap() * area,
-                    )
-                } else {
-                    (o.incident_power, o.incident_power_standard_error.unwrap())
-                };
-                let other = alone.power.balance(e).incident[c];
-                let other_sigma = alone.power.standard_error(e).unwrap()[c];
-                let both = (sigma * sigma + other_sigma * other_sigma).sqrt();
-                assert!(
-                    (value - other).abs() < 4.0 * both && both < 0.02 * other,
-                    "{} {:?} {}: {value} vs {other} (σ {both})",
-                    band.name,
-                    channel.quantity,
-                    o.name
+    let lit_by = |g: &BandGroup| {
+        let mut lights: Vec<usize> = g
+            .channels
+            .iter()
+            .flat_map(|c| match c.quantity {
+                BandQuantity::ClassPower(k) => spectral.photon_classes(c.band)[k].lights.clone(),
+                q => panic!("{q:?}"),
+            })
+            .collect();
+        lights.dedup();
+        lights
+    };
+    let lit: Vec<Vec<usize>> = groups.iter().map(lit_by).collect();
+    assert_eq!(lit, [vec![0], vec![0, 1], vec![1]]);
+    let alone: Vec<_> = groups
+        .iter()
+        .map(|group| {
+            let world = Arc::new(World::new(group.scene.clone(), AccelKind::Bvh).unwrap());
+            let (outcome, _) =
+                run_with_parts(&world, &photons(2), &NoProgress, &Cancel::new()).unwrap();
+            outcome.measurement.unwrap()
+        })
+        .collect();
+    let measured: Vec<GroupMeasurement<'_>> = groups
+        .iter()
+        .zip(&alone)
+        .map(|(group, m)| GroupMeasurement {
+            channels: &group.channels,
+            power: Some(&m.power),
+            sensors: &m.sensors,
+        })
+        .collect();
+    let alone = BandMeasurement::new(&spectral, &measured, ChannelErrors::Independent);
+    let agree = |what: &str, (value, sigma): (f64, f64), (other, other_sigma): (f64, f64)| {
+        let both = (sigma * sigma + other_sigma * other_sigma).sqrt();
+        assert!(
+            (value - other).abs() < 4.0 * both && both < 0.03 * other,
+            "{what}: {value} vs {other} (σ {both})"
+        );
+    };
+    for (s, a) in shared.bands.iter().zip(&alone.bands) {
+        let name = &s.band.name;
+        for (quantity, shared, alone) in
+            [("W", &s.power, &a.power), ("µmol", &s.photons, &a.photons)]
+        {
+            for (e, (s, a)) in shared.iter().zip(alone).enumerate() {
+                let figure = |v: &BandValues| (v.incident, v.incident_standard_error.unwrap());
+                agree(
+                    &format!("{name} {quantity} surface {e}"),
+                    figure(s),
+                    figure(a),
                 );
             }
-            let s = &band.sensors[0];
-            let (value, sigma) = if photon {
-                (
-                    s.photon_irradiance_umol_m2_s,
-                    s.photon_standard_error.unwrap(),
-                )
-            } else {
-                (s.irradiance, s.standard_error.unwrap())
-            };
-            let reading = &alone.sensors[0];
-            let other = reading.irradiance()[c];
-            let other_sigma = reading.standard_error.unwrap()[c];
-            let both = (sigma * sigma + other_sigma * other_sigma).sqrt();
-            assert!(
-                (value - other).abs() < 4.0 * both,
-                "sensor {}: {value} vs {other} (σ {both})",
-                band.name
+        }
+        for (quantity, shared, alone) in [
+            ("W", &s.sensor_power, &a.sensor_power),
+            ("µmol", &s.sensor_photons, &a.sensor_photons),
+        ] {
+            let figure = |v: &SensorBand| (v.irradiance, v.standard_error.unwrap());
+            agree(
+                &format!("{name} {quantity} sensor"),
+                figure(&shared[0]),
+                figure(&alone[0]),
             );
         }
     }

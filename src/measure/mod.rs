@@ -18,7 +18,9 @@ mod surface_power;
 mod surfaces;
 mod value_image;
 
-pub use bands::{BandFigures, BandMeasurement, BandValues, GroupMeasurement, SensorBand};
+pub use bands::{
+    BandFigures, BandMeasurement, BandValues, ChannelErrors, GroupMeasurement, SensorBand,
+};
 pub use film::Film;
 pub use lit_mesh::{LightmappedSurface, LitMesh};
 pub use measurement::Measurement;

@@ -7,7 +7,7 @@
 use super::run::{check_periodic, light_outcome, run};
 use super::{Method, MethodError, Outcome};
 use crate::light_model::trace_light_groups;
-use crate::measure::{BandMeasurement, GroupMeasurement, StateMeasurement};
+use crate::measure::{BandMeasurement, ChannelErrors, GroupMeasurement, StateMeasurement};
 use crate::progress::{Cancel, ProgressListener};
 use crate::world::World;
 use std::sync::Arc;
@@ -23,8 +23,8 @@ pub struct Parts {
 }
 
 /// Runs `method` on `world` as [`run`] does and, for a method that measures surfaces or
-/// sensors, the scene's parts: its wavelength bands' figures (three bands to a band group,
-/// up to ⌈2n/3⌉ groups where the lights' spectra differ in µmol per joule) and each state of
+/// sensors, the scene's parts: its wavelength bands' figures (three band channels to a band
+/// group, up to ⌈2n/3⌉ groups where the lights' spectra differ in µmol per joule) and each state of
 /// its day alone. The light model traces the scene and every part along the same photon
 /// paths (each path traced once, its tallies kept per part) unless a part has emitting
 /// surfaces; the other methods solve each part after the scene. The parts are empty for
@@ -65,7 +65,13 @@ pub fn run_with_parts(
             relit.push(world.relit(state_scene)?);
         }
     }
-    let (outcome, parts) = run_parts(world, method, relit, progress, cancel)?;
+    // The light model traces every part along the same photon paths unless a part has
+    // emitting surfaces (whose photons' power is not their source's times one number).
+    let together = matches!(method, Method::LightTrace(_))
+        && std::iter::once(world.as_ref())
+            .chain(&relit)
+            .all(|w| w.lights.area.is_empty());
+    let (outcome, parts) = run_parts(world, method, relit, together, progress, cancel)?;
     let Some(parts) = parts else {
         return Ok((outcome, Parts::default()));
     };
@@ -80,7 +86,12 @@ pub fn run_with_parts(
                 sensors: outcome.sensors(),
             })
             .collect();
-        BandMeasurement::new(spectral, &measured)
+        let errors = if together {
+            ChannelErrors::Independent
+        } else {
+            ChannelErrors::Correlated
+        };
+        BandMeasurement::new(spectral, &measured, errors)
     });
     let states = states
         .iter()
@@ -95,7 +106,7 @@ pub fn run_with_parts(
 }
 
 /// `method` on `world` and on each of the worlds `parts` (relit from it): the light model
-/// along one set of photon paths when no world has emitting surfaces, else one run after
+/// along one set of photon paths when `together`, else one run after
 /// another, the scene's outcome then counting the parts' seconds and rays too (its stats
 /// with `seconds_parts`, theirs alone). The parts' outcomes are `None` when a method other than the light model was
 /// stopped before they were all complete.
@@ -103,14 +114,12 @@ fn run_parts(
     world: &Arc<World>,
     method: &Method,
     parts: Vec<World>,
+    together: bool,
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<(Outcome, Option<Vec<Outcome>>), MethodError> {
-    let emitters = std::iter::once(world.as_ref())
-        .chain(&parts)
-        .any(|w| !w.lights.area.is_empty());
     match method {
-        Method::LightTrace(settings) if !emitters => {
+        Method::LightTrace(settings) if together => {
             let start = Instant::now();
             progress.phase("photons");
             let worlds: Vec<&World> = std::iter::once(world.as_ref()).chain(&parts).collect();

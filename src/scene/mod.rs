@@ -42,7 +42,7 @@ pub use open::{OpenError, is_mesh_file, open};
 pub use periodic::Periodic;
 pub use sensor::{MAX_SENSORS, Sensor};
 pub use spectral::{
-    BandChannel, BandGroup, BandQuantity, MaterialSpectra, PhotonFactor, Spectral, SpectralError,
+    BandChannel, BandGroup, BandQuantity, MaterialSpectra, PhotonClass, Spectral, SpectralError,
 };
 pub use tessellate::{polygon_area, polygon_normal};
 pub use texture::{

@@ -7,9 +7,12 @@
 //! reflectance and translucency are their spectra's means over the band, weighted by the
 //! lights' spectra (each scaled to a total of 1), and a light's strength is its share of its
 //! spectrum's total within the band. A band's photon flux (µmol s⁻¹) is its power times the
-//! µmol per joule of the light in it; where the lights' spectra differ in that figure, the
-//! band's photon flux is carried as a channel of its own, each light's strength converted
-//! by its own spectrum, so that the figure is exact for any mix of lights.
+//! µmol per joule of the light in it. Where the lights' spectra differ in that figure the
+//! band is carried by more channels, so that the figure is exact for any mix of lights: for
+//! two photon classes (lights of one µmol per joule each, such as a sun and a sky), each
+//! class's power in a channel of its own, converted by its class's figure; for more, the
+//! power of all and the photon flux of all, each light's strength converted by its own
+//! spectrum.
 
 use super::{ENERGY_TOLERANCE, Material, MaterialId, Scene};
 use crate::color::{Band, MAX_WAVELENGTH_NM, Rgb, Spectrum};
@@ -44,10 +47,21 @@ pub struct MaterialSpectra {
 /// What a channel of a band group carries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BandQuantity {
-    /// Power (W, and W·m⁻² per area).
+    /// Power of every light (W, and W·m⁻² per area).
     Power,
-    /// Photon flux, µmol·s⁻¹ where power is in W.
+    /// Photon flux of every light, µmol·s⁻¹ where power is in W.
     Photons,
+    /// Power (W) of the lights of the band's photon class `k` ([`Spectral::photon_classes`]).
+    ClassPower(usize),
+}
+
+/// The lights that shine in a band with one µmol per joule there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PhotonClass {
+    /// Their µmol per joule in the band.
+    pub micromoles_per_joule: f64,
+    /// Indices into [`Scene::lights`], in order.
+    pub lights: Vec<usize>,
 }
 
 /// One channel of a band group: a band and what of it the channel carries.
@@ -67,16 +81,6 @@ pub struct BandGroup {
     pub channels: Vec<BandChannel>,
     /// The scene with the band values in its channels.
     pub scene: Scene,
-}
-
-/// How a band's photon flux follows from its power.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum PhotonFactor {
-    /// Every light's spectrum holds this many µmol per joule in the band (0 where no light
-    /// shines in it).
-    Uniform(f64),
-    /// The lights differ: the band's photon flux is a channel of its own.
-    PerLight,
 }
 
 /// Why a scene's bands cannot be solved.
@@ -155,41 +159,61 @@ pub enum SpectralError {
 }
 
 impl Spectral {
-    /// How band `band`'s photon flux follows from its power.
-    pub fn photon_factor(&self, band: usize) -> PhotonFactor {
+    /// The photon classes of band `band`: its lights grouped by their µmol per joule in it
+    /// (equal within a relative 10⁻⁹), in the order of their first light; lights without
+    /// light in the band belong to none, so a band no light shines in has none.
+    pub fn photon_classes(&self, band: usize) -> Vec<PhotonClass> {
         let b = &self.bands[band];
-        let factors: Vec<f64> = self
-            .lights
-            .iter()
-            .filter_map(|s| s.micromoles_per_joule(b))
-            .collect();
-        match factors.first() {
-            None => PhotonFactor::Uniform(0.0),
-            Some(&f)
-                if factors
-                    .iter()
-                    .all(|&g| (g - f).abs() <= SAME_PHOTON_FACTOR * f) =>
-            {
-                PhotonFactor::Uniform(f)
+        let mut classes: Vec<PhotonClass> = Vec::new();
+        for (light, spectrum) in self.lights.iter().enumerate() {
+            let Some(f) = spectrum.micromoles_per_joule(b) else {
+                continue;
+            };
+            let same = |c: &&mut PhotonClass| {
+                (c.micromoles_per_joule - f).abs() <= SAME_PHOTON_FACTOR * c.micromoles_per_joule
+            };
+            match classes.iter_mut().find(same) {
+                Some(class) => class.lights.push(light),
+                None => classes.push(PhotonClass {
+                    micromoles_per_joule: f,
+                    lights: vec![light],
+                }),
             }
-            Some(_) => PhotonFactor::PerLight,
         }
+        classes
     }
 
-    /// Every channel the bands need: each band's power, then the photon flux of the bands
-    /// whose lights differ in µmol per joule.
+    /// Every channel the bands need, per band: its power where its lights are of one photon
+    /// class (or none); each class's power where there are two; the power and the photon
+    /// flux of all its lights where there are more. Channels of the same lights are side by
+    /// side, so that three to a group, each group is lit by as few lights as can be (the light
+    /// model's photons carry light only for the groups their light shines in).
     pub fn channels(&self) -> Vec<BandChannel> {
-        let power = (0..self.bands.len()).map(|band| BandChannel {
-            band,
-            quantity: BandQuantity::Power,
-        });
-        let photons = (0..self.bands.len())
-            .filter(|&b| self.photon_factor(b) == PhotonFactor::PerLight)
-            .map(|band| BandChannel {
-                band,
-                quantity: BandQuantity::Photons,
-            });
-        power.chain(photons).collect()
+        let mut channels = Vec::new();
+        for band in 0..self.bands.len() {
+            let channel = |quantity| BandChannel { band, quantity };
+            let classes = self.photon_classes(band);
+            match classes.len() {
+                0 | 1 => channels.push(channel(BandQuantity::Power)),
+                2 => channels.extend((0..2).map(|k| channel(BandQuantity::ClassPower(k)))),
+                _ => channels.extend([BandQuantity::Power, BandQuantity::Photons].map(channel)),
+            }
+        }
+        channels.sort_by_cached_key(|c| self.lights_of(c));
+        channels
+    }
+
+    /// The lights whose light channel `channel` carries, in order.
+    fn lights_of(&self, channel: &BandChannel) -> Vec<usize> {
+        let classes = self.photon_classes(channel.band);
+        match channel.quantity {
+            BandQuantity::ClassPower(k) => classes[k].lights.clone(),
+            BandQuantity::Power | BandQuantity::Photons => {
+                let mut all: Vec<usize> = classes.into_iter().flat_map(|c| c.lights).collect();
+                all.sort_unstable();
+                all
+            }
+        }
     }
 
     fn spectra_of(&self, material: MaterialId) -> Option<&MaterialSpectra> {
@@ -346,11 +370,15 @@ impl Spectral {
         {
             (m.diffuse, m.translucency) = self.diffuse_lobes(original, channels, &weights)?;
         }
-        for (light, spectrum) in out.lights.iter_mut().zip(&self.lights) {
+        let carried: Vec<Vec<usize>> = channels.iter().map(|c| self.lights_of(c)).collect();
+        for (i, (light, spectrum)) in out.lights.iter_mut().zip(&self.lights).enumerate() {
             let strength = light.kind.strength_mut();
             let (grey, total) = (f64::from(strength.r), spectrum.total());
             let mut v = [0.0f32; 3];
             for (c, channel) in channels.iter().enumerate() {
+                if !carried[c].contains(&i) {
+                    continue;
+                }
                 let band = &self.bands[channel.band];
                 let share = if total > 0.0 {
                     spectrum.integral(band) / total
@@ -358,7 +386,7 @@ impl Spectral {
                     0.0
                 };
                 let unit = match channel.quantity {
-                    BandQuantity::Power => 1.0,
+                    BandQuantity::Power | BandQuantity::ClassPower(_) => 1.0,
                     BandQuantity::Photons => spectrum.micromoles_per_joule(band).unwrap_or(0.0),
                 };
                 v[c] = (grey * share * unit) as f32;
