@@ -26,7 +26,7 @@ use strahl::method::{
 use strahl::progress::{Cancel, NoProgress};
 use strahl::report::Report;
 use strahl::scene::builtin::field::{FieldSpec, field};
-use strahl::scene::{CieSkyType, Light, LightKind, Material, Sensor, Shape};
+use strahl::scene::{CieSkyType, Light, LightKind, Material, Periodic, Scene, Sensor, Shape};
 use strahl::validate::closed_forms::parallel_rectangle;
 use strahl::world::{LightSet, World};
 
@@ -295,6 +295,70 @@ fn sensors_under_the_copies_of_a_leaf_read_sun_and_sky_as_the_closed_form_says()
     }
 }
 
+/// Radiosity takes the light the endless field reflects from beyond the plot: a black 5 cm
+/// leaf 1 m over the middle of a 1 m plot of grey ground (ρ = 0.5) under a vertical sun of
+/// 100 W·m⁻² sees the ground, of radiosity 50 W·m⁻² but in the shadows of the leaf and its
+/// copies, under its whole lower hemisphere, three quarters of it beyond the plot. Its
+/// underside receives `50·A·(1 − Σ F)`, the sum over the shadows below it and below its copies
+/// of the form factor from its centre (closed form per shadow); the hierarchical solver at its
+/// default margin (none: all of the field beyond the plot comes by its far-field rays), without
+/// the final gather at the surfaces, within 1 % (measured +0.5 %). Without the far field it
+/// took 24 % of that, and 88 % with the 1.5 m margin of copies the other solvers take.
+#[test]
+fn radiosity_takes_the_light_the_field_reflects_from_beyond_the_plot() {
+    let side = 0.05;
+    let mut scene = Scene::empty("beyond");
+    let black = scene.add_material(Material::diffuse("black", Rgb::BLACK));
+    let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
+    let leaf = Shape::Parallelogram {
+        origin: Vec3::new(0.5 - side / 2.0, 1.0, 0.5 - side / 2.0),
+        edge_u: Vec3::X * side,
+        edge_v: Vec3::Z * side,
+    };
+    scene.add_object("leaf", leaf, black);
+    let ground = Shape::Parallelogram {
+        origin: Vec3::ZERO,
+        edge_u: Vec3::Z,
+        edge_v: Vec3::X,
+    };
+    scene.add_object("ground", ground, grey);
+    scene.periodic = Some(Periodic::new([0.0, 1.0], [0.0, 1.0]).unwrap());
+    scene.lights.push(Light {
+        name: Some("sun".into()),
+        kind: LightKind::Directional {
+            direction: -Vec3::Y,
+            irradiance: Rgb::splat(100.0),
+        },
+    });
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let settings = RadiositySettings::default().without_surface_gather();
+    let outcome = run(
+        &world,
+        &Method::Radiosity(settings),
+        &NoProgress,
+        &Cancel::new(),
+    )
+    .unwrap();
+    let report = Report::new("beyond", outcome.measurement.as_ref().unwrap());
+    let h = f64::from(side) / 2.0;
+    let shadows: f64 = (-100..=100)
+        .flat_map(|i| (-100..=100).map(move |k| (f64::from(i), f64::from(k))))
+        .map(|(i, k)| parallel_rectangle((i - h, i + h), (k - h, k + h), 1.0))
+        .sum();
+    let area = f64::from(side * side);
+    let underside = 50.0 * area * (1.0 - shadows);
+    let got = report.objects[0].incident_power.g - 100.0 * area;
+    assert!(
+        (got / underside - 1.0).abs() < 0.01,
+        "the leaf's underside: {got} W vs {underside} W (shadows {shadows})"
+    );
+    let ground = report.objects[1].incident_power.g;
+    assert!(
+        (ground / (100.0 * (1.0 - area)) - 1.0).abs() < 1e-3,
+        "{ground}"
+    );
+}
+
 /// Radiosity solves a periodic scene on the plot and copies of it in a margin around it, its
 /// light links traced through the endless field: the corner-leaf plot's black leaf catches
 /// 10 W of the sun (all four quarters of it, through the plot's four corners) and the ground
@@ -498,9 +562,10 @@ fn surface_powers(world: &Arc<World>, method: &Method) -> Vec<SurfaceRow> {
 
 /// Hierarchical radiosity at its defaults on a periodic field against the light model
 /// (4·10⁶ photons), the ground and all leaves together: the direct light (its light links,
-/// traced through the endless field) within 0.5 % plus three standard errors (measured +0.09 %
-/// and −0.08 %); all the light within 0.5 % on the ground (−0.13 %) and 2 % on the leaves
-/// (−1.0 %), whose reflected light the margin of copies around the plot holds only in part.
+/// traced through the endless field) within 0.5 % plus three standard errors (measured
+/// +0.06 % and −0.07 %); all the light within 0.5 % (ground +0.08 %, leaves −0.25 %), what the
+/// field beyond the plot reflects brought by the far-field rays (with a margin of copies and
+/// no far field the leaves were −1.0 %).
 #[test]
 fn radiosity_lights_a_periodic_field_as_the_light_model_does() {
     let world = low_field();
@@ -517,7 +582,7 @@ fn radiosity_lights_a_periodic_field_as_the_light_model_does() {
             .map(part)
             .sum::<f64>()
     };
-    for (ground, what, allowed) in [(true, "ground", 5e-3), (false, "leaves", 0.02)] {
+    for (ground, what) in [(true, "ground"), (false, "leaves")] {
         // Independent standard errors, surface by surface.
         let sigma = sum(&reference, ground, |r| r.3 * r.3).sqrt();
         let (got, expected) = (
@@ -525,7 +590,7 @@ fn radiosity_lights_a_periodic_field_as_the_light_model_does() {
             sum(&reference, ground, |r| r.1),
         );
         assert!(
-            (got - expected).abs() < allowed * expected + 3.0 * sigma,
+            (got - expected).abs() < 5e-3 * expected + 3.0 * sigma,
             "{what}: incident {got} vs {expected} ± {sigma}"
         );
         let (got, expected) = (

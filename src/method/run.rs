@@ -196,7 +196,8 @@ fn solve_radiosity_keeping(
     kept: Option<&mut KeptLinks>,
 ) -> Result<SolvedRadiosity, MethodError> {
     settings.check()?;
-    let unrolled = unrolled(world, settings.system.periodic_margin)?;
+    let far_field = settings.solver == SolverKind::Hierarchical;
+    let unrolled = unrolled(world, settings.system.periodic_margin, far_field)?;
     let world = unrolled.as_ref().unwrap_or(world);
     let options = settings.system;
     let (system, solution) = match settings.solver {
@@ -233,14 +234,23 @@ fn solve_radiosity_keeping(
 }
 
 /// A periodic `world` unrolled for radiosity ([`World::unrolled`]) with a margin of `margin`
-/// scene units, or by default one and a half times its geometry's height, at most two periods
-/// ([`margin_for`]); `None` for a world that is all there is.
-fn unrolled(world: &Arc<World>, margin: Option<f32>) -> Result<Option<Arc<World>>, MethodError> {
+/// scene units, or by default none for a solver that takes what lies beyond the margin by
+/// rays (`far_field`: the hierarchical solver), one and a half times the geometry's height,
+/// at most two periods, for the others ([`margin_for`]); `None` for a world that is all
+/// there is.
+fn unrolled(
+    world: &Arc<World>,
+    margin: Option<f32>,
+    far_field: bool,
+) -> Result<Option<Arc<World>>, MethodError> {
     let Some(field) = world.field() else {
         return Ok(None);
     };
-    let margin =
-        margin.unwrap_or_else(|| margin_for(field.top - field.bottom, field.plot.period()));
+    let margin = match margin {
+        Some(margin) => margin,
+        None if far_field => 0.0,
+        None => margin_for(field.top - field.bottom, field.plot.period()),
+    };
     let unrolled = world.unrolled(margin).map_err(SolveError::from)?;
     Ok(unrolled.map(Arc::new))
 }

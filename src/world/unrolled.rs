@@ -4,7 +4,9 @@
 //! the light their neighbours reflect as far as the margin reaches; rays toward the sun and
 //! the sky still cross the endless field (they are traced in the periodic world the unrolled
 //! one keeps, [`World::plot_world`]), so every copy receives the direct light its original
-//! does, and only what the margin's outer surfaces reflect back lacks what lies beyond them.
+//! does. What the field beyond the margin reflects the hierarchical solver brings by rays
+//! (its far field, `radiosity/solve/hierarchical/far_field.rs`); the other solvers go
+//! without it.
 //! A ray traced from a surface (a gather ray, a sensor's) that leaves the margin meets the
 //! field beyond it as the plot's own surfaces, whose light the solution holds.
 
@@ -20,12 +22,14 @@ use std::sync::Arc;
 /// square plot; the default margin covers at most 25 on a square plot).
 const MAX_PLOTS: f32 = 441.0;
 
-/// The width of the margin of copies around a periodic plot, scene units, for geometry of
-/// height `height` (its vertical extent) on a plot of periods `period`: one and a half times
-/// the height, at most two periods. Measured on `field:2000` (a 2.2 m plot of a canopy 3 m
-/// high at leaf area index 1, whose horizontal mean free path is 6 m) against the light
-/// model: the leaves' incident power −9.4 % with the plot alone, −4.0 % with a margin of 1 m,
-/// −1.2 % with this one's 4.5 m (docs/VALIDATION.md, *Radiosity on a periodic plot*).
+/// The width of the margin of copies around a periodic plot for the radiosity solvers that
+/// take the light reflected beyond it as lost (all but the hierarchical solver, whose far
+/// field brings it), scene units, for geometry of height `height` (its vertical extent) on a
+/// plot of periods `period`: one and a half times the height, at most two periods. Measured
+/// on `field:2000` (a 2.2 m plot of a canopy 3 m high at leaf area index 1, whose horizontal
+/// mean free path is 6 m) against the light model, without the far field: the leaves'
+/// incident power −9.4 % with the plot alone, −4.0 % with a margin of 1 m, −1.2 % with this
+/// one's 4.5 m (docs/VALIDATION.md, *Radiosity on a periodic plot*).
 pub fn margin_for(height: f32, period: glam::Vec2) -> f32 {
     (1.5 * height).min(2.0 * period.x.max(period.y)).max(0.0)
 }

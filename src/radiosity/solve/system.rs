@@ -59,9 +59,10 @@ pub struct SystemOptions {
     /// every leaf within the light model's noise (1.8 % RMS against its 1.5 %).
     pub link_samples: u32,
     /// How far around the plot of a periodic scene its copies are solved with it, scene
-    /// units (`World::unrolled`); `None` for one and a half times the geometry's height, at
-    /// most two periods (`crate::world::margin_for`). Ignored for a scene that is not
-    /// periodic.
+    /// units (`World::unrolled`); `None` for the solver's default: none for the hierarchical
+    /// solver, which takes the light of the field beyond the margin by rays, one and a half
+    /// times the geometry's height, at most two periods, for the others
+    /// (`crate::world::margin_for`). Ignored for a scene that is not periodic.
     pub periodic_margin: Option<f32>,
 }
 

@@ -327,8 +327,9 @@ impl NearRays {
 
 /// The `k`-th of the `2·per_side` rays of the root patch at place `place` (the first half
 /// from its front): direction and origin from one 4-D point, the origins spread over the
-/// whole patch (leaving its rim out would favour what its middle sees).
-fn near_ray(patch: &Patch, place: usize, k: u32, per_side: u32) -> Ray {
+/// whole patch (leaving its rim out would favour what its middle sees). The far field's rays
+/// too (`far_field.rs`).
+pub(super) fn near_ray(patch: &Patch, place: usize, k: u32, per_side: u32) -> Ray {
     let side = Side::BOTH[(k / per_side) as usize];
     let normal = side.normal(patch).as_vec3();
     let seed = (place as u32).wrapping_mul(2) + side.index() as u32;

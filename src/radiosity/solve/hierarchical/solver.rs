@@ -2,6 +2,7 @@
 //! refinement until no link is refined (the steps of the module documentation).
 
 use super::clusters::{ClusterLink, ClusterTree, End, Split};
+use super::far_field::FarField;
 use super::fine_gather::FineGather;
 use super::importance::Importance;
 use super::kept::{KeptLinks, KeptView};
@@ -76,6 +77,8 @@ pub(super) struct Solver<'w, 'v> {
     /// Cluster links whose ends are too close for the cluster transport, carried by `near`
     /// (receiver, emitter).
     near_links: Vec<(End, End)>,
+    /// What the endless field beyond the margin of an unrolled periodic world sends.
+    far: Option<FarField>,
     pub(super) linker: Linker<'v>,
     pub(super) limits: Limits,
     /// The chunks' sums of the last gather, kept for the next one.
@@ -112,8 +115,9 @@ pub(super) fn prepare(
 
 /// Solves `world`'s scene by hierarchical radiosity: the mesh (roots, contact splits and any
 /// initial subdivision) and the visibility and light-link settings come from `options`.
-/// `progress` names the phases (`meshing`, `linking lights`, `linking`, `near-field rays`
-/// and `linking clusters` where the near field is cast, `solving`) and counts the pairs of
+/// `progress` names the phases (`meshing`, `linking lights`, `far-field rays` for a periodic
+/// plot, `linking`, `near-field rays` and `linking clusters` where the near field is cast,
+/// `solving`) and counts the pairs of
 /// root side and light linked, the root patches that cast their rays and the rounds, whose
 /// number it estimates as refinement settles; `cancel` stops after the current gather or
 /// refinement pass (or within the linking of lights or the ray cast) and keeps the state
@@ -163,6 +167,7 @@ pub fn solve_hierarchical_keeping(
     solver.link_root_lights(progress, cancel);
     progress.finish();
     solver.nodes.push_pull(&solver.mesh);
+    solver.cast_far_field(progress, cancel);
     solver.link_root_pairs(progress, cancel);
     let mut round = RoundStats {
         seconds_linking: t.elapsed().as_secs_f64(),
@@ -279,6 +284,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             cluster_links: Vec::new(),
             near: None,
             near_links: Vec::new(),
+            far: None,
             linker: Linker {
                 world,
                 visibility,
@@ -340,6 +346,19 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             .iter()
             .flat_map(|&r| Side::BOTH.map(|s| node(r, s)))
             .collect()
+    }
+
+    /// In an unrolled periodic world, casts the rays that bring the root sides what the
+    /// field beyond the margin sends (`far_field.rs`).
+    fn cast_far_field(&mut self, progress: &dyn ProgressListener, cancel: &Cancel) {
+        if self.world.plot_world().field().is_none() {
+            return;
+        }
+        progress.phase("far-field rays");
+        if let Some((far, rays)) = FarField::cast(self.world, &self.mesh, progress, cancel) {
+            self.linker.rays.fetch_add(rays, Ordering::Relaxed);
+            self.far = Some(far);
+        }
     }
 
     /// Links every pair of root sides that face and see each other (seed §6.3); with
@@ -693,6 +712,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         });
         if let (Some(near), Some(tree)) = (&self.near, &self.clusters) {
             near.gather(tree, b, gathered);
+        }
+        if let Some(far) = &self.far {
+            far.gather(b, gathered);
         }
     }
 
