@@ -20,8 +20,8 @@ use strahl::accel::AccelKind;
 use strahl::color::Rgb;
 use strahl::light_model::{LightTraceError, LightTraceSettings};
 use strahl::method::{
-    ImageSize, Method, MethodError, PathTraceSettings, RadiosityImageSettings, RadiositySettings,
-    SensorTraceSettings, run,
+    FinalGatherSettings, ImageSize, Method, MethodError, PathTraceSettings, RadiosityImageSettings,
+    RadiositySettings, SensorTraceSettings, run,
 };
 use strahl::progress::{Cancel, NoProgress};
 use strahl::report::Report;
@@ -464,18 +464,48 @@ fn radiosity_shades_a_plot_by_a_sphere_over_its_corner_as_its_facets_do() {
     assert!((sphere / disc - 1.0).abs() < 0.02, "{sphere} vs {disc}");
 }
 
+/// The radiosity images of a periodic field show the endless field as the path tracer does:
+/// the radiosity solution looked up where camera rays meet the field (the leaf under the point
+/// met in any plot), and the final gather over it; the mean of each image against the path
+/// tracer's (64 paths a pixel): within 2 % and 1 % (measured +0.16 % and +0.17 %).
 #[test]
-fn radiosity_images_lamps_under_the_ray_tracers_and_the_light_models_sensors_are_refused() {
-    let world = Arc::new(World::new(corner_leaf(), AccelKind::Bvh).unwrap());
-    let image = Method::RadiosityImage(RadiosityImageSettings::default());
-    let error = run(&world, &image, &NoProgress, &Cancel::new())
-        .err()
-        .expect("refused");
-    assert!(matches!(error, MethodError::NotPeriodic(_)), "{error}");
+fn radiosity_images_show_the_endless_field_as_the_path_tracer_does() {
+    let world = low_field();
+    let size = ImageSize {
+        width: Some(64),
+        height: Some(48),
+    };
+    let mean = |method: Method| {
+        let outcome = run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+        let film = outcome.image.expect("an image");
+        film.mean().to_f64().luminance()
+    };
+    let path_traced = mean(Method::PathTrace(PathTraceSettings {
+        size,
+        samples_per_pixel: 64,
+        ..PathTraceSettings::default()
+    }));
+    let radiosity = mean(Method::RadiosityImage(RadiosityImageSettings {
+        size,
+        ..RadiosityImageSettings::default()
+    }));
+    let gathered = mean(Method::FinalGather(FinalGatherSettings {
+        size,
+        ..FinalGatherSettings::default()
+    }));
     assert!(
-        error.to_string().contains("solve --solver hierarchical"),
-        "{error}"
+        (radiosity / path_traced - 1.0).abs() < 0.02,
+        "{radiosity} vs {path_traced}"
     );
+    assert!(
+        (gathered / path_traced - 1.0).abs() < 0.01,
+        "{gathered} vs {path_traced}"
+    );
+}
+
+#[test]
+fn lamps_under_the_ray_tracers_and_radiosity_and_the_light_models_sensors_are_refused() {
+    let world = Arc::new(World::new(corner_leaf(), AccelKind::Bvh).unwrap());
     // The path tracer renders a field under sun and sky, but not one lit by a lamp (it would
     // miss the lamp's copies).
     let path_trace = Method::PathTrace(PathTraceSettings {
@@ -525,8 +555,7 @@ fn radiosity_images_lamps_under_the_ray_tracers_and_the_light_models_sensors_are
 }
 
 /// A field low enough for the tests (1,000 leaves 1 m high at leaf area index 1: a plot
-/// 1.58 m wide, a margin of copies 1.5 m wide around it for radiosity), under the built-in
-/// field's sun and CIE sky.
+/// 1.58 m wide), under the built-in field's sun and CIE sky.
 fn low_field() -> Arc<World> {
     let scene = field(&FieldSpec {
         leaves: 1000,

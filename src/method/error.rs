@@ -58,13 +58,6 @@ pub enum MethodError {
     /// A scene with wavelength bands: its bands are not split into batches.
     #[error("a scene with wavelength bands is not split into batches yet: solve it in one run")]
     BandsInBatches,
-    /// The radiosity images (the method named) do not render a periodic scene's endless
-    /// field; the radiosity solvers solve it.
-    #[error(
-        "{0} does not render a periodic scene (a plot repeated in x and z): the ray tracers \
-         do, and the radiosity solvers solve it (solve --solver hierarchical)"
-    )]
-    NotPeriodic(&'static str),
     /// The ray tracers and radiosity light a periodic scene by sun and sky only (the method
     /// named): they light the plot's own lamps and emitting surfaces, not their copies in
     /// every plot.

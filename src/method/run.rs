@@ -82,8 +82,8 @@ fn run_with(
 
 /// Whether `method` runs on `world` if its scene is periodic: the light model with any
 /// lights (a plot's lamps light every plot, as their copies do); the ray tracers (images and
-/// sensors) and the radiosity solvers under sun and sky only, since they light by the plot's
-/// own lamps and would miss their copies; the radiosity images not at all.
+/// sensors), the radiosity solvers and their images under sun and sky only, since they light
+/// by the plot's own lamps and would miss their copies.
 pub(super) fn check_periodic(world: &World, method: &Method) -> Result<(), MethodError> {
     if world.field().is_none() {
         return Ok(());
@@ -95,7 +95,9 @@ pub(super) fn check_periodic(world: &World, method: &Method) -> Result<(), Metho
         | Method::PathTrace(_)
         | Method::SensorTrace(_)
         | Method::SurfaceTrace(_)
-        | Method::Radiosity(_) => {
+        | Method::Radiosity(_)
+        | Method::RadiosityImage(_)
+        | Method::FinalGather(_) => {
             let lamps = !world.lights.area.is_empty()
                 || world
                     .lights
@@ -108,7 +110,6 @@ pub(super) fn check_periodic(world: &World, method: &Method) -> Result<(), Metho
                 Ok(())
             }
         }
-        Method::RadiosityImage(_) | Method::FinalGather(_) => Err(MethodError::NotPeriodic(name)),
     }
 }
 

@@ -3,9 +3,9 @@
 //! what camera rays meet; final gathering reads the light reflected where gather rays land.
 
 use super::interpolate::{CornerValues, vertex_radiosity};
-use super::patch_triangles::PatchTriangles;
+use super::patch_triangles::{PatchTriangles, hit_in_field};
 use super::system::RadiositySystem;
-use crate::accel::{AccelKind, Accelerator};
+use crate::accel::{AccelKind, Accelerator, PrimHit};
 use crate::color::{Rgb, Rgb64};
 use crate::geometry::{Ray, spawn_ray};
 use crate::radiosity::element::Side;
@@ -13,6 +13,7 @@ use crate::radiosity::mesh::Patch;
 use crate::radiosity::surface::{
     TextureAt, emission_of, is_textured, reflectance_of, translucency_of,
 };
+use glam::DVec2;
 use std::f64::consts::PI;
 
 /// How radiosity is shown across a patch (`--shading`).
@@ -143,20 +144,24 @@ impl<'s> RadiosityLookup<'s> {
         self.first_hit(ray, false)
     }
 
-    /// The first leaf `ray` meets, passing through cut-away parts when `pass_cut_outs`.
+    /// The first leaf `ray` meets, passing through cut-away parts when `pass_cut_outs`. On
+    /// a periodic plot (a system solved on its unrolled world) a ray that passes cut-outs
+    /// meets the endless field: the leaf under the point it meets there.
     fn first_hit(&self, ray: &Ray, pass_cut_outs: bool) -> Option<LeafHit<'_>> {
-        let scene = &self.system.world().scene;
+        let world = self.system.world();
+        let scene = &world.scene;
+        let plot = world.plot_world();
+        if pass_cut_outs && plot.field().is_some() {
+            let hit = hit_in_field(plot, &self.triangles, self.accel.as_ref(), ray)?;
+            return Some(self.leaf_hit(ray, hit, 0.0));
+        }
         let mut ray = *ray;
         let mut travelled = 0.0;
-        let (hit, leaf, corner_ids, patch, uv) = loop {
+        let hit = loop {
             let hit = self
                 .accel
                 .closest_hit(&self.triangles, &ray, f32::INFINITY)?;
-            let (leaf, corner_ids) = self.triangles.owners[hit.prim as usize];
-            let patch = self.system.mesh.patch(self.system.leaves[leaf as usize]);
-            let [b1, b2] = hit.local.map(f64::from);
-            let uvs = corner_ids.map(|c| patch.uvs()[c as usize]);
-            let uv = uvs[0] * (1.0 - b1 - b2) + uvs[1] * b1 + uvs[2] * b2;
+            let (_, _, patch, uv) = self.place(&hit);
             let alpha = scene.materials[patch.material as usize]
                 .alpha_texture
                 .filter(|_| pass_cut_outs);
@@ -167,9 +172,27 @@ impl<'s> RadiosityLookup<'s> {
                     travelled += hit.t;
                     ray = spawn_ray(at, triangle.normal_area2().normalize(), ray.dir);
                 }
-                _ => break (hit, leaf as usize, corner_ids, patch, uv),
+                _ => break hit,
             }
         };
+        Some(self.leaf_hit(&ray, hit, travelled))
+    }
+
+    /// Where `hit` lies: the leaf, the corners of its triangle, the leaf's patch and the
+    /// texture coordinates there.
+    fn place(&self, hit: &PrimHit) -> (usize, [u8; 3], &Patch, DVec2) {
+        let (leaf, corner_ids) = self.triangles.owners[hit.prim as usize];
+        let patch = self.system.mesh.patch(self.system.leaves[leaf as usize]);
+        let [b1, b2] = hit.local.map(f64::from);
+        let uvs = corner_ids.map(|c| patch.uvs()[c as usize]);
+        let uv = uvs[0] * (1.0 - b1 - b2) + uvs[1] * b1 + uvs[2] * b2;
+        (leaf as usize, corner_ids, patch, uv)
+    }
+
+    /// What `ray` meets at `hit`, `travelled` scene units along it before.
+    fn leaf_hit(&self, ray: &Ray, hit: PrimHit, travelled: f32) -> LeafHit<'_> {
+        let scene = &self.system.world().scene;
+        let (leaf, corner_ids, patch, uv) = self.place(&hit);
         let side = Side::hit_by(patch, ray.dir.as_dvec3());
         let local = hit.local.map(f64::from);
         let value = match &self.detail {
@@ -194,11 +217,11 @@ impl<'s> RadiosityLookup<'s> {
         let point = self.triangles.triangles[hit.prim as usize]
             .point(hit.local[0], hit.local[1])
             .as_dvec3();
-        Some(LeafHit {
+        LeafHit {
             patch,
             point,
             distance: f64::from(travelled + hit.t),
             radiance: value.map(|x| x / PI).to_f32(),
-        })
+        }
     }
 }

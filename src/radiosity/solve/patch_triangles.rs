@@ -1,10 +1,39 @@
 //! Patches as triangles under an accelerator: what rays meet when they look for patches
 //! rather than the scene's own primitives (the display's and the final gather's leaves, the
-//! near field's root patches).
+//! near and far fields' root patches), and where a ray meets them in the endless field of a
+//! periodic plot ([`hit_in_field`]).
 
-use crate::accel::{PrimHit, PrimitiveSet};
+use crate::accel::{Accelerator, PrimHit, PrimitiveSet};
 use crate::geometry::{Aabb, Ray, Triangle};
 use crate::radiosity::mesh::{PatchId, PatchMesh};
+use crate::world::World;
+
+/// How far before the point a ray meets in the endless field the patches are searched for
+/// it, and how far beyond, as shares of the plot's longer period: the point lies on the
+/// plot's surfaces, the patches on them or (curved shapes) on their facets just inside.
+const SEARCH_BEFORE: f32 = 1e-4;
+const SEARCH_BEYOND: f32 = 1e-2;
+
+/// Where `ray` first meets the endless field of the periodic world `plot` (`None` where it
+/// meets nothing, or the world is not periodic): the triangle of `triangles` (patches of
+/// the plot and of copies of it that reach into it, on its surfaces) at the point met, with
+/// `t` the distance along `ray`. The periodic world finds the point (in the plot, or on a
+/// copy that reaches into it); the patches under it are searched for along the ray's last
+/// stretch.
+pub(crate) fn hit_in_field(
+    plot: &World,
+    triangles: &PatchTriangles,
+    accel: &dyn Accelerator<PatchTriangles>,
+    ray: &Ray,
+) -> Option<PrimHit> {
+    let period = plot.field()?.plot.period().max_element();
+    let far = plot.intersect(ray)?;
+    let before = SEARCH_BEFORE * period;
+    let search = Ray::new(far.p - ray.dir * before, ray.dir);
+    let mut hit = accel.closest_hit(triangles, &search, before + SEARCH_BEYOND * period)?;
+    hit.t += far.t - before;
+    Some(hit)
+}
 
 /// A list of patches as triangles: quads as the two triangles (0,1,2) and (0,2,3).
 pub(crate) struct PatchTriangles {

@@ -26,7 +26,7 @@ use crate::geometry::Ray;
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::PatchMesh;
-use crate::radiosity::solve::patch_triangles::PatchTriangles;
+use crate::radiosity::solve::patch_triangles::{PatchTriangles, hit_in_field};
 use crate::world::World;
 use rayon::prelude::*;
 
@@ -38,12 +38,6 @@ pub const RAYS_PER_SIDE: u32 = 16;
 
 /// Rays a side at most.
 pub const MAX_RAYS_PER_SIDE: u32 = 1024;
-
-/// How far before the point a ray meets in the endless field the root patches are searched
-/// for it, and how far beyond, as shares of the plot's longer period: the point lies on the
-/// plot's surfaces, the patches on them or (curved shapes) on their facets just inside.
-const SEARCH_BEFORE: f32 = 1e-4;
-const SEARCH_BEYOND: f32 = 1e-2;
 
 /// What the root sides receive from beyond the margin.
 pub struct FarField {
@@ -65,8 +59,7 @@ impl FarField {
         cancel: &Cancel,
     ) -> Option<(FarField, u64)> {
         let plot = world.plot_world();
-        let field = plot.field()?;
-        let period = field.plot.period().max_element();
+        plot.field()?;
         let roots = &mesh.roots;
         let sides = 2 * roots.len() as u64;
         let per_side = (RAYS / sides.max(1))
@@ -80,10 +73,7 @@ impl FarField {
             if accel.any_hit(triangles, ray, f32::INFINITY) {
                 return None;
             }
-            let far = plot.intersect(ray)?;
-            let search = Ray::new(far.p - ray.dir * (SEARCH_BEFORE * period), ray.dir);
-            let hit =
-                accel.closest_hit(triangles, &search, (SEARCH_BEFORE + SEARCH_BEYOND) * period)?;
+            let hit = hit_in_field(plot, triangles, accel.as_ref(), ray)?;
             let met = roots[triangles.owners[hit.prim as usize].0 as usize];
             let side = Side::hit_by(mesh.patch(met), ray.dir.as_dvec3());
             Some(node(met, side) as u32)
