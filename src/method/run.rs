@@ -197,7 +197,10 @@ fn solve_radiosity_keeping(
     kept: Option<&mut KeptLinks>,
 ) -> Result<SolvedRadiosity, MethodError> {
     settings.check()?;
-    let far_field = settings.solver == SolverKind::Hierarchical;
+    let far_field = matches!(
+        settings.solver,
+        SolverKind::Hierarchical | SolverKind::HierarchicalShooting
+    );
     let unrolled = unrolled(world, settings.system.periodic_margin, far_field)?;
     let world = unrolled.as_ref().unwrap_or(world);
     let options = settings.system;
@@ -236,7 +239,7 @@ fn solve_radiosity_keeping(
 
 /// A periodic `world` unrolled for radiosity ([`World::unrolled`]) with a margin of `margin`
 /// scene units, or by default none for a solver that takes what lies beyond the margin by
-/// rays (`far_field`: the hierarchical solver), one and a half times the geometry's height,
+/// rays (`far_field`: the hierarchical solvers), one and a half times the geometry's height,
 /// at most two periods, for the others ([`margin_for`]); `None` for a world that is all
 /// there is.
 fn unrolled(

@@ -4,8 +4,8 @@
 //! the light their neighbours reflect as far as the margin reaches; rays toward the sun and
 //! the sky still cross the endless field (they are traced in the periodic world the unrolled
 //! one keeps, [`World::plot_world`]), so every copy receives the direct light its original
-//! does. What the field beyond the margin reflects the hierarchical solver brings by rays
-//! (its far field, `radiosity/solve/hierarchical/far_field.rs`); the other solvers go
+//! does. What the field beyond the margin reflects the hierarchical solvers bring by rays
+//! (their far field, `radiosity/solve/hierarchical/far_field.rs`); the other solvers go
 //! without it.
 //! A ray traced from a surface (a gather ray, a sensor's) that leaves the margin meets the
 //! field beyond it as the plot's own surfaces, whose light the solution holds.
@@ -23,8 +23,8 @@ use std::sync::Arc;
 const MAX_PLOTS: f32 = 441.0;
 
 /// The width of the margin of copies around a periodic plot for the radiosity solvers that
-/// take the light reflected beyond it as lost (all but the hierarchical solver, whose far
-/// field brings it), scene units, for geometry of height `height` (its vertical extent) on a
+/// take the light reflected beyond it as lost (matrix and progressive; the hierarchical
+/// solvers' far field brings it), scene units, for geometry of height `height` (its vertical extent) on a
 /// plot of periods `period`: one and a half times the height, at most two periods. Measured
 /// on `field:2000` (a 2.2 m plot of a canopy 3 m high at leaf area index 1, whose horizontal
 /// mean free path is 6 m) against the light model, without the far field: the leaves'

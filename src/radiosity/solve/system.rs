@@ -60,7 +60,7 @@ pub struct SystemOptions {
     pub link_samples: u32,
     /// How far around the plot of a periodic scene its copies are solved with it, scene
     /// units (`World::unrolled`); `None` for the solver's default: none for the hierarchical
-    /// solver, which takes the light of the field beyond the margin by rays, one and a half
+    /// solvers, which take the light of the field beyond the margin by rays, one and a half
     /// times the geometry's height, at most two periods, for the others
     /// (`crate::world::margin_for`). Ignored for a scene that is not periodic.
     pub periodic_margin: Option<f32>,

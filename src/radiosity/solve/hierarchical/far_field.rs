@@ -15,8 +15,10 @@
 //! meets a surface there the root patch under that point (of the plot or a copy, the same
 //! surface) is kept, with the side met. Each gather brings every root side the mean over its
 //! rays of the radiosity they meet: the irradiance `H = ∫ B cos θ dω/π` from beyond the
-//! margin by cosine sampling, visibility and all. The root's radiosity is the mean over the
-//! root patch: the far field is seen from far, each root patch's light spread thin.
+//! margin by cosine sampling, visibility and all (each shot of hierarchical shooting brings
+//! the root sides whose rays meet the shooter its unshot radiosity times their share). The
+//! root's radiosity is the mean over the root patch: the far field is seen from far, each
+//! root patch's light spread thin.
 
 use super::near_rays::near_ray;
 use super::nodes::node;
@@ -46,6 +48,12 @@ pub struct FarField {
     receivers: Vec<(u32, std::ops::Range<u32>)>,
     /// Per source: the node met and its share of the receiver's rays.
     sources: Vec<(u32, f64)>,
+    /// The same turned round, for shooting: per root side met, in node order, the node and
+    /// the range of what it sends in `sent`.
+    emitters: Vec<(u32, std::ops::Range<u32>)>,
+    /// Per receiver of an emitter: the receiving node and the share of its rays that meet
+    /// the emitter.
+    sent: Vec<(u32, f64)>,
 }
 
 impl FarField {
@@ -107,6 +115,8 @@ impl FarField {
         let mut far = FarField {
             receivers: Vec::new(),
             sources: Vec::new(),
+            emitters: Vec::new(),
+            sent: Vec::new(),
         };
         for (&root, sides) in roots.iter().zip(per_root) {
             for (side, sources) in Side::BOTH.into_iter().zip(sides) {
@@ -119,7 +129,39 @@ impl FarField {
                 far.receivers.push((node(root, side) as u32, range));
             }
         }
+        let mut turned: Vec<(u32, u32, f64)> = far
+            .receivers
+            .iter()
+            .flat_map(|(receiver, range)| {
+                far.sources[range.start as usize..range.end as usize]
+                    .iter()
+                    .map(|&(met, share)| (met, *receiver, share))
+            })
+            .collect();
+        turned.sort_unstable_by_key(|&(met, receiver, _)| (met, receiver));
+        for run in turned.chunk_by(|a, b| a.0 == b.0) {
+            let start = far.sent.len() as u32;
+            far.sent
+                .extend(run.iter().map(|&(_, receiver, share)| (receiver, share)));
+            far.emitters.push((run[0].0, start..far.sent.len() as u32));
+        }
         Some((far, sides * u64::from(per_side)))
+    }
+
+    /// What root side `emitter` sends beyond the margin: each receiving node with the share
+    /// of its rays that meet the emitter (its irradiance per W·m⁻² of the emitter's
+    /// radiosity).
+    pub fn sent_by(&self, emitter: usize) -> &[(u32, f64)] {
+        match self
+            .emitters
+            .binary_search_by_key(&(emitter as u32), |(node, _)| *node)
+        {
+            Ok(k) => {
+                let range = &self.emitters[k].1;
+                &self.sent[range.start as usize..range.end as usize]
+            }
+            Err(_) => &[],
+        }
     }
 
     /// Adds to `gathered` (per node) the irradiance the field beyond the margin sends each

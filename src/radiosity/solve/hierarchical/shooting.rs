@@ -58,7 +58,8 @@ const SHOT_CHUNK: usize = 1 << 14;
 
 /// Solves `world`'s scene by hierarchical shooting: the oracle, error and minimum area come
 /// from `settings`, the tolerance and the most shots from `shooting` (overshooting is not
-/// used). `progress` names the phases (`meshing`, `linking lights`, `linking`, `shooting`)
+/// used). `progress` names the phases (`meshing`, `linking lights`, `far-field rays` for a
+/// periodic plot, `linking`, `shooting`)
 /// and advances on a log scale of the unshot power while shooting; `cancel` stops within
 /// the current shot (which is then dropped, its shooter's light left unshot) and keeps the
 /// state the shots before reached.
@@ -82,6 +83,7 @@ pub fn solve_hierarchical_shooting(
     progress.phase("linking lights");
     solver.link_root_lights(progress, cancel);
     progress.finish();
+    solver.cast_far_field(progress, cancel);
     progress.phase("linking");
     progress.start(0);
     solver.refine(&mut RoundStats::default(), cancel);
@@ -365,16 +367,35 @@ impl Shots {
             for link in kept {
                 let sent = link.emitter_radiosity(&solver.mesh, &self.unshot) * link.coupling;
                 for (n, irradiance) in link.divide(&solver.mesh, sent) {
-                    received.push((n, irradiance));
-                    let patch = solver.mesh.patch(split_node(n).0);
-                    if let Some(measured) = self.measured.get_mut(patch.object as usize) {
-                        *measured += irradiance.luminance() * patch.area;
-                    }
+                    self.receive(solver, (n, irradiance), &mut received);
                 }
             }
             frontier = next;
         }
+        // What the shooter sends the root sides that see it beyond the margin of a periodic
+        // plot (`far_field.rs`), from its mean over the root side.
+        if let Some(far) = &solver.far {
+            let unshot = self.unshot[shooter];
+            for &(receiver, share) in far.sent_by(shooter) {
+                self.receive(solver, (receiver as usize, unshot * share), &mut received);
+            }
+        }
         Some(received)
+    }
+
+    /// Node `n` takes `irradiance` (W·m⁻²) of the shot: noted in `received`, and counted in
+    /// what its object has received.
+    fn receive(
+        &mut self,
+        solver: &Solver,
+        (n, irradiance): (usize, Rgb64),
+        received: &mut Vec<(usize, Rgb64)>,
+    ) {
+        received.push((n, irradiance));
+        let patch = solver.mesh.patch(split_node(n).0);
+        if let Some(measured) = self.measured.get_mut(patch.object as usize) {
+            *measured += irradiance.luminance() * patch.area;
+        }
     }
 }
 

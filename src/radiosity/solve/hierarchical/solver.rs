@@ -78,7 +78,7 @@ pub(super) struct Solver<'w, 'v> {
     /// (receiver, emitter).
     near_links: Vec<(End, End)>,
     /// What the endless field beyond the margin of an unrolled periodic world sends.
-    far: Option<FarField>,
+    pub(super) far: Option<FarField>,
     pub(super) linker: Linker<'v>,
     pub(super) limits: Limits,
     /// The chunks' sums of the last gather, kept for the next one.
@@ -350,7 +350,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
 
     /// In an unrolled periodic world, casts the rays that bring the root sides what the
     /// field beyond the margin sends (`far_field.rs`).
-    fn cast_far_field(&mut self, progress: &dyn ProgressListener, cancel: &Cancel) {
+    pub(super) fn cast_far_field(&mut self, progress: &dyn ProgressListener, cancel: &Cancel) {
         if self.world.plot_world().field().is_none() {
             return;
         }
