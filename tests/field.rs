@@ -300,11 +300,13 @@ fn sensors_under_the_copies_of_a_leaf_read_sun_and_sky_as_the_closed_form_says()
 /// 100 W·m⁻² sees the ground, of radiosity 50 W·m⁻² but in the shadows of the leaf and its
 /// copies, under its whole lower hemisphere, three quarters of it beyond the plot. Its
 /// underside receives `50·A·(1 − Σ F)`, the sum over the shadows below it and below its copies
-/// of the form factor from its centre (closed form per shadow); both hierarchical solvers at
-/// their default margin (none: all of the field beyond the plot comes by their far-field rays),
-/// without the final gather at the surfaces, within 1 % (measured +0.49 % each). Without the
-/// far field they took 24 % of that, and 88 % with the 1.5 m margin of copies the other
-/// solvers take.
+/// of the form factor from its centre (closed form per shadow); every radiosity solver at its
+/// default margin (none: all of the field beyond the plot comes by its far-field rays),
+/// without the final gather at the surfaces, within 1 % (measured +0.49 % by the hierarchical
+/// solvers, −0.15 % by matrix and progressive), the ground its sun less the leaf's shadow
+/// within 0.2 % (the flat solvers' light links resolve the 5 cm shadow on their 8 × 8 points
+/// of a ground patch: −0.14 %). Without the far field the underside took 24 % of its light,
+/// and 88 % with a 1.5 m margin of copies.
 #[test]
 fn radiosity_takes_the_light_the_field_reflects_from_beyond_the_plot() {
     let side = 0.05;
@@ -339,7 +341,12 @@ fn radiosity_takes_the_light_the_field_reflects_from_beyond_the_plot() {
         .sum();
     let area = f64::from(side * side);
     let underside = 50.0 * area * (1.0 - shadows);
-    for solver in [SolverKind::Hierarchical, SolverKind::HierarchicalShooting] {
+    for solver in [
+        SolverKind::Hierarchical,
+        SolverKind::HierarchicalShooting,
+        SolverKind::Matrix,
+        SolverKind::Progressive,
+    ] {
         let settings = RadiositySettings::new(solver).without_surface_gather();
         let method = Method::Radiosity(settings);
         let outcome = run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
@@ -351,7 +358,7 @@ fn radiosity_takes_the_light_the_field_reflects_from_beyond_the_plot() {
         );
         let ground = report.objects[1].incident_power.g;
         assert!(
-            (ground / (100.0 * (1.0 - area)) - 1.0).abs() < 1e-3,
+            (ground / (100.0 * (1.0 - area)) - 1.0).abs() < 2e-3,
             "{solver:?}: {ground}"
         );
     }

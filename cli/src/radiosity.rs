@@ -103,9 +103,8 @@ pub struct RadiosityArgs {
     #[arg(long, default_value_t = SystemOptions::default().link_samples, value_parser = clap::value_parser!(u32).range(1..))]
     pub link_samples: u32,
     /// A periodic scene (a plot repeated in x and z): how far around the plot its copies are
-    /// solved with it, scene units [default: 0 for the hierarchical solvers, which take the
-    /// light the field beyond the margin reflects by rays; for matrix and progressive, which
-    /// take it as lost, 1.5 × the geometry's height, at most two periods]
+    /// solved with it, scene units [default: 0; the light the field beyond the margin reflects
+    /// comes by rays]
     #[arg(long, value_parser = finite::<f32>)]
     pub periodic_margin: Option<f32>,
     /// matrix: the iteration scheme.

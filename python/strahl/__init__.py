@@ -442,9 +442,12 @@ def from_arrays(
     one side enters through the opposite one. Geometry may reach over the plot's sides (at
     most two periods): what lies beyond a side is seen through the opposite one; a ground is
     a quad covering the plot. Powers are then per plot. Only the light model
-    (``light-trace``) takes every light in a periodic scene; the ray tracers take sun and
-    sky only, and the radiosity methods refuse it (ValueError). A plot with a range that is
-    empty (x1 ≤ x0 or z1 ≤ z0) or not finite raises ValueError.
+    (``light-trace``) takes every light in a periodic scene; the ray tracers and the
+    radiosity solvers take sun and sky only (ValueError otherwise). The radiosity solvers
+    solve the plot with the copies of what reaches into it, the light the field beyond it
+    reflects coming by rays; ``periodic_margin=`` (scene units) adds copies in a margin
+    around it. A plot with a range that is empty (x1 ≤ x0 or z1 ≤ z0) or
+    not finite raises ValueError.
 
     ``placements={name: matrices}`` places an object many times: ``matrices`` of shape
     (p, 3, 4) or (p, 4, 4), each an affine map (row-major, ``[R | t]``) from the object's

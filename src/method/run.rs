@@ -23,7 +23,7 @@ use crate::trace::{
     StandardRayTracer, SurfaceTraceSettings, render, render_progressive, sensor_readings,
     trace_surfaces,
 };
-use crate::world::{World, margin_for};
+use crate::world::World;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -197,11 +197,7 @@ fn solve_radiosity_keeping(
     kept: Option<&mut KeptLinks>,
 ) -> Result<SolvedRadiosity, MethodError> {
     settings.check()?;
-    let far_field = matches!(
-        settings.solver,
-        SolverKind::Hierarchical | SolverKind::HierarchicalShooting
-    );
-    let unrolled = unrolled(world, settings.system.periodic_margin, far_field)?;
+    let unrolled = unrolled(world, settings.system.periodic_margin)?;
     let world = unrolled.as_ref().unwrap_or(world);
     let options = settings.system;
     let (system, solution) = match settings.solver {
@@ -238,24 +234,12 @@ fn solve_radiosity_keeping(
 }
 
 /// A periodic `world` unrolled for radiosity ([`World::unrolled`]) with a margin of `margin`
-/// scene units, or by default none for a solver that takes what lies beyond the margin by
-/// rays (`far_field`: the hierarchical solvers), one and a half times the geometry's height,
-/// at most two periods, for the others ([`margin_for`]); `None` for a world that is all
-/// there is.
-fn unrolled(
-    world: &Arc<World>,
-    margin: Option<f32>,
-    far_field: bool,
-) -> Result<Option<Arc<World>>, MethodError> {
-    let Some(field) = world.field() else {
-        return Ok(None);
-    };
-    let margin = match margin {
-        Some(margin) => margin,
-        None if far_field => 0.0,
-        None => margin_for(field.top - field.bottom, field.plot.period()),
-    };
-    let unrolled = world.unrolled(margin).map_err(SolveError::from)?;
+/// scene units, by default none (every radiosity solver takes the light of the field beyond
+/// the margin by rays, its far field); `None` for a world that is all there is.
+fn unrolled(world: &Arc<World>, margin: Option<f32>) -> Result<Option<Arc<World>>, MethodError> {
+    let unrolled = world
+        .unrolled(margin.unwrap_or(0.0))
+        .map_err(SolveError::from)?;
     Ok(unrolled.map(Arc::new))
 }
 

@@ -38,7 +38,6 @@ pub use scene_geometry::{
 };
 pub use sky::{CompiledCieSky, Sky};
 pub use surface_material::{SurfaceMaterial, emitted, emitted_toward};
-pub use unrolled::margin_for;
 
 use crate::accel::{AccelKind, AccelStats, Accelerator, PrimHit};
 use crate::color::{Rgb, Rgb64};

@@ -4,9 +4,8 @@
 //! the light their neighbours reflect as far as the margin reaches; rays toward the sun and
 //! the sky still cross the endless field (they are traced in the periodic world the unrolled
 //! one keeps, [`World::plot_world`]), so every copy receives the direct light its original
-//! does. What the field beyond the margin reflects the hierarchical solvers bring by rays
-//! (their far field, `radiosity/solve/hierarchical/far_field.rs`); the other solvers go
-//! without it.
+//! does. What the field beyond the margin reflects the radiosity solvers bring by rays
+//! (their far field, `radiosity/solve/far_field.rs`), so no margin is needed.
 //! A ray traced from a surface (a gather ray, a sensor's) that leaves the margin meets the
 //! field beyond it as the plot's own surfaces, whose light the solution holds.
 
@@ -19,20 +18,8 @@ use glam::Vec3;
 use std::sync::Arc;
 
 /// Plots the margin's outer rectangle may cover at most (ten periods beyond each side of a
-/// square plot; the default margin covers at most 25 on a square plot).
+/// square plot; the default margin, none, covers one).
 const MAX_PLOTS: f32 = 441.0;
-
-/// The width of the margin of copies around a periodic plot for the radiosity solvers that
-/// take the light reflected beyond it as lost (matrix and progressive; the hierarchical
-/// solvers' far field brings it), scene units, for geometry of height `height` (its vertical extent) on a
-/// plot of periods `period`: one and a half times the height, at most two periods. Measured
-/// on `field:2000` (a 2.2 m plot of a canopy 3 m high at leaf area index 1, whose horizontal
-/// mean free path is 6 m) against the light model, without the far field: the leaves'
-/// incident power −9.4 % with the plot alone, −4.0 % with a margin of 1 m, −1.2 % with this
-/// one's 4.5 m (docs/VALIDATION.md, *Radiosity on a periodic plot*).
-pub fn margin_for(height: f32, period: glam::Vec2) -> f32 {
-    (1.5 * height).min(2.0 * period.x.max(period.y)).max(0.0)
-}
 
 impl World {
     /// This periodic world unrolled with a margin of `margin` scene units around its plot
@@ -198,7 +185,5 @@ mod tests {
         assert!(world.unrolled(25.0).is_err());
         let plain = Arc::new(World::new(Scene::empty("none"), AccelKind::Bvh).unwrap());
         assert!(plain.unrolled(1.0).unwrap().is_none());
-        assert_eq!(margin_for(3.0, glam::Vec2::new(4.0, 5.0)), 4.5);
-        assert_eq!(margin_for(10.0, glam::Vec2::new(4.0, 5.0)), 10.0);
     }
 }

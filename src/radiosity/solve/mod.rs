@@ -6,6 +6,7 @@
 
 mod counted_twice;
 mod display;
+mod far_field;
 pub mod hierarchical;
 mod interpolate;
 mod lightmap;

@@ -1,12 +1,16 @@
 //! Patches as triangles under an accelerator: what rays meet when they look for patches
 //! rather than the scene's own primitives (the display's and the final gather's leaves, the
-//! near and far fields' root patches), and where a ray meets them in the endless field of a
-//! periodic plot ([`hit_in_field`]).
+//! near and far fields' patches), where a ray meets them in the endless field of a periodic
+//! plot ([`hit_in_field`]), and the rays the near and far fields cast from patches
+//! ([`side_ray`]).
 
 use crate::accel::{Accelerator, PrimHit, PrimitiveSet};
-use crate::geometry::{Aabb, Ray, Triangle};
-use crate::radiosity::mesh::{PatchId, PatchMesh};
+use crate::geometry::{Aabb, Frame, Ray, Triangle, spawn_ray};
+use crate::radiosity::element::Side;
+use crate::radiosity::mesh::{Patch, PatchId, PatchMesh};
+use crate::sampling::warp::cosine_hemisphere;
 use crate::world::World;
+use glam::Vec2;
 
 /// How far before the point a ray meets in the endless field the patches are searched for
 /// it, and how far beyond, as shares of the plot's longer period: the point lies on the
@@ -64,6 +68,20 @@ impl PatchTriangles {
         }
         PatchTriangles { triangles, owners }
     }
+}
+
+/// The `k`-th of the `2·per_side` cosine-distributed rays of the patch at place `place` of a
+/// list (the first half from its front): direction and origin from one 4-D point, the
+/// origins spread over the whole patch (leaving its rim out would favour what its middle
+/// sees).
+pub(crate) fn side_ray(patch: &Patch, place: usize, k: u32, per_side: u32) -> Ray {
+    let side = Side::BOTH[(k / per_side) as usize];
+    let normal = side.normal(patch).as_vec3();
+    let seed = (place as u32).wrapping_mul(2) + side.index() as u32;
+    let [ux, uy, us, ut] = sobol_burley::sample_4d(k % per_side, 0, seed);
+    let dir = Frame::from_normal(normal).to_world(cosine_hemisphere(Vec2::new(ux, uy)));
+    let origin = patch.point_at(f64::from(us), f64::from(ut)).as_vec3();
+    spawn_ray(origin, normal, dir)
 }
 
 impl PrimitiveSet for PatchTriangles {

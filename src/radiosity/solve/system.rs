@@ -25,7 +25,9 @@
 //! `k`.
 
 use super::SolveError;
+use super::far_field::FarField;
 use crate::color::Rgb64;
+use crate::progress::{Cancel, NoProgress};
 use crate::radiosity::element::{Element, Side};
 use crate::radiosity::surface;
 use crate::radiosity::visibility::Blockers;
@@ -59,10 +61,9 @@ pub struct SystemOptions {
     /// every leaf within the light model's noise (1.8 % RMS against its 1.5 %).
     pub link_samples: u32,
     /// How far around the plot of a periodic scene its copies are solved with it, scene
-    /// units (`World::unrolled`); `None` for the solver's default: none for the hierarchical
-    /// solvers, which take the light of the field beyond the margin by rays, one and a half
-    /// times the geometry's height, at most two periods, for the others
-    /// (`crate::world::margin_for`). Ignored for a scene that is not periodic.
+    /// units (`World::unrolled`); `None` for none: the solvers take the light of the field
+    /// beyond the margin by rays (their far field), so copies only cost. Ignored for a scene
+    /// that is not periodic.
     pub periodic_margin: Option<f32>,
 }
 
@@ -132,6 +133,9 @@ pub struct RadiositySystem {
     options: SystemOptions,
     form_factors: AtomicU64,
     visibility_rays: AtomicU64,
+    /// On a periodic plot, the couplings through the endless field beyond the margin
+    /// (`far_field.rs`), for the solvers that ask the system for its couplings.
+    far: Option<FarField>,
 }
 
 impl RadiositySystem {
@@ -141,6 +145,14 @@ impl RadiositySystem {
         let start = Instant::now();
         let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
         let mut system = Self::from_mesh(world, mesh, options, None, None)?;
+        let element = |k: usize, side: Side| Self::element(k, side) as u32;
+        let (mesh, leaves) = (&system.mesh, &system.leaves);
+        if let Some((far, rays)) =
+            FarField::cast(world, mesh, leaves, element, &NoProgress, &Cancel::new())
+        {
+            system.visibility_rays.fetch_add(rays, Ordering::Relaxed);
+            system.far = Some(far);
+        }
         system.setup_seconds = start.elapsed().as_secs_f64();
         Ok(system)
     }
@@ -237,6 +249,7 @@ impl RadiositySystem {
             options,
             form_factors: AtomicU64::new(0),
             visibility_rays: AtomicU64::new(0),
+            far: None,
         })
     }
 
@@ -319,8 +332,15 @@ impl RadiositySystem {
     }
 
     /// `F_ij V_ij` between receiver element `i` and emitter element `j` (0 for two sides of
-    /// one patch and for sides that do not face each other).
+    /// one patch and for sides that do not face each other), on a periodic plot with what
+    /// `i` sees of `j` in the endless field beyond the margin.
     pub fn coupling(&self, i: usize, j: usize) -> f64 {
+        let far = self.far.as_ref().map_or(0.0, |f| f.share(i, j));
+        far + self.near_coupling(i, j)
+    }
+
+    /// `F_ij V_ij` within the scene solved.
+    fn near_coupling(&self, i: usize, j: usize) -> f64 {
         let (ri, ej) = (self.elements[i], self.elements[j]);
         if ri.patch == ej.patch {
             return 0.0;

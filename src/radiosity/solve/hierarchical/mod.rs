@@ -10,7 +10,7 @@
 //!    groups instead, so the links do not grow with the square of the number of faces; a
 //!    cluster link the oracle refines is replaced by links to the children of its larger
 //!    end, down to pairs of root patches. On a periodic plot every root side also takes
-//!    what the endless field beyond the margin sends by rays (`far_field.rs`).
+//!    what the endless field beyond the margin sends by rays (`solve/far_field.rs`).
 //! 2. **Gather and push-pull** (§6.7, §6.8) until the radiosity changes by less than the
 //!    tolerance: every node gathers `Σ F·V·B` over its links, irradiance is pushed down to
 //!    the leaves, where it becomes `B = E + ρ·H`, and radiosity is pulled up area-weighted.
@@ -36,7 +36,6 @@
 //! asks, and what a receiver takes is pushed to the leaves.
 
 mod clusters;
-mod far_field;
 mod fine_gather;
 mod importance;
 mod kept;

@@ -27,14 +27,11 @@ use super::clusters::{ClusterTree, End};
 use super::nodes::node;
 use crate::accel::AccelKind;
 use crate::color::Rgb64;
-use crate::geometry::{Frame, Ray, spawn_ray};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
-use crate::radiosity::mesh::{Patch, PatchId, PatchMesh};
-use crate::radiosity::solve::patch_triangles::PatchTriangles;
-use crate::sampling::warp::cosine_hemisphere;
+use crate::radiosity::mesh::{PatchId, PatchMesh};
+use crate::radiosity::solve::patch_triangles::{PatchTriangles, side_ray};
 use glam::DVec3;
-use glam::Vec2;
 use rayon::prelude::*;
 use smallvec::SmallVec;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -216,7 +213,7 @@ impl NearRays {
                     if stopped {
                         return (MISSED, 0.0);
                     }
-                    let ray = near_ray(patch, place, k, per_side);
+                    let ray = side_ray(patch, place, k, per_side);
                     match accel.closest_hit(triangles, &ray, f32::INFINITY) {
                         Some(hit) => {
                             let place = triangles.owners[hit.prim as usize].0;
@@ -255,7 +252,7 @@ impl NearRays {
                     let split = patch
                         .children
                         .is_some_and(|_| patch.area >= 2.0 * reference_area);
-                    let ray = split.then(|| near_ray(patch, place, k - first, per_side));
+                    let ray = split.then(|| side_ray(patch, place, k - first, per_side));
                     let origin = match &ray {
                         Some(ray) => {
                             let at = ray.origin.as_dvec3();
@@ -272,7 +269,7 @@ impl NearRays {
                     if mesh.patch(met).children.is_none() {
                         return (node(met, met_side) as u32, origin);
                     }
-                    let ray = ray.unwrap_or_else(|| near_ray(patch, place, k - first, per_side));
+                    let ray = ray.unwrap_or_else(|| side_ray(patch, place, k - first, per_side));
                     let point = (ray.origin + ray.dir * distances[k as usize]).as_dvec3();
                     (
                         node(node_at(mesh, met, point, 0.0), met_side) as u32,
@@ -323,20 +320,6 @@ impl NearRays {
             }
         }
     }
-}
-
-/// The `k`-th of the `2·per_side` rays of the root patch at place `place` (the first half
-/// from its front): direction and origin from one 4-D point, the origins spread over the
-/// whole patch (leaving its rim out would favour what its middle sees). The far field's rays
-/// too (`far_field.rs`).
-pub(super) fn near_ray(patch: &Patch, place: usize, k: u32, per_side: u32) -> Ray {
-    let side = Side::BOTH[(k / per_side) as usize];
-    let normal = side.normal(patch).as_vec3();
-    let seed = (place as u32).wrapping_mul(2) + side.index() as u32;
-    let [ux, uy, us, ut] = sobol_burley::sample_4d(k % per_side, 0, seed);
-    let dir = Frame::from_normal(normal).to_world(cosine_hemisphere(Vec2::new(ux, uy)));
-    let origin = patch.point_at(f64::from(us), f64::from(ut)).as_vec3();
-    spawn_ray(origin, normal, dir)
 }
 
 /// The deepest node below `patch` of at least `area` scene units² that holds `point` (a

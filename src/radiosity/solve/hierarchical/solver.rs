@@ -2,7 +2,6 @@
 //! refinement until no link is refined (the steps of the module documentation).
 
 use super::clusters::{ClusterLink, ClusterTree, End, Split};
-use super::far_field::FarField;
 use super::fine_gather::FineGather;
 use super::importance::Importance;
 use super::kept::{KeptLinks, KeptView};
@@ -18,6 +17,7 @@ use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
 use crate::radiosity::solve::UNEVEN_RUN;
+use crate::radiosity::solve::far_field::FarField;
 use crate::radiosity::solve::steady_state::{Bounce, BounceWatch};
 use crate::radiosity::solve::{
     LinkSegment, PhaseTimes, RadiositySystem, RoundStats, Solution, SolveError, SolverKind,
@@ -355,7 +355,10 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             return;
         }
         progress.phase("far-field rays");
-        if let Some((far, rays)) = FarField::cast(self.world, &self.mesh, progress, cancel) {
+        let roots = &self.mesh.roots;
+        let node_of = |k: usize, side: Side| node(roots[k], side) as u32;
+        let cast = FarField::cast(self.world, &self.mesh, roots, node_of, progress, cancel);
+        if let Some((far, rays)) = cast {
             self.linker.rays.fetch_add(rays, Ordering::Relaxed);
             self.far = Some(far);
         }
