@@ -140,7 +140,8 @@ pub struct RadiositySystem {
 
 impl RadiositySystem {
     /// Meshes `world`'s scene, averages emission and reflectance over each side of each leaf
-    /// and gathers the light-link irradiance (in parallel over elements).
+    /// and gathers the light-link irradiance (in parallel over elements); on an unrolled
+    /// periodic plot casts the leaves' far field too (`far_field.rs`).
     pub fn new(world: &Arc<World>, options: SystemOptions) -> Result<Self, SolveError> {
         let start = Instant::now();
         let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
@@ -331,9 +332,9 @@ impl RadiositySystem {
         self.area.iter().sum()
     }
 
-    /// `F_ij V_ij` between receiver element `i` and emitter element `j` (0 for two sides of
-    /// one patch and for sides that do not face each other), on a periodic plot with what
-    /// `i` sees of `j` in the endless field beyond the margin.
+    /// `F_ij V_ij` between receiver element `i` and emitter element `j`: within the scene
+    /// solved 0 for two sides of one patch and for sides that do not face each other; on a
+    /// periodic plot plus what `i` sees of `j` in the endless field beyond the margin.
     pub fn coupling(&self, i: usize, j: usize) -> f64 {
         let far = self.far.as_ref().map_or(0.0, |f| f.share(i, j));
         far + self.near_coupling(i, j)
