@@ -12,18 +12,26 @@ use crate::sampling::warp::cosine_hemisphere;
 use crate::world::World;
 use glam::Vec2;
 
-/// How far before the point a ray meets in the endless field the patches are searched for
-/// it, and how far beyond, as shares of the plot's longer period: the point lies on the
-/// plot's surfaces, the patches on them or (curved shapes) on their facets just inside.
-const SEARCH_BEFORE: f32 = 1e-4;
-const SEARCH_BEYOND: f32 = 1e-2;
+/// How far before and beyond the point a ray meets in the endless field the patches are
+/// searched for it, as a share of the plot's longer period: the point lies on the plot's
+/// surfaces, the patches on them or (curved shapes) on facets that pass a little inside and
+/// a little outside the surface (meshed as large as it is). With the search starting only
+/// just before the point, a sphere's facets were missed where they bulge out, and the
+/// radiosity image of a field of spheres showed a black spot on every facet.
+const SEARCH: f32 = 1e-2;
+
+/// Times a ray that meets a curved surface where no facet is (past a facet's outline, near a
+/// silhouette) goes on through the endless field, at most.
+const PASSES: usize = 8;
 
 /// Where `ray` first meets the endless field of the periodic world `plot` (`None` where it
 /// meets nothing, or the world is not periodic): the triangle of `triangles` (patches of
 /// the plot and of copies of it that reach into it, on its surfaces) at the point met, with
 /// `t` the distance along `ray`. The periodic world finds the point (in the plot, or on a
 /// copy that reaches into it); the patches under it are searched for along the ray's last
-/// stretch.
+/// stretch. Where none is there, or only one facing the other way (a curved surface met
+/// outside its facets' outline), the ray goes on past the point and past where it leaves
+/// the surface again, as it would past the facets.
 pub(crate) fn hit_in_field(
     plot: &World,
     triangles: &PatchTriangles,
@@ -31,12 +39,37 @@ pub(crate) fn hit_in_field(
     ray: &Ray,
 ) -> Option<PrimHit> {
     let period = plot.field()?.plot.period().max_element();
-    let far = plot.intersect(ray)?;
-    let before = SEARCH_BEFORE * period;
-    let search = Ray::new(far.p - ray.dir * before, ray.dir);
-    let mut hit = accel.closest_hit(triangles, &search, before + SEARCH_BEYOND * period)?;
-    hit.t += far.t - before;
-    Some(hit)
+    let reach = SEARCH * period;
+    let (mut ray, mut travelled) = (*ray, 0.0);
+    // After a curved surface met outside its facets, the point where the ray leaves it again
+    // is passed too: inside it there is no facet to meet.
+    let mut inside = false;
+    for _ in 0..PASSES {
+        let far = plot.intersect(&ray)?;
+        let leaving = far.ng.dot(ray.dir) > 0.0;
+        if !(inside && leaving) {
+            // Never from behind the ray's origin, where the surface it leaves lies.
+            let before = reach.min(0.5 * far.t);
+            let search = Ray::new(far.p - ray.dir * before, ray.dir);
+            // The patch met from the side the surface is (a ray that passes just inside a
+            // curved surface's rim would meet its far facets from behind).
+            let facing = |hit: &PrimHit| {
+                let normal = triangles.triangles[hit.prim as usize].normal_area2();
+                (normal.dot(ray.dir) > 0.0) == leaving
+            };
+            if let Some(mut hit) = accel
+                .closest_hit(triangles, &search, before + reach)
+                .filter(facing)
+            {
+                hit.t += travelled + far.t - before;
+                return Some(hit);
+            }
+        }
+        inside = !leaving;
+        travelled += far.t + reach;
+        ray = Ray::new(ray.origin + ray.dir * (far.t + reach), ray.dir);
+    }
+    None
 }
 
 /// A list of patches as triangles: quads as the two triangles (0,1,2) and (0,2,3).
