@@ -393,6 +393,58 @@ fn small_measuring_patches_read_their_closed_form_at_the_defaults() {
     }
 }
 
+#[test]
+fn the_gather_leaves_surfaces_under_the_contract_s_floor_but_not_measuring_patches() {
+    // `meters` by hierarchical shooting, which keeps no direct part apart: every surface
+    // under 2 % of the light is a candidate. Its three patches hold about 10⁻⁷ of the light
+    // each: black, they are measuring patches and gathered; grey, they are ordinary surfaces
+    // under `LEAST_SHARE` (10⁻⁴) and keep the solution's values, as a field's 160,000 leaves
+    // do (before the floor they were gathered: 25 minutes on the Helios field).
+    let case = strahl::validate::cases::all(true)
+        .into_iter()
+        .find(|c| c.name == "meters")
+        .unwrap();
+    let patches: Vec<usize> = case
+        .checks
+        .iter()
+        .map(|check| match check.quantity {
+            Quantity::Surface(k) => k,
+            _ => panic!("{}: not a surface", check.label),
+        })
+        .collect();
+    let gathered = |scene: strahl::scene::Scene| {
+        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+        let settings = RadiositySettings::new(SolverKind::HierarchicalShooting);
+        let outcome = run(
+            &world,
+            &Method::Radiosity(settings),
+            &NoProgress,
+            &Cancel::new(),
+        )
+        .unwrap();
+        let report = Report::new("meters", outcome.measurement.as_ref().unwrap());
+        let count = report.stats.extra["surface_gather_surfaces"].as_u64().unwrap();
+        let stated: Vec<bool> = patches
+            .iter()
+            .map(|&k| report.objects[k].incident_power_standard_error.is_some())
+            .collect();
+        (count, stated)
+    };
+    let (black, black_stated) = gathered(case.scene.clone());
+    assert_eq!(black_stated, [true; 3]);
+    let mut grey = case.scene;
+    let material = grey.add_material(strahl::scene::Material::diffuse(
+        "grey",
+        strahl::color::Rgb::splat(0.5),
+    ));
+    for &k in &patches {
+        grey.objects[k].material = material;
+    }
+    let (without, grey_stated) = gathered(grey);
+    assert_eq!(grey_stated, [false; 3]);
+    assert_eq!(black - without, 3, "{black} gathered black, {without} grey");
+}
+
 /// Per leaf: absorbed power, W per channel, and the reference's relative standard error.
 type Leaves = HashMap<String, ([f64; 3], [f64; 3])>;
 

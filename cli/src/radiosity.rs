@@ -40,8 +40,10 @@ pub struct SurfaceGatherArgs {
     /// radiosity: the final gather measures the surfaces that receive less than this share of
     /// the light all surfaces receive and a quarter or more of theirs otherwise than from the
     /// scene's lights and the sky (reflected, or straight from emitting surfaces, by the
-    /// solution); the others, which the solution gets right within a fraction of a per cent,
-    /// keep its values (1: every surface; above 0, at most 1) [default: 0.02].
+    /// solution), and at least 10⁻⁴ of the light unless they scatter nothing (a black
+    /// measuring patch); the others, which the solution gets right within a fraction of a per
+    /// cent, or hold too little light to matter (a field's leaves), keep its values (1: every
+    /// surface; above 0, at most 1) [default: 0.02].
     #[arg(long, value_parser = finite::<f64>)]
     pub gather_below: Option<f64>,
 }

@@ -29,7 +29,8 @@
 //! face toward the red wall 13 % high: worst face from 0.93–1.49 % to 0.77–0.88 % (seeds 0–3).
 //!
 //! Which surfaces: by default those that receive less than [`SurfaceGather::below_share`]
-//! (2 %) of the light all surfaces receive, and at least [`INDIRECT_SHARE`] of theirs
+//! (2 %) of the light all surfaces receive but at least [`LEAST_SHARE`] (10⁻⁴; measuring
+//! patches whatever their share), and at least [`INDIRECT_SHARE`] of theirs
 //! otherwise than over light links (indirectly, or from emitting surfaces). The solution
 //! holds every link to a share of the scene's power, so a surface with much of the light gets
 //! it right within a fraction of a per cent (the Cornell box face by face: every face above
@@ -119,6 +120,14 @@ pub const DEFAULT_BELOW_SHARE: f64 = 0.02;
 /// faces, 75–100 % indirect, up to 4.8 % off; RenderPark's louvred luminaire's vanes, lit
 /// straight by its tube lamps, up to 6.8 %).
 pub const INDIRECT_SHARE: f64 = 0.25;
+
+/// By default a surface is gathered only when it receives at least this share of the light
+/// all surfaces receive, or is a measuring patch (its material scatters and emits nothing,
+/// [`crate::scene::Material::is_measuring`]): the floor of the per-surface contract
+/// (docs/VALIDATION.md, *Per surface*). Without it a field of 160,000 leaves, each a
+/// 160,000th of the light, gathered a quarter of them (about 25 minutes on two cores beside a
+/// 50 s solve).
+pub const LEAST_SHARE: f64 = 1e-4;
 
 /// Where the near field's rays carried light, surfaces with at least this share of the light
 /// all surfaces receive are measured to [`LARGE_SURFACE_ERROR`] of the error asked for.
@@ -331,6 +340,8 @@ struct Surfaces {
     error_share: Vec<f64>,
     /// Per surface, whether it is a copy around an unrolled periodic plot.
     copy: Vec<bool>,
+    /// Per surface, whether it is a measuring patch.
+    measuring: Vec<bool>,
 }
 
 impl Surfaces {
@@ -340,6 +351,15 @@ impl Surfaces {
         // The copies around an unrolled periodic plot are not reported: not gathered.
         let own = world.own_objects() as u32;
         let copy = table.surfaces().iter().map(|s| s.object >= own).collect();
+        let scene = &world.scene;
+        let measuring = table
+            .surfaces()
+            .iter()
+            .map(|s| {
+                let object = &scene.objects[s.object as usize];
+                scene.materials[object.material as usize].is_measuring()
+            })
+            .collect();
         let of: Vec<usize> = (0..system.len())
             .map(|k| {
                 let patch = system.patch(k);
@@ -361,6 +381,7 @@ impl Surfaces {
             side_area,
             error_share: vec![1.0; table.len()],
             copy,
+            measuring,
         }
     }
 
@@ -387,7 +408,8 @@ impl Surfaces {
     /// else those that receive less than `share` of the light all surfaces receive by
     /// `solution` (luminance; any share where the near field's rays carried light, which
     /// are right on average but not held to the error threshold surface by surface: the
-    /// conference room's ceiling, 17 % of the light, −1.5 % in the solution) and at least
+    /// conference room's ceiling, 17 % of the light, −1.5 % in the solution), at least
+    /// [`LEAST_SHARE`] of it unless a measuring patch, and at least
     /// [`INDIRECT_SHARE`] of theirs otherwise than over
     /// the light links of `system` (point, spot and directional lights and the sky, measured
     /// on grids of points): reflected, or straight from emitting surfaces, whose links are
@@ -407,12 +429,16 @@ impl Surfaces {
         let total = self.reported_total(incident.iter().copied());
         let apart = solution.direct_irradiance.is_some();
         let below = |p: f64| p < share * total || solution.near_links > 0;
+        let held = |p: f64, measuring: bool| measuring || p >= LEAST_SHARE * total;
         incident
             .iter()
             .zip(linked)
-            .zip(&self.copy)
-            .map(|((&p, lit), &copy)| {
-                !copy && below(p) && (!apart || p - lit.luminance() >= INDIRECT_SHARE * p)
+            .zip(self.copy.iter().zip(&self.measuring))
+            .map(|((&p, lit), (&copy, &measuring))| {
+                !copy
+                    && below(p)
+                    && held(p, measuring)
+                    && (!apart || p - lit.luminance() >= INDIRECT_SHARE * p)
             })
             .collect()
     }

@@ -185,4 +185,14 @@ impl Material {
             .fold(Rgb::BLACK, |sum, &lobe| sum + self.lobe_weight(lobe))
             .max_channel()
     }
+
+    /// True when the material scatters and emits nothing (no lobe, no emission, no
+    /// textures): a surface of it is a measuring patch, a black quad placed to read the light,
+    /// whose light goes nowhere else.
+    pub fn is_measuring(&self) -> bool {
+        self.albedo_bound() == 0.0
+            && self.diffuse_texture.is_none()
+            && self.emission == Rgb::BLACK
+            && self.emission_texture.is_none()
+    }
 }

@@ -38,7 +38,6 @@
 
 use super::links::Link;
 use super::nodes::{Nodes, node, split_node};
-use crate::color::Rgb;
 use crate::measure::SurfaceTable;
 use crate::radiosity::element::Side;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
@@ -84,13 +83,7 @@ impl Importance {
         let measures: Vec<bool> = scene
             .objects
             .iter()
-            .map(|o| {
-                let m = &scene.materials[o.material as usize];
-                m.albedo_bound() == 0.0
-                    && m.diffuse_texture.is_none()
-                    && m.emission == Rgb::BLACK
-                    && m.emission_texture.is_none()
-            })
+            .map(|o| scene.materials[o.material as usize].is_measuring())
             .collect();
         let may_measure = measures.contains(&true);
         Importance {
