@@ -423,7 +423,9 @@ fn the_gather_leaves_surfaces_under_the_contract_s_floor_but_not_measuring_patch
         )
         .unwrap();
         let report = Report::new("meters", outcome.measurement.as_ref().unwrap());
-        let count = report.stats.extra["surface_gather_surfaces"].as_u64().unwrap();
+        let count = report.stats.extra["surface_gather_surfaces"]
+            .as_u64()
+            .unwrap();
         let stated: Vec<bool> = patches
             .iter()
             .map(|&k| report.objects[k].incident_power_standard_error.is_some())

@@ -267,38 +267,47 @@ impl ClusterTree {
         }
     }
 
-    /// The cluster links that replace `link` when it is refined, or the pair of root patches
-    /// whose sides are to be linked when both its ends are patches. A link within one cluster
-    /// becomes the links between every ordered pair of its children (each child's own
-    /// included); otherwise the larger end (a cluster) is replaced by its children.
+    /// How `link` is refined: into the links between every ordered pair of its one end's
+    /// children (each child's own included) when both ends are one cluster; else the larger
+    /// end (a cluster) replaced by its children; or, when both ends are patches, the pair of
+    /// root patches whose sides are to be linked. Allocates nothing: [`Self::split_ends`]
+    /// lists the new links' ends.
     pub fn split(&self, mesh: &PatchMesh, link: &ClusterLink) -> Split {
         let (r, e) = (link.receiver, link.emitter);
-        if r == e {
-            let End::Cluster(c) = r else {
-                return Split::Links(Vec::new());
-            };
-            let children = &self.clusters[c as usize].children;
-            let pairs = children
-                .iter()
-                .flat_map(|&a| children.iter().map(move |&b| (a, b)))
-                .filter(|(a, b)| !(a == b && matches!(a, End::Patch(_))))
-                .collect();
-            return Split::Links(pairs);
+        match (r, e) {
+            _ if r == e => Split::Within,
+            (End::Patch(a), End::Patch(b)) => Split::Patches(a, b),
+            (End::Cluster(_), End::Patch(_)) => Split::Receiver,
+            (End::Patch(_), End::Cluster(_)) => Split::Emitter,
+            (End::Cluster(_), End::Cluster(_)) if self.ball(mesh, r).1 >= self.ball(mesh, e).1 => {
+                Split::Receiver
+            }
+            _ => Split::Emitter,
         }
+    }
+
+    /// Appends to `ends` the (receiver, emitter) ends of the cluster links that replace
+    /// `link` refined as `split` says (none for [`Split::Patches`], nor for a patch's link
+    /// with itself; a patch never links with itself).
+    pub fn split_ends(&self, link: &ClusterLink, split: &Split, ends: &mut Vec<(End, End)>) {
         let children = |end: End| match end {
-            End::Cluster(c) => self.clusters[c as usize].children.clone(),
-            End::Patch(_) => Vec::new(),
+            End::Cluster(c) => self.clusters[c as usize].children.as_slice(),
+            End::Patch(_) => &[],
         };
-        let split_receiver = match (r, e) {
-            (End::Patch(a), End::Patch(b)) => return Split::Patches(a, b),
-            (End::Cluster(_), End::Patch(_)) => true,
-            (End::Patch(_), End::Cluster(_)) => false,
-            (End::Cluster(_), End::Cluster(_)) => self.ball(mesh, r).1 >= self.ball(mesh, e).1,
-        };
-        if split_receiver {
-            Split::Links(children(r).into_iter().map(|c| (c, e)).collect())
-        } else {
-            Split::Links(children(e).into_iter().map(|c| (r, c)).collect())
+        let (r, e) = (link.receiver, link.emitter);
+        match split {
+            Split::Within => {
+                let children = children(r);
+                ends.extend(
+                    children
+                        .iter()
+                        .flat_map(|&a| children.iter().map(move |&b| (a, b)))
+                        .filter(|(a, b)| !(a == b && matches!(a, End::Patch(_)))),
+                )
+            }
+            Split::Receiver => ends.extend(children(r).iter().map(|&c| (c, e))),
+            Split::Emitter => ends.extend(children(e).iter().map(|&c| (r, c))),
+            Split::Patches(..) => {}
         }
     }
 
@@ -711,10 +720,16 @@ impl ClusterLink {
     }
 }
 
-/// What refining a cluster link gives.
+/// How a cluster link is refined ([`ClusterTree::split`]; the new links' ends from
+/// [`ClusterTree::split_ends`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Split {
-    /// Cluster links between these (receiver, emitter) ends.
-    Links(Vec<(End, End)>),
+    /// Both ends are one cluster: links between every ordered pair of its children.
+    Within,
+    /// The receiver replaced by its children.
+    Receiver,
+    /// The emitter replaced by its children.
+    Emitter,
     /// Side links between these two root patches (receiver, emitter).
     Patches(PatchId, PatchId),
 }
@@ -793,9 +808,10 @@ mod tests {
         let root = tree.root();
         let link = tree.link(&mesh, root, root);
         assert!(!link.separated());
-        let Split::Links(pairs) = tree.split(&mesh, &link) else {
-            panic!("a cluster splits into links");
-        };
+        let split = tree.split(&mesh, &link);
+        assert_eq!(split, Split::Within);
+        let mut pairs = Vec::new();
+        tree.split_ends(&link, &split, &mut pairs);
         // Two patches: each sees the other, neither itself.
         assert_eq!(
             pairs,
@@ -820,10 +836,9 @@ mod tests {
         let low: Vec<PatchId> = (0..mesh.roots.len() as PatchId).step_by(2).collect();
         let high: Vec<PatchId> = (1..mesh.roots.len() as PatchId).step_by(2).collect();
         // The tree splits the grids apart first (they are farther apart than wide).
-        let Split::Links(pairs) = tree.split(&mesh, &tree.link(&mesh, tree.root(), tree.root()))
-        else {
-            panic!("the root splits into links");
-        };
+        let root = tree.link(&mesh, tree.root(), tree.root());
+        let mut pairs = Vec::new();
+        tree.split_ends(&root, &tree.split(&mesh, &root), &mut pairs);
         let (receiver, emitter) = pairs
             .into_iter()
             .find(|(r, e)| tree.members(r).contains(&low[0]) && tree.members(e).contains(&high[0]))

@@ -474,19 +474,27 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 match split {
                     Verdict::Keep => {}
                     Verdict::Near => self.near_links.push((link.receiver, link.emitter)),
-                    Verdict::Split(Split::Links(new)) => ends.extend(new),
                     &Verdict::Split(Split::Patches(r, e)) => {
                         pairs.extend(Side::BOTH.into_iter().flat_map(|rs| {
                             Side::BOTH.map(|es| (node(r, rs), node(e, es), Prior::Unknown))
                         }))
                     }
+                    Verdict::Split(split) => tree.split_ends(link, split, &mut ends),
                 }
             }
-            let mut index = 0;
-            self.cluster_links.retain(|_| {
-                index += 1;
-                index <= judged || matches!(splits[index - 1 - judged], Verdict::Keep)
-            });
+            // The links kept close up behind those judged before (a retain over the whole
+            // list would visit those again in every pass: 23 passes over up to 2.6·10⁵ links
+            // on canopy:3000).
+            let mut kept = judged;
+            for (index, split) in (judged..).zip(&splits) {
+                if matches!(split, Verdict::Keep) {
+                    if kept != index {
+                        self.cluster_links.swap(kept, index);
+                    }
+                    kept += 1;
+                }
+            }
+            self.cluster_links.truncate(kept);
             refined += count;
             judged = self.cluster_links.len();
             // Written in place, in parallel: 2.6·10⁵ links of 136 bytes collected first and
