@@ -298,21 +298,9 @@ fn sensors_under_the_copies_of_a_leaf_read_sun_and_sky_as_the_closed_form_says()
     }
 }
 
-/// Radiosity takes the light the endless field reflects from beyond the plot: a black 5 cm
-/// leaf 1 m over the middle of a 1 m plot of grey ground (ρ = 0.5) under a vertical sun of
-/// 100 W·m⁻² sees the ground, of radiosity 50 W·m⁻² but in the shadows of the leaf and its
-/// copies, under its whole lower hemisphere, three quarters of it beyond the plot. Its
-/// underside receives `50·A·(1 − Σ F)`, the sum over the shadows below it and below its copies
-/// of the form factor from its centre (closed form per shadow); every radiosity solver at its
-/// default margin (none: all of the field beyond the plot comes by its far-field rays),
-/// without the final gather at the surfaces, within 1 % (measured +0.49 % by the hierarchical
-/// solvers, −0.15 % by matrix and progressive), the ground its sun less the leaf's shadow
-/// within 0.2 % (the flat solvers' light links resolve the 5 cm shadow on their 8 × 8 points
-/// of a ground patch: −0.14 %). Without the far field the underside took 24 % of its light,
-/// and 88 % with a 1.5 m margin of copies.
-#[test]
-fn radiosity_takes_the_light_the_field_reflects_from_beyond_the_plot() {
-    let side = 0.05;
+/// A black square leaf of side `side` 1 m over the middle of a 1 m plot of grey ground
+/// (ρ = 0.5), repeated without end, under a vertical sun of 100 W·m⁻².
+fn leaf_over_grey_ground(side: f32) -> Arc<World> {
     let mut scene = Scene::empty("beyond");
     let black = scene.add_material(Material::diffuse("black", Rgb::BLACK));
     let grey = scene.add_material(Material::diffuse("grey", Rgb::splat(0.5)));
@@ -336,7 +324,78 @@ fn radiosity_takes_the_light_the_field_reflects_from_beyond_the_plot() {
             irradiance: Rgb::splat(100.0),
         },
     });
-    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    Arc::new(World::new(scene, AccelKind::Bvh).unwrap())
+}
+
+/// Asks `cancel` to stop when the phase `stop_at` starts, and records whether it did.
+struct StopAt<'c> {
+    cancel: &'c Cancel,
+    stop_at: &'static str,
+    seen: std::sync::atomic::AtomicBool,
+}
+
+impl strahl::progress::ProgressListener for StopAt<'_> {
+    fn phase(&self, name: &str) {
+        if name == self.stop_at {
+            self.seen.store(true, std::sync::atomic::Ordering::Relaxed);
+            self.cancel.request();
+        }
+    }
+    fn start(&self, _: u64) {}
+    fn advance(&self, _: u64) {}
+    fn finish(&self) {}
+}
+
+/// Every radiosity solver says when it casts its far-field rays and, asked to stop then,
+/// casts none and stops, reporting what it has as incomplete (the flat solvers' cast, part
+/// of their system's setup, went on to the end before).
+#[test]
+fn every_radiosity_solver_stops_while_casting_its_far_field() {
+    let world = leaf_over_grey_ground(0.05);
+    for solver in [
+        SolverKind::Hierarchical,
+        SolverKind::HierarchicalShooting,
+        SolverKind::Matrix,
+        SolverKind::Progressive,
+    ] {
+        let cancel = Cancel::new();
+        let listener = StopAt {
+            cancel: &cancel,
+            stop_at: "far-field rays",
+            seen: false.into(),
+        };
+        let method = Method::Radiosity(RadiositySettings::new(solver));
+        let outcome = run(&world, &method, &listener, &cancel).unwrap();
+        assert!(listener.seen.into_inner(), "{solver:?}: no far-field phase");
+        assert!(!outcome.complete, "{solver:?}: complete");
+        let uncancelled = run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+        let rays = |o: &strahl::method::Outcome| o.measurement.as_ref().unwrap().stats.rays;
+        // The far field casts 16–1,024 rays a side, 2²¹ in all at most: at least 2,048 here.
+        assert!(
+            rays(&outcome) + 2048 <= rays(&uncancelled),
+            "{solver:?}: {} rays stopped, {} not",
+            rays(&outcome),
+            rays(&uncancelled)
+        );
+    }
+}
+
+/// Radiosity takes the light the endless field reflects from beyond the plot: a black 5 cm
+/// leaf 1 m over the middle of a 1 m plot of grey ground (ρ = 0.5) under a vertical sun of
+/// 100 W·m⁻² sees the ground, of radiosity 50 W·m⁻² but in the shadows of the leaf and its
+/// copies, under its whole lower hemisphere, three quarters of it beyond the plot. Its
+/// underside receives `50·A·(1 − Σ F)`, the sum over the shadows below it and below its copies
+/// of the form factor from its centre (closed form per shadow); every radiosity solver at its
+/// default margin (none: all of the field beyond the plot comes by its far-field rays),
+/// without the final gather at the surfaces, within 1 % (measured +0.49 % by the hierarchical
+/// solvers, −0.15 % by matrix and progressive), the ground its sun less the leaf's shadow
+/// within 0.2 % (the flat solvers' light links resolve the 5 cm shadow on their 8 × 8 points
+/// of a ground patch: −0.14 %). Without the far field the underside took 24 % of its light,
+/// and 88 % with a 1.5 m margin of copies.
+#[test]
+fn radiosity_takes_the_light_the_field_reflects_from_beyond_the_plot() {
+    let side = 0.05;
+    let world = leaf_over_grey_ground(side);
     let h = f64::from(side) / 2.0;
     let shadows: f64 = (-100..=100)
         .flat_map(|i| (-100..=100).map(move |k| (f64::from(i), f64::from(k))))

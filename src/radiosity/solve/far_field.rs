@@ -33,6 +33,7 @@ use crate::radiosity::mesh::{PatchId, PatchMesh};
 use crate::radiosity::solve::patch_triangles::{PatchTriangles, hit_in_field, side_ray};
 use crate::world::World;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// About how many rays all patch sides cast together.
 pub const RAYS: u64 = 1 << 21;
@@ -91,6 +92,7 @@ impl FarField {
             Some(id(met, side))
         };
         progress.start(patches.len() as u64);
+        let cast = AtomicU64::new(0);
         let per_patch: Vec<[Vec<(u32, f64)>; 2]> = patches
             .par_iter()
             .enumerate()
@@ -101,6 +103,7 @@ impl FarField {
                 Side::BOTH.map(|side| {
                     met.clear();
                     if !cancel.is_requested() {
+                        cast.fetch_add(u64::from(per_side), Ordering::Relaxed);
                         let first = side.index() as u32 * per_side;
                         met.extend(
                             (first..first + per_side)
@@ -151,7 +154,7 @@ impl FarField {
                 .extend(run.iter().map(|&(_, receiver, share)| (receiver, share)));
             far.emitters.push((run[0].0, start..far.sent.len() as u32));
         }
-        Some((far, sides * u64::from(per_side)))
+        Some((far, cast.into_inner()))
     }
 
     /// The share of the rays of side `receiver` that meet side `emitter` beyond the margin

@@ -27,7 +27,7 @@
 use super::SolveError;
 use super::far_field::FarField;
 use crate::color::Rgb64;
-use crate::progress::{Cancel, NoProgress};
+use crate::progress::{Cancel, NoProgress, ProgressListener};
 use crate::radiosity::element::{Element, Side};
 use crate::radiosity::surface;
 use crate::radiosity::visibility::Blockers;
@@ -143,14 +143,27 @@ impl RadiositySystem {
     /// and gathers the light-link irradiance (in parallel over elements); on an unrolled
     /// periodic plot casts the leaves' far field too (`far_field.rs`).
     pub fn new(world: &Arc<World>, options: SystemOptions) -> Result<Self, SolveError> {
+        Self::reporting(world, options, &NoProgress, &Cancel::new())
+    }
+
+    /// [`Self::new`], telling `progress` of the far field's rays (phase "far-field rays"); once
+    /// `cancel` is requested the rays left are not cast and the system has no far field (a
+    /// solver handed it then stops at once, keeping what it has).
+    pub fn reporting(
+        world: &Arc<World>,
+        options: SystemOptions,
+        progress: &dyn ProgressListener,
+        cancel: &Cancel,
+    ) -> Result<Self, SolveError> {
         let start = Instant::now();
         let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
         let mut system = Self::from_mesh(world, mesh, options, None, None)?;
         let element = |k: usize, side: Side| Self::element(k, side) as u32;
         let (mesh, leaves) = (&system.mesh, &system.leaves);
-        if let Some((far, rays)) =
-            FarField::cast(world, mesh, leaves, element, &NoProgress, &Cancel::new())
-        {
+        if world.plot_world().field().is_some() {
+            progress.phase("far-field rays");
+        }
+        if let Some((far, rays)) = FarField::cast(world, mesh, leaves, element, progress, cancel) {
             system.visibility_rays.fetch_add(rays, Ordering::Relaxed);
             system.far = Some(far);
         }
