@@ -708,9 +708,9 @@ fn cornell_faces() -> Case {
 /// angles on a periodic plot) with black leaves and ground, under a sun 30° from the zenith
 /// (10,000 lx on a surface facing it) and a sky of uniform luminance (5,000 lx on the open
 /// ground): the ground receives what Beer's law lets through,
-/// `E_sun·cos θ·exp(−L/(2 cos θ)) + E_sky·2·E₃(L/2)`. Run through the light model alone:
-/// radiosity solves such a plot with copies around it (`World::unrolled`), a plot of 300,000
-/// leaves in minutes; `tests/field.rs` holds it to the light model on a smaller one.
+/// `E_sun·cos θ·exp(−L/(2 cos θ)) + E_sky·2·E₃(L/2)`. Run through the light model, and in a
+/// full run through hierarchical radiosity (the plot with its far field, about two
+/// minutes); `tests/field.rs` holds radiosity to the light model on smaller plots.
 fn beer_canopy() -> Case {
     let lai = 2.0;
     let mut s = field(&FieldSpec {
