@@ -1,11 +1,11 @@
 """Two Dask worker processes against one on the light model (docs/PERFORMANCE.md, "The
-Python package"): `canopy:3000`, 10⁷ photons in 8 batches, one thread a batch, after a
+Python package"): `canopy:3000`, 10⁷ photons (or PHOTONS) in 8 batches, one thread a batch, after a
 warm-up, runs alternating; checks that every merged report equals the single process's but
 for the seconds. Alternating with them, the same run in this process on one thread and on
 two: what the machine's two cores give without Dask, the ceiling of the workers' ratio. Run
 with the package installed (scripts/test builds it into target/python-venv):
 
-    target/python-venv/bin/python scripts/dask-speedup.py [RUNS [BATCHES]]
+    target/python-venv/bin/python scripts/dask-speedup.py [RUNS [BATCHES [PHOTONS]]]
 """
 
 import json
@@ -18,8 +18,9 @@ from dask.distributed import Client, LocalCluster
 import strahl
 import strahl.distributed
 
-SCENE, PHOTONS = "canopy:3000", 10**7
+SCENE = "canopy:3000"
 BATCHES = int(sys.argv[2]) if len(sys.argv) > 2 else 8
+PHOTONS = int(float(sys.argv[3])) if len(sys.argv) > 3 else 10**7
 
 
 def without_seconds(report):

@@ -334,26 +334,31 @@ fn the_recorded_reference_is_the_light_model_of_this_code() {
     }
 }
 
-/// `validate`'s `meters` case (CIE 171 case 5.7's lit wall past a black box, read by black
-/// one-sided 2 × 2 cm patches on the ground at 6, 8 and 12 m) solved by hierarchical radiosity
+/// `validate`'s `meters` case: CIE 171 case 5.7's lit wall past a black box, read by black
+/// one-sided 2 × 2 cm patches on the ground at 6, 8 and 12 m.
+fn meters() -> strahl::validate::Case {
+    strahl::validate::cases::all(true)
+        .into_iter()
+        .find(|c| c.name == "meters")
+        .unwrap()
+}
+
+/// The report of `scene` solved by radiosity with `settings`.
+fn solved(scene: strahl::scene::Scene, settings: RadiositySettings) -> Report {
+    let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
+    let method = Method::Radiosity(settings);
+    let outcome = run(&world, &method, &NoProgress, &Cancel::new()).unwrap();
+    Report::new("meters", outcome.measurement.as_ref().unwrap())
+}
+
+/// The `meters` case solved by hierarchical radiosity
 /// by `solver` with clustering on or off: each patch's relative deviation from its closed
 /// form.
 fn meter_errors(solver: SolverKind, clustering: bool) -> Vec<f64> {
-    let case = strahl::validate::cases::all(true)
-        .into_iter()
-        .find(|c| c.name == "meters")
-        .unwrap();
-    let world = Arc::new(World::new(case.scene, AccelKind::Bvh).unwrap());
+    let case = meters();
     let mut settings = RadiositySettings::new(solver);
     settings.hierarchical.clustering = clustering;
-    let outcome = run(
-        &world,
-        &Method::Radiosity(settings),
-        &NoProgress,
-        &Cancel::new(),
-    )
-    .unwrap();
-    let report = Report::new("meters", outcome.measurement.as_ref().unwrap());
+    let report = solved(case.scene, settings);
     case.checks
         .iter()
         .map(|check| {
@@ -400,10 +405,7 @@ fn the_gather_leaves_surfaces_under_the_contract_s_floor_but_not_measuring_patch
     // each: black, they are measuring patches and gathered; grey, they are ordinary surfaces
     // under `LEAST_SHARE` (10⁻⁴) and keep the solution's values, as a field's 160,000 leaves
     // do (before the floor they were gathered: 25 minutes on the Helios field).
-    let case = strahl::validate::cases::all(true)
-        .into_iter()
-        .find(|c| c.name == "meters")
-        .unwrap();
+    let case = meters();
     let patches: Vec<usize> = case
         .checks
         .iter()
@@ -412,17 +414,11 @@ fn the_gather_leaves_surfaces_under_the_contract_s_floor_but_not_measuring_patch
             _ => panic!("{}: not a surface", check.label),
         })
         .collect();
-    let gathered = |scene: strahl::scene::Scene| {
-        let world = Arc::new(World::new(scene, AccelKind::Bvh).unwrap());
-        let settings = RadiositySettings::new(SolverKind::HierarchicalShooting);
-        let outcome = run(
-            &world,
-            &Method::Radiosity(settings),
-            &NoProgress,
-            &Cancel::new(),
-        )
-        .unwrap();
-        let report = Report::new("meters", outcome.measurement.as_ref().unwrap());
+    let gathered = |scene| {
+        let report = solved(
+            scene,
+            RadiositySettings::new(SolverKind::HierarchicalShooting),
+        );
         let count = report.stats.extra["surface_gather_surfaces"]
             .as_u64()
             .unwrap();
