@@ -218,13 +218,13 @@ fn solve_radiosity_keeping(
             cancel,
         )?,
         SolverKind::Matrix => {
-            let system = RadiositySystem::reporting(world, options, progress, cancel)?;
+            let system = RadiositySystem::with_progress(world, options, progress, cancel)?;
             progress.phase("form factors");
             let solution = solve_matrix(&system, &settings.matrix, progress, cancel)?;
             (system, solution)
         }
         SolverKind::Progressive => {
-            let system = RadiositySystem::reporting(world, options, progress, cancel)?;
+            let system = RadiositySystem::with_progress(world, options, progress, cancel)?;
             progress.phase("shooting");
             let solution = solve_progressive(&system, &settings.shooting, progress, cancel)?;
             (system, solution)

@@ -143,13 +143,13 @@ impl RadiositySystem {
     /// and gathers the light-link irradiance (in parallel over elements); on an unrolled
     /// periodic plot casts the leaves' far field too (`far_field.rs`).
     pub fn new(world: &Arc<World>, options: SystemOptions) -> Result<Self, SolveError> {
-        Self::reporting(world, options, &NoProgress, &Cancel::new())
+        Self::with_progress(world, options, &NoProgress, &Cancel::new())
     }
 
     /// [`Self::new`], telling `progress` of the far field's rays (phase "far-field rays"); once
     /// `cancel` is requested the rays left are not cast and the system has no far field (a
     /// solver handed it then stops at once, keeping what it has).
-    pub fn reporting(
+    pub fn with_progress(
         world: &Arc<World>,
         options: SystemOptions,
         progress: &dyn ProgressListener,
