@@ -62,8 +62,9 @@ pub struct FarField {
 impl FarField {
     /// The far field of the patches `patches` of the unrolled world `world` meshed as `mesh`,
     /// each side known by `id(index in patches, side)` (`None` for a world that
-    /// unrolls nothing); `progress` counts the patches. Once `cancel` is requested the
-    /// patches left cast nothing. Returns it with the number of rays cast.
+    /// unrolls nothing); `progress` hears the phase "far-field rays" and counts the patches.
+    /// Once `cancel` is requested the patches left cast nothing. Returns it with the number
+    /// of rays cast.
     pub fn cast(
         world: &World,
         mesh: &PatchMesh,
@@ -74,6 +75,7 @@ impl FarField {
     ) -> Option<(FarField, u64)> {
         let plot = world.plot_world();
         plot.field()?;
+        progress.phase("far-field rays");
         let sides = 2 * patches.len() as u64;
         let per_side = (RAYS / sides.max(1))
             .clamp(u64::from(RAYS_PER_SIDE), u64::from(MAX_RAYS_PER_SIDE))

@@ -147,8 +147,8 @@ impl RadiositySystem {
     }
 
     /// [`Self::new`], telling `progress` of the far field's rays (phase "far-field rays"); once
-    /// `cancel` is requested the rays left are not cast and the system has no far field (a
-    /// solver handed it then stops at once, keeping what it has).
+    /// `cancel` is requested the rays left are not cast and the far field holds what was (a
+    /// solver handed the system then stops at once, keeping what it has).
     pub fn with_progress(
         world: &Arc<World>,
         options: SystemOptions,
@@ -160,9 +160,6 @@ impl RadiositySystem {
         let mut system = Self::from_mesh(world, mesh, options, None, None)?;
         let element = |k: usize, side: Side| Self::element(k, side) as u32;
         let (mesh, leaves) = (&system.mesh, &system.leaves);
-        if world.plot_world().field().is_some() {
-            progress.phase("far-field rays");
-        }
         if let Some((far, rays)) = FarField::cast(world, mesh, leaves, element, progress, cancel) {
             system.visibility_rays.fetch_add(rays, Ordering::Relaxed);
             system.far = Some(far);

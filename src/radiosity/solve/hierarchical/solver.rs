@@ -351,10 +351,6 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// In an unrolled periodic world, casts the rays that bring the root sides what the
     /// field beyond the margin sends (`far_field.rs`).
     pub(super) fn cast_far_field(&mut self, progress: &dyn ProgressListener, cancel: &Cancel) {
-        if self.world.plot_world().field().is_none() {
-            return;
-        }
-        progress.phase("far-field rays");
         let roots = &self.mesh.roots;
         let node_of = |k: usize, side: Side| node(roots[k], side) as u32;
         let cast = FarField::cast(self.world, &self.mesh, roots, node_of, progress, cancel);
