@@ -319,7 +319,8 @@ fn draw(
         let mut sampler = Sampler::new(SequenceKind::Sobol, seed, stream, i as u32);
         let [s, t] = sampler.next_2d().to_array().map(f64::from);
         let x = patch.point_at(s, t).as_vec3();
-        let (direct, indirect) = irradiance_sample(world, integrator, (x, normal), &mut sampler);
+        let (direct, indirect) =
+            irradiance_sample(world, integrator, (x, normal), true, &mut sampler);
         estimate.add(direct, indirect);
     }
     Some(estimate)

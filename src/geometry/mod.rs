@@ -9,6 +9,7 @@
 
 pub mod angle;
 mod bounds;
+pub mod convex2;
 pub mod cuboid;
 mod dvec3x4;
 mod frame;

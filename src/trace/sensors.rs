@@ -21,7 +21,7 @@ use crate::measure::SensorReading;
 use crate::sampling::mis::power_heuristic;
 use crate::sampling::warp::{cosine_hemisphere, stratified};
 use crate::sampling::{Moments, Sampler, SequenceKind};
-use crate::scene::Sensor;
+use crate::scene::{LightKind, Sensor};
 use crate::world::{
     SurfaceHit, World, emitted, non_surface_irradiance, point_irradiance, sees_point,
 };
@@ -119,7 +119,8 @@ fn area_sample(
 
 /// One estimate of the irradiance at the surface point `x` (unit normal `n` of the side
 /// that receives), W·m⁻², as `(direct, indirect)`: point, Lambertian, spot and directional
-/// lights exactly (a shadow ray each); each emitting surface by one point on it and by one
+/// lights exactly (a shadow ray each; directional ones only when `directional`, false where
+/// the caller counts them otherwise); each emitting surface by one point on it and by one
 /// cosine-distributed ray, the two weighed by multiple importance sampling (the power
 /// heuristic: a point on a large emitter right beside `x` would otherwise weigh without
 /// bound); the sky where that ray meets nothing (direct, `π·L`); and the indirect light along
@@ -130,6 +131,7 @@ pub fn irradiance_sample(
     world: &World,
     integrator: &dyn Integrator,
     (x, n): (Vec3, Vec3),
+    directional: bool,
     sampler: &mut Sampler,
 ) -> (Rgb64, Rgb64) {
     let (xd, nd) = (x.as_dvec3(), n.as_dvec3());
@@ -137,6 +139,7 @@ pub fn irradiance_sample(
         .lights
         .delta
         .iter()
+        .filter(|light| directional || !matches!(light, LightKind::Directional { .. }))
         .map(|light| point_irradiance(world, light, xd, nd, 1))
         .fold(Rgb64::BLACK, |a, b| a + b);
     let cosine_pdf = |cos: f32| cos.max(0.0) * std::f32::consts::FRAC_1_PI;

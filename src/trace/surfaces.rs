@@ -5,13 +5,20 @@
 //! puts the same number of points on every surface, however small or dark, so every
 //! surface's standard error is a share of its own light.
 //!
+//! The directional lights (the sun) first, exactly: each surface's lit share is cut out of it
+//! once ([`ParallelShadows`]: the other triangles' shadows projected along the light), so
+//! their light carries no noise and its shadow edges cost no points. Where that cannot be
+//! done — placed meshes, alpha textures, a textured diffuse colour (its absorbed share varies
+//! over the surface), a triangle under too many others (a field's ground) — the points take
+//! them by shadow rays.
+//!
 //! At each point, on each side, one estimate of the irradiance ([`irradiance_sample`]):
-//! point, spot and directional lights (the sun) by a shadow ray each, emitting surfaces by a
-//! point on them and the gather ray weighed by multiple importance sampling, the sky where
-//! that cosine-distributed gather ray escapes (through a periodic plot's sides too), and the
-//! light reflected toward the point from the surface it meets by the path tracer
-//! ([`PathTracer`]) with Russian roulette from the first bounce on (a leaf reflecting 10 %
-//! ends nine paths in ten at once, the survivors weighed up: no path goes on carrying a
+//! point and spot lights (and directional ones left to rays) by a shadow ray each, emitting
+//! surfaces by a point on them and the gather ray weighed by multiple importance sampling,
+//! the sky where that cosine-distributed gather ray escapes (through a periodic plot's sides
+//! too), and the light reflected toward the point from the surface it meets by the path
+//! tracer ([`PathTracer`]) with Russian roulette from the first bounce on (a leaf reflecting
+//! 10 % ends nine paths in ten at once, the survivors weighed up: no path goes on carrying a
 //! hundredth of its light). What a side absorbs at the point is its irradiance times
 //! `1 − ρ − τ` there (textures applied; the back of a one-sided material absorbs it all),
 //! what it emits `π·Lₑ`.
@@ -48,8 +55,11 @@ use crate::progress::{Cancel, ProgressListener};
 use crate::sampling::adaptive::{samples_for, worst_relative_error};
 use crate::sampling::warp::uniform_triangle;
 use crate::sampling::{Moments, Sampler, SequenceKind};
-use crate::world::{GeometryError, SurfaceMaterial, SurfaceTriangle, World, emitted_toward};
-use glam::Vec2;
+use crate::scene::LightKind;
+use crate::world::{
+    GeometryError, ParallelShadows, SurfaceMaterial, SurfaceTriangle, World, emitted_toward,
+};
+use glam::{DVec3, Vec2};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -128,6 +138,7 @@ pub fn trace_surfaces(
             triangles[table.entry(t.object, t.face)].push(t);
         }
     });
+    let exact = exact_directional(world, &triangles, cancel);
     let mut tracer = PathTracer::new(world, u32::MAX, 1);
     tracer.roulette_start = 1;
     let mut sums = vec![SurfaceSums::default(); table.len()];
@@ -149,7 +160,7 @@ pub fn trace_surfaces(
                 let points = (sums[s], wanted[s]);
                 let more = measure_surface(
                     world,
-                    &tracer,
+                    (&tracer, exact[s].is_none()),
                     &triangles[s],
                     (s as u64, settings),
                     points,
@@ -164,7 +175,8 @@ pub fn trace_surfaces(
             sums[s] = more;
             // A surface stopped short keeps its count wanted: the run is then incomplete.
             if sums[s].incident.n >= u64::from(wanted[s]) {
-                wanted[s] = points_wanted(&sums[s], settings.standard_error);
+                let known = exact[s].map_or(Rgb64::BLACK, |e| e.incident / area(&triangles[s]));
+                wanted[s] = points_wanted(&sums[s], known, settings.standard_error);
             }
         }
     }
@@ -172,12 +184,14 @@ pub fn trace_surfaces(
     let mut errors = Vec::with_capacity(sums.len());
     let (mut total_variance, mut indirect_variance) = (Rgb64::BLACK, Rgb64::BLACK);
     for (s, (sums, triangles)) in sums.iter().zip(&triangles).enumerate() {
-        let area: f64 = triangles.iter().map(|t| t.area).sum();
+        let area = area(triangles);
         let n = sums.incident.n.max(1) as f64;
+        // A surface without points reports nothing, what is known exactly included.
+        let known = exact[s].filter(|_| sums.incident.n > 0).unwrap_or_default();
         let balance = power.balance_mut(s);
-        balance.incident = sums.incident.mean() * area;
-        balance.direct = Some(sums.direct * (area / n));
-        balance.absorbed = sums.absorbed * (area / n);
+        balance.incident = sums.incident.mean() * area + known.incident;
+        balance.direct = Some(sums.direct * (area / n) + known.incident);
+        balance.absorbed = sums.absorbed * (area / n) + known.absorbed;
         balance.emitted = sums.emitted * (area / n);
         balance.reflected = balance.incident - balance.absorbed;
         let variance = sums.incident.variance_of_mean() * (area * area);
@@ -214,6 +228,9 @@ pub fn trace_surfaces(
         ..Stats::default()
     };
     stats.insert("points", points);
+    // The surfaces whose directional light was cut out exactly rather than sampled.
+    let exact = exact.iter().filter(|e| e.is_some()).count() as u64;
+    stats.insert("exact_directional_surfaces", exact);
     stats.insert("complete", complete);
     let measurement = Measurement {
         solver: "surface-trace",
@@ -225,25 +242,102 @@ pub fn trace_surfaces(
 }
 
 /// The points a surface with `sums` is to have in all for a standard error of `target` of
-/// its incident power (in its lit channels): as many as it has when it is there (or has
-/// [`MAX_POINTS`], or `target` is 0, or it receives nothing), else as many more as
-/// [`samples_for`] says.
-fn points_wanted(sums: &SurfaceSums, target: f64) -> u32 {
+/// its incident power (in its lit channels), `known` W·m⁻² of its irradiance being known
+/// exactly: as many as it has when it is there (or has [`MAX_POINTS`], or `target` is 0, or
+/// it receives nothing), else as many more as [`samples_for`] says.
+fn points_wanted(sums: &SurfaceSums, known: Rgb64, target: f64) -> u32 {
     let n = sums.incident.n;
     let variance = sums.incident.variance_of_mean();
-    let (relative, _) = worst_relative_error(sums.incident.mean(), variance);
+    let (relative, _) = worst_relative_error(sums.incident.mean() + known, variance);
     if target <= 0.0 || relative <= target || n >= u64::from(MAX_POINTS) {
         return n as u32;
     }
     samples_for(n, relative, target, u64::from(MAX_POINTS)) as u32
 }
 
+/// The area of a surface made of `triangles`, square scene units.
+fn area(triangles: &[SurfaceTriangle]) -> f64 {
+    triangles.iter().map(|t| t.area).sum()
+}
+
+/// What the directional lights send to one surface, known exactly, W.
+#[derive(Clone, Copy, Default)]
+struct KnownLight {
+    /// Incident on both sides together.
+    incident: Rgb64,
+    /// Absorbed of it.
+    absorbed: Rgb64,
+}
+
+/// What the directional lights send to each surface (made of `triangles[s]`), known exactly
+/// where their shadows can be cut out of it ([`ParallelShadows`]): `None` for a surface
+/// left to shadow rays at its points — every surface when the scene has no directional
+/// light or a world the shadows cannot take, and those with a textured diffuse colour (their
+/// absorbed share varies over them) or with too many shadows over them.
+fn exact_directional(
+    world: &World,
+    triangles: &[Vec<SurfaceTriangle>],
+    cancel: &Cancel,
+) -> Vec<Option<KnownLight>> {
+    let lights: Option<Vec<(ParallelShadows, Rgb64, DVec3)>> = (world.lights.delta.iter())
+        .filter_map(|light| match *light {
+            LightKind::Directional {
+                direction,
+                irradiance,
+            } => Some((direction.as_dvec3(), irradiance.to_f64())),
+            _ => None,
+        })
+        .map(|(direction, irradiance)| {
+            let shadows = ParallelShadows::new(world, direction)?;
+            Some((shadows, irradiance, -direction.normalize_or_zero()))
+        })
+        .collect();
+    let lights = lights.filter(|l| !l.is_empty());
+    let Some(lights) = lights else {
+        return vec![None; triangles.len()];
+    };
+    let scene = &world.scene;
+    triangles
+        .par_iter()
+        .map(|triangles| {
+            if cancel.is_requested() {
+                return None;
+            }
+            let mut known = KnownLight::default();
+            for t in triangles {
+                let hit = world.geometry.surface_point(t, 1.0 / 3.0, 1.0 / 3.0);
+                if scene.materials[hit.material as usize]
+                    .diffuse_texture
+                    .is_some()
+                {
+                    return None;
+                }
+                let material = SurfaceMaterial::at(scene, &hit);
+                for (shadows, irradiance, toward) in &lights {
+                    let cos = hit.ng.as_dvec3().dot(*toward);
+                    let front = cos > 0.0;
+                    let share = shadows.lit_share(t.prim)?;
+                    let e = *irradiance * (cos.abs() * share * t.area);
+                    let scattered = if material.is_black_from(front) {
+                        Rgb::BLACK
+                    } else {
+                        material.diffuse + material.translucency
+                    };
+                    known.incident += e;
+                    known.absorbed += (Rgb64::WHITE - scattered.to_f64()) * e;
+                }
+            }
+            Some(known)
+        })
+        .collect()
+}
+
 /// `sums` of the surface made of `triangles` with its points up to `wanted`, drawn from
 /// streams `3·stream`… of the seed (point `i` from index `i` of each); fewer when `cancel`
-/// is set.
+/// is set. Its points take the directional lights by shadow rays when `directional`.
 fn measure_surface(
     world: &World,
-    tracer: &PathTracer,
+    (tracer, directional): (&PathTracer, bool),
     triangles: &[SurfaceTriangle],
     (stream, settings): (u64, &SurfaceTraceSettings),
     (mut sums, wanted): (SurfaceSums, u32),
@@ -284,7 +378,7 @@ fn measure_surface(
             let stream = 3 * stream + 1 + side as u64;
             let mut sampler = Sampler::new(SequenceKind::Sobol, settings.seed, stream, i);
             let (direct, indirect) =
-                irradiance_sample(world, tracer, (hit.p, normal), &mut sampler);
+                irradiance_sample(world, tracer, (hit.p, normal), directional, &mut sampler);
             let scattered = if material.is_black_from(front) {
                 Rgb::BLACK
             } else {

@@ -16,6 +16,7 @@ mod light_at_point;
 mod lights;
 pub mod lobes;
 pub mod optics;
+mod parallel_shadows;
 mod periodic;
 mod placed_mesh;
 mod ray_bench;
@@ -28,6 +29,7 @@ pub use light_at_point::{
     non_surface_irradiance, point_irradiance, sees_light, sees_point, sky_irradiance, sky_share,
 };
 pub use lights::{AreaLight, AreaSample, LightSet};
+pub use parallel_shadows::ParallelShadows;
 pub use periodic::{Field, MAX_CROSSINGS};
 pub use placed_mesh::PLACED_MESH_MIN_TRIANGLES;
 pub use ray_bench::{

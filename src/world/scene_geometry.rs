@@ -402,6 +402,11 @@ impl SceneGeometry {
         !self.cut_away(material, || uv)
     }
 
+    /// Whether some material has an alpha texture, cutting surfaces away.
+    pub fn has_alpha(&self) -> bool {
+        self.any_alpha
+    }
+
     /// The triangle of primitive `prim`, if it is one.
     #[inline]
     pub fn triangle(&self, prim: u32) -> Option<&Triangle> {
