@@ -466,8 +466,9 @@ fn every_leaf_of_the_canopy_absorbs_what_the_light_model_says() {
     // canopy:300 (translucent leaves under sky and sun) at the defaults of both hierarchical
     // solvers, leaf by leaf against the recording: each leaf within 1 % plus three of the
     // reference's standard errors, the RMS over leaves and channels under 0.5 %. Measured:
-    // hierarchical radiosity worst +1.13 % (leaf 8-10, green; its reference's 3σ 0.42 %), RMS
-    // 0.26 % — the leaves' light from each other over cluster links, within 0.98 % without
+    // hierarchical radiosity worst −1.06 % (leaf 12-5, green; its reference's 3σ 0.27 %), RMS
+    // 0.25 %, the sun's light links exact (+1.13 % on leaf 8-10 when they were measured at
+    // points) — the leaves' light from each other over cluster links, within 0.98 % without
     // clustering; no leaf is gathered (1–16 % of their light is indirect). Hierarchical
     // shooting, every leaf gathered (it keeps no direct part): worst −1.20 % (leaf 13-17,
     // green), RMS 0.30 %; its solution alone was worst +0.98 %, RMS 0.24 %. Before the light links

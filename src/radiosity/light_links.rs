@@ -8,7 +8,9 @@
 //!   larger than its distance to the light gets its full power, however few receiver points
 //!   are used) and the share is estimated at the receiver points, each weighted by the solid
 //!   angle its area subtends (`cos θ / d²`);
-//! - directional light: `E·cos θ` times the share of receiver points that see it;
+//! - directional light: `E·cos θ` times the share of receiver points that see it — or, in
+//!   the hierarchical solvers wherever the world allows, times the patch's lit share cut
+//!   out exactly ([`exact_directional_arrival`]);
 //! - sky of uniform radiance `L`: `π·L` times the cosine-weighted share of directions that
 //!   reach the sky, from stratified directions at every receiver point (fewer per point the
 //!   more points there are: about 64 rays per patch side);
@@ -22,7 +24,7 @@ use super::mesh::Patch;
 use crate::color::Rgb64;
 use crate::geometry::angle::upper_angle;
 use crate::scene::LightKind;
-use crate::world::{World, sees_light, sky_irradiance};
+use crate::world::{ParallelShadows, World, sees_light, sky_irradiance};
 use glam::DVec3;
 
 /// Sky directions per axis at each receiver point of a patch (`n × n` cosine-weighted strata).
@@ -169,6 +171,50 @@ pub fn light_arrival(
         }
     }
 }
+
+/// What the directional `light` sends to side `side` of `patch`, exactly: its lit share cut
+/// out of the patch by `shadows`, that light's shadows ([`ParallelShadows::lit_share_of`]),
+/// partly shadowed when the share lies strictly between [`LIT_SNAP`] and `1 − LIT_SNAP`.
+/// `None` for a light that is not directional, or a patch under too many shadows to cut
+/// out: rays must tell then ([`light_arrival`]).
+pub fn exact_directional_arrival(
+    shadows: &ParallelShadows,
+    light: &LightKind,
+    patch: &Patch,
+    side: Side,
+) -> Option<LightArrival> {
+    let LightKind::Directional {
+        direction,
+        irradiance,
+    } = *light
+    else {
+        return None;
+    };
+    let cos = side
+        .normal(patch)
+        .dot(-direction.as_dvec3().normalize_or_zero());
+    if cos <= 0.0 {
+        return Some(LightArrival::NONE);
+    }
+    let share = shadows.lit_share_of(patch.corners())?;
+    let share = if share < LIT_SNAP {
+        0.0
+    } else if share > 1.0 - LIT_SNAP {
+        1.0
+    } else {
+        share
+    };
+    let unshadowed = irradiance.to_f64() * cos;
+    Some(LightArrival {
+        irradiance: unshadowed * share,
+        partly_shadowed: share > 0.0 && share < 1.0,
+        unshadowed,
+    })
+}
+
+/// Lit shares this close to 0 or 1 count as 0 or 1: rounding, not a shadow worth refining a
+/// patch for.
+pub const LIT_SNAP: f64 = 1e-7;
 
 /// True when `light` is hidden from a corner or the middle of an edge of side `side` of
 /// `patch` (pulled in by [`BOUNDARY_INSET`] of the way to the centroid): a shadow that covers

@@ -33,9 +33,11 @@ const BINNED_CELLS: usize = 64;
 pub const MAX_CANDIDATES: usize = 4096;
 /// Convex pieces of a receiver's lit part beyond which it is left to rays.
 pub const MAX_PIECES: usize = 1024;
-/// How far (a share of the receiver's longest edge) a point must lie on the light's side of
-/// the receiver's plane to shadow it: the receiver's own other triangles, in its plane, do not.
-const PLANE_BAND: f64 = 1e-7;
+/// How far a point must lie on the light's side of the receiver's plane to shadow it, a
+/// share of the receiver's longest edge and, in ulps of single precision, of its distance
+/// from the origin (where the triangles' corners are rounded): the receiver's own
+/// triangles, and the others of its surface, in its plane, do not.
+const PLANE_BAND: (f64, f64) = (1e-7, 8.0);
 
 /// A world's triangles as a directional light sees them, ready to tell the lit share of each.
 pub struct ParallelShadows {
@@ -212,14 +214,20 @@ impl ParallelShadows {
     }
 
     /// The share (0 to 1) of triangle `prim` that the light reaches, on its side facing the
-    /// light; `None` when too many triangles or shadows overlap it to cut them out
-    /// ([`MAX_CANDIDATES`], [`MAX_PIECES`]): rays must tell then. A triangle seen edge-on
-    /// counts as lit (it receives nothing either way).
+    /// light ([`Self::lit_share_of`] its corners).
     pub fn lit_share(&self, prim: u32) -> Option<f64> {
-        let receiver = &self.triangles[prim as usize];
+        self.lit_share_of(&self.triangles[prim as usize])
+    }
+
+    /// The share (0 to 1) of the planar convex polygon `receiver` (corners in order, scene
+    /// units; a triangle of the world or a part of one) that the light reaches, on its side
+    /// facing the light; `None` when too many triangles or shadows overlap it to cut them out
+    /// ([`MAX_CANDIDATES`], [`MAX_PIECES`]): rays must tell then. A polygon seen edge-on
+    /// counts as lit (it receives nothing either way).
+    pub fn lit_share_of(&self, receiver: &[DVec3]) -> Option<f64> {
         let normal = (receiver[1] - receiver[0]).cross(receiver[2] - receiver[0]);
         let facing = normal.dot(self.toward);
-        let mut own = receiver.map(|p| self.project(p)).to_vec();
+        let mut own: Vec<DVec2> = receiver.iter().map(|&p| self.project(p)).collect();
         let mut area = signed_area(&own);
         if area < 0.0 {
             own.reverse();
@@ -229,14 +237,21 @@ impl ParallelShadows {
             return Some(1.0);
         }
         // The light's side of the receiver's plane, with a band about it.
-        let size = (0..3)
-            .map(|i| (receiver[(i + 1) % 3] - receiver[i]).length())
+        let n = receiver.len();
+        let size = (0..n)
+            .map(|i| (receiver[(i + 1) % n] - receiver[i]).length())
+            .fold(0.0, f64::max);
+        let reach = receiver
+            .iter()
+            .map(|p| p.abs().max_element())
             .fold(0.0, f64::max);
         let light_side = normal.normalize() * facing.signum();
-        let band = PLANE_BAND * size;
+        let band = PLANE_BAND.0 * size + PLANE_BAND.1 * f64::from(f32::EPSILON) * reach;
         let ahead = |p: DVec3| light_side.dot(p - receiver[0]) - band;
-        let bounds = self.projected_bounds(receiver);
-        let candidates = self.candidates(prim, &bounds)?;
+        let bounds = own
+            .iter()
+            .fold([own[0], own[0]], |[lo, hi], &p| [lo.min(p), hi.max(p)]);
+        let candidates = self.candidates(&bounds)?;
         let min_area = 1e-12 * area;
         let mut pieces = vec![own];
         let mut next = Vec::new();
@@ -289,10 +304,10 @@ impl ParallelShadows {
         Some((lit / area).clamp(0.0, 1.0))
     }
 
-    /// The triangles (other than `prim`) whose projection may overlap the projected bounds
-    /// `b` of `prim`, each with every shift of the plot (scene units) that brings it over
-    /// them; `None` when they are more than [`MAX_CANDIDATES`].
-    fn candidates(&self, prim: u32, b: &[DVec2; 2]) -> Option<Vec<(u32, DVec3)>> {
+    /// The triangles whose projection may overlap the projected bounds `b`, each with every
+    /// shift of the plot (scene units) that brings it over them; `None` when they are more
+    /// than [`MAX_CANDIDATES`].
+    fn candidates(&self, b: &[DVec2; 2]) -> Option<Vec<(u32, DVec3)>> {
         let mut found: Vec<u32> = match self.cells_of(b, MAX_CANDIDATES) {
             Some(cells) => cells
                 .flat_map(|c| &self.items[self.start[c] as usize..self.start[c + 1] as usize])
@@ -310,7 +325,7 @@ impl ParallelShadows {
         found.sort_unstable();
         found.dedup();
         let mut candidates = Vec::with_capacity(found.len());
-        for k in found.into_iter().filter(|&k| k != prim) {
+        for k in found {
             let [lo, hi] = self.bounds[k as usize];
             let Some(period) = self.period else {
                 if lo.cmplt(b[1]).all() && hi.cmpgt(b[0]).all() {

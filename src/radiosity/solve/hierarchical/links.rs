@@ -29,13 +29,15 @@ use crate::color::Rgb64;
 use crate::radiosity::element::Side;
 use crate::radiosity::facing::{Facing, facing};
 use crate::radiosity::form_factor::{FactorList, points_to_side};
-use crate::radiosity::light_links::{SKY_DIRECTIONS_PER_AXIS, light_arrival, shadow_at_edges};
+use crate::radiosity::light_links::{
+    SKY_DIRECTIONS_PER_AXIS, exact_directional_arrival, light_arrival, shadow_at_edges,
+};
 use crate::radiosity::mesh::{Patch, PatchMesh};
 use crate::radiosity::solve::UNEVEN_RUN;
 use crate::radiosity::visibility::{Blockers, Visibility};
 use crate::scene::LightKind;
-use crate::world::World;
 use crate::world::point_irradiance;
+use crate::world::{ParallelShadows, World};
 use glam::DVec3;
 use rayon::prelude::*;
 use smallvec::SmallVec;
@@ -226,6 +228,22 @@ fn quarter_values(patch: &Patch, value: impl Fn(usize) -> f64) -> [f32; 4] {
     v.map(|x| x as f32)
 }
 
+/// Per light of `world`'s scene, the shadows of a directional light cut out exactly in the
+/// world the light links' rays would be traced in (`visibility`'s, over the endless field for
+/// a periodic plot); `None` for the other lights and where that world holds what cannot be
+/// projected ([`ParallelShadows::new`]).
+pub fn exact_shadows(world: &World, visibility: &Visibility) -> Vec<Option<ParallelShadows>> {
+    let shadows = visibility.world().plot_world();
+    (world.scene.lights.iter())
+        .map(|light| match light.kind {
+            LightKind::Directional { direction, .. } => {
+                ParallelShadows::new(shadows, direction.as_dvec3())
+            }
+            _ => None,
+        })
+        .collect()
+}
+
 /// A receiver node gathering the irradiance of a light that only sends.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightLink {
@@ -247,6 +265,9 @@ pub struct Linker<'a> {
     pub visibility: &'a Visibility,
     /// Receiver points per axis of the light links' mean irradiance.
     pub link_samples: u32,
+    /// Per light of the scene, its shadows cut out exactly, for directional lights where
+    /// the world allows ([`ParallelShadows`]); the other light links are measured by rays.
+    pub exact_shadows: Vec<Option<ParallelShadows>>,
     /// Rays cast so far.
     pub rays: AtomicU64,
     /// Form factors evaluated so far (point form factors).
@@ -499,6 +520,27 @@ impl Linker<'_> {
         let (rp, rs) = split_node(receiver);
         let patch = mesh.patch(rp);
         let kind: &LightKind = &self.world.scene.lights[light as usize].kind;
+        let exact = self.exact_shadows[light as usize]
+            .as_ref()
+            .and_then(|shadows| exact_directional_arrival(shadows, kind, patch, rs));
+        if let Some(arrival) = exact {
+            // No points to look at: the patch is lit all over, or in part, or not at all.
+            let (lit, unshadowed) = (
+                arrival.irradiance.luminance(),
+                arrival.unshadowed.luminance(),
+            );
+            let range = if arrival.partly_shadowed {
+                (0.0, unshadowed)
+            } else {
+                (lit, lit)
+            };
+            return (lit > 0.0 || range.1 > 0.0).then_some(LightLink {
+                receiver: receiver as u32,
+                light,
+                irradiance: arrival.irradiance,
+                range,
+            });
+        }
         let shadows = self.visibility.world();
         let mut arrival = light_arrival(shadows, kind, patch, rs, self.link_samples);
         // Every point lit: a shadow may still lie along an edge, between the rows.

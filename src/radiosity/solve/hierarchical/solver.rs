@@ -5,7 +5,7 @@ use super::clusters::{ClusterLink, ClusterTree, End, Split};
 use super::fine_gather::FineGather;
 use super::importance::Importance;
 use super::kept::{KeptLinks, KeptView};
-use super::links::{LightLink, Link, Linker, Prior};
+use super::links::{LightLink, Link, Linker, Prior, exact_shadows};
 use super::near_rays::{NearRays, REFERENCE_SHARE};
 use super::nodes::{Nodes, node, split_node};
 use super::oracle::{Decision, Limits, decide, decide_light};
@@ -289,6 +289,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 world,
                 visibility,
                 link_samples: options.link_samples,
+                exact_shadows: exact_shadows(world, visibility),
                 rays: AtomicU64::new(0),
                 form_factors: AtomicU64::new(0),
             },
