@@ -30,9 +30,9 @@ use glam::{DVec2, DVec3};
 /// instead of binned.
 const BINNED_CELLS: usize = 64;
 /// Candidate triangles (times their shifts) beyond which a receiver is left to rays.
-pub const MAX_CANDIDATES: usize = 4096;
+const MAX_CANDIDATES: usize = 4096;
 /// Convex pieces of a receiver's lit part beyond which it is left to rays.
-pub const MAX_PIECES: usize = 1024;
+const MAX_PIECES: usize = 1024;
 /// How far a point must lie on the light's side of the receiver's plane to shadow it, a
 /// share of the receiver's longest edge and, in ulps of single precision, of its distance
 /// from the origin (where the triangles' corners are rounded): the receiver's own
@@ -222,7 +222,8 @@ impl ParallelShadows {
     /// The share (0 to 1) of the planar convex polygon `receiver` (corners in order, scene
     /// units; a triangle of the world or a part of one) that the light reaches, on its side
     /// facing the light; `None` when too many triangles or shadows overlap it to cut them out
-    /// ([`MAX_CANDIDATES`], [`MAX_PIECES`]): rays must tell then. A polygon seen edge-on
+    /// (over 4,096 candidate triangles, or a lit part in over 1,024 convex pieces): rays must
+    /// tell then. A polygon seen edge-on
     /// counts as lit (it receives nothing either way).
     pub fn lit_share_of(&self, receiver: &[DVec3]) -> Option<f64> {
         let normal = (receiver[1] - receiver[0]).cross(receiver[2] - receiver[0]);
