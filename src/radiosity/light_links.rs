@@ -8,9 +8,9 @@
 //!   larger than its distance to the light gets its full power, however few receiver points
 //!   are used) and the share is estimated at the receiver points, each weighted by the solid
 //!   angle its area subtends (`cos θ / d²`);
-//! - directional light: `E·cos θ` times the share of receiver points that see it — or, in
-//!   the hierarchical solvers wherever the world allows, times the patch's lit share cut
-//!   out exactly ([`exact_directional_arrival`]);
+//! - directional light: `E·cos θ` times the patch's lit share, cut out exactly wherever the
+//!   world allows ([`exact_directional_arrival`], [`exact_shadows`]), else the share of
+//!   receiver points that see it;
 //! - sky of uniform radiance `L`: `π·L` times the cosine-weighted share of directions that
 //!   reach the sky, from stratified directions at every receiver point (fewer per point the
 //!   more points there are: about 64 rays per patch side);
@@ -21,6 +21,7 @@
 use super::element::Side;
 use super::form_factor::receiver_points;
 use super::mesh::Patch;
+use super::visibility::Visibility;
 use crate::color::Rgb64;
 use crate::geometry::angle::upper_angle;
 use crate::scene::LightKind;
@@ -53,17 +54,21 @@ impl LightArrival {
 }
 
 /// Irradiance in W·m⁻² that `light` sends to side `side` of `patch`, averaged over the patch,
-/// with shadows from every surface of `world`, estimated at `samples × samples` receiver
-/// points (what `light_arrival` in this module measures, without telling whether a shadow
-/// edge crosses the patch).
+/// with shadows from every surface of `world`: exactly where `exact`, the light's shadows,
+/// can tell (`exact_directional_arrival` in this module), else estimated at
+/// `samples × samples` receiver points (what `light_arrival` in this module measures,
+/// without telling whether a shadow edge crosses the patch).
 pub fn light_irradiance(
     world: &World,
-    light: &LightKind,
+    (light, exact): (&LightKind, Option<&ParallelShadows>),
     patch: &Patch,
     side: Side,
     samples: u32,
 ) -> Rgb64 {
-    light_arrival(world, light, patch, side, samples).irradiance
+    exact
+        .and_then(|shadows| exact_directional_arrival(shadows, light, patch, side))
+        .unwrap_or_else(|| light_arrival(world, light, patch, side, samples))
+        .irradiance
 }
 
 /// How far the boundary points of [`shadow_at_edges`] are pulled towards the centroid (a
@@ -170,6 +175,22 @@ pub fn light_arrival(
             }
         }
     }
+}
+
+/// Per light of `world`'s scene, the shadows of a directional light cut out exactly in the
+/// world the light links' rays would be traced in (`visibility`'s, over the endless field for
+/// a periodic plot); `None` for the other lights and where that world holds what cannot be
+/// projected ([`ParallelShadows::new`]).
+pub fn exact_shadows(world: &World, visibility: &Visibility) -> Vec<Option<ParallelShadows>> {
+    let shadows = visibility.world().plot_world();
+    (world.scene.lights.iter())
+        .map(|light| match light.kind {
+            LightKind::Directional { direction, .. } => {
+                ParallelShadows::new(shadows, direction.as_dvec3())
+            }
+            _ => None,
+        })
+        .collect()
 }
 
 /// What the directional `light` sends to side `side` of `patch`, exactly: its lit share cut
@@ -329,7 +350,7 @@ mod tests {
             position: Vec3::new(200.5, 200.0, 0.5),
             intensity: Rgb::splat(8.0),
         };
-        let e = light_irradiance(&world, &light, floor, Side::Front, 1);
+        let e = light_irradiance(&world, (&light, None), floor, Side::Front, 1);
         let expected = 8.0 * std::f64::consts::FRAC_1_SQRT_2 / 80_000.0;
         assert!((e.r / expected - 1.0).abs() < 1e-4, "{e:?} vs {expected}");
         let below = LightKind::Point {
@@ -337,12 +358,12 @@ mod tests {
             intensity: Rgb::splat(8.0),
         };
         assert_eq!(
-            light_irradiance(&world, &below, floor, Side::Front, 2),
+            light_irradiance(&world, (&below, None), floor, Side::Front, 2),
             Rgb64::BLACK
         );
         // The back of the floor sees the light below it: the full I·Ω/A, Ω the exact solid
         // angle of the unit square.
-        let back = light_irradiance(&world, &below, floor, Side::Back, 2);
+        let back = light_irradiance(&world, (&below, None), floor, Side::Back, 2);
         let omega = solid_angle(DVec3::new(0.5, -1.0, 0.5), floor.corners());
         assert!((back.g - 8.0 * omega).abs() < 1e-12, "{back:?}");
     }
@@ -370,7 +391,7 @@ mod tests {
             intensity: Rgb::splat(1.0),
         };
         let floor = mesh.patch(0);
-        let power = light_irradiance(&world, &light, floor, Side::Front, 2).r * floor.area;
+        let power = light_irradiance(&world, (&light, None), floor, Side::Front, 2).r * floor.area;
         let half = 2.0 * PI;
         assert!(power < half && power > 0.999 * half, "{power} vs {half}");
     }
@@ -394,14 +415,25 @@ mod tests {
             direction: Vec3::new(0.0, -1.0, -1.0).normalize(),
             irradiance: Rgb::splat(2.0),
         };
+        let LightKind::Directional { direction, .. } = sun else {
+            unreachable!()
+        };
+        // By rays at receiver points, and with the roof's shadow cut out exactly.
         let (open, mesh) = floor_world(false);
-        let e = light_irradiance(&open, &sun, mesh.patch(0), Side::Front, 2);
-        assert!((e.g - 2.0 * std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-6);
+        let exact = ParallelShadows::new(&open, direction.as_dvec3());
+        for exact in [None, exact.as_ref()] {
+            let e = light_irradiance(&open, (&sun, exact), mesh.patch(0), Side::Front, 2);
+            assert!((e.g - 2.0 * std::f64::consts::FRAC_1_SQRT_2).abs() < 1e-6);
+        }
         let (roofed, mesh) = floor_world(true);
-        assert_eq!(
-            light_irradiance(&roofed, &sun, mesh.patch(0), Side::Front, 2),
-            Rgb64::BLACK
-        );
+        let exact = ParallelShadows::new(&roofed, direction.as_dvec3());
+        assert!(exact.is_some());
+        for exact in [None, exact.as_ref()] {
+            assert_eq!(
+                light_irradiance(&roofed, (&sun, exact), mesh.patch(0), Side::Front, 2),
+                Rgb64::BLACK
+            );
+        }
     }
 
     #[test]
@@ -416,10 +448,22 @@ mod tests {
         };
         // Straight down the falloff is 1 near the centre: I·Ω/A times the share inside the
         // cone (only the centroid is sampled).
-        let down = light_irradiance(&world, &spot(-Vec3::Y), mesh.patch(0), Side::Front, 1);
+        let down = light_irradiance(
+            &world,
+            (&spot(-Vec3::Y), None),
+            mesh.patch(0),
+            Side::Front,
+            1,
+        );
         let omega = solid_angle(DVec3::new(0.5, 1.0, 0.5), mesh.patch(0).corners());
         assert!((down.b - omega).abs() < 1e-9, "{down:?} vs {omega}");
-        let sideways = light_irradiance(&world, &spot(Vec3::X), mesh.patch(0), Side::Front, 1);
+        let sideways = light_irradiance(
+            &world,
+            (&spot(Vec3::X), None),
+            mesh.patch(0),
+            Side::Front,
+            1,
+        );
         assert_eq!(sideways, Rgb64::BLACK);
     }
 
@@ -429,10 +473,10 @@ mod tests {
             radiance: Rgb::splat(1.0),
         };
         let (open, mesh) = floor_world(false);
-        let e = light_irradiance(&open, &sky, mesh.patch(0), Side::Front, 2);
+        let e = light_irradiance(&open, (&sky, None), mesh.patch(0), Side::Front, 2);
         assert!((e.r - PI).abs() < 1e-12, "{e:?}");
         let (roofed, mesh) = floor_world(true);
-        let shaded = light_irradiance(&roofed, &sky, mesh.patch(0), Side::Front, 2);
+        let shaded = light_irradiance(&roofed, (&sky, None), mesh.patch(0), Side::Front, 2);
         assert!(shaded.r < 0.5, "{shaded:?}");
     }
 }

@@ -22,9 +22,10 @@
 //! Only for worlds of triangles that block light wherever they are: placed meshes, analytic
 //! shapes and alpha textures (cut-outs) are left to rays ([`ParallelShadows::new`] declines).
 
-use super::World;
+use super::{SceneGeometry, World};
 use crate::geometry::convex2::{self, signed_area};
 use glam::{DVec2, DVec3};
+use std::sync::Arc;
 
 /// Grid cells a triangle's projected bounds may cover before it is tested by every receiver
 /// instead of binned.
@@ -45,8 +46,8 @@ pub struct ParallelShadows {
     toward: DVec3,
     /// The axis projected along, then the two kept as the projection's coordinates.
     axes: [usize; 3],
-    /// Every triangle's corners, scene units.
-    triangles: Vec<[DVec3; 3]>,
+    /// The world's triangles (shared with it).
+    geometry: Arc<SceneGeometry>,
     /// Every triangle's projected bounds, `[min, max]`.
     bounds: Vec<[DVec2; 2]>,
     /// The plot's periods in the projection's coordinates (x, z), for a periodic scene.
@@ -97,18 +98,10 @@ impl ParallelShadows {
         let axes = [across, (across + 1) % 3, (across + 2) % 3];
         // In a periodic scene x and z, in this order, as the plot's periods are.
         let axes = if across == 1 { [1, 0, 2] } else { axes };
-        let count = geometry.triangle_count();
-        let triangles: Vec<[DVec3; 3]> = (0..count as u32)
-            .map(|prim| {
-                let t = geometry.triangle(prim).expect("a world of triangles only");
-                let p0 = t.p0.as_dvec3();
-                [p0, p0 + t.e1.as_dvec3(), p0 + t.e2.as_dvec3()]
-            })
-            .collect();
         let mut shadows = ParallelShadows {
             toward,
             axes,
-            triangles,
+            geometry: Arc::clone(geometry),
             bounds: Vec::new(),
             period: field.map(|f| f.plot.period().as_dvec2()),
             origin: DVec2::ZERO,
@@ -118,8 +111,8 @@ impl ParallelShadows {
             items: Vec::new(),
             large: Vec::new(),
         };
-        shadows.bounds = (shadows.triangles.iter())
-            .map(|t| shadows.projected_bounds(t))
+        shadows.bounds = (0..shadows.count() as u32)
+            .map(|prim| shadows.projected_bounds(&shadows.corners(prim)))
             .collect();
         let (lo, hi) = match field {
             Some(f) => (
@@ -133,6 +126,21 @@ impl ParallelShadows {
         };
         shadows.bin(lo, hi);
         Some(shadows)
+    }
+
+    /// The number of triangles.
+    fn count(&self) -> usize {
+        self.geometry.triangle_count()
+    }
+
+    /// Triangle `prim`'s corners, scene units.
+    fn corners(&self, prim: u32) -> [DVec3; 3] {
+        let t = self
+            .geometry
+            .triangle(prim)
+            .expect("a world of triangles only");
+        let p0 = t.p0.as_dvec3();
+        [p0, p0 + t.e1.as_dvec3(), p0 + t.e2.as_dvec3()]
     }
 
     /// `p` projected along the light onto the projection's plane.
@@ -151,7 +159,7 @@ impl ParallelShadows {
     /// Bins every triangle by its projected bounds in a grid over `[lo, hi]`.
     fn bin(&mut self, lo: DVec2, hi: DVec2) {
         let extent = (hi - lo).max(DVec2::splat(1e-12));
-        let n = self.triangles.len().max(1) as f64;
+        let n = self.count().max(1) as f64;
         let nx = (n * extent.x / extent.y).sqrt().ceil().clamp(1.0, 4096.0);
         let ny = (n / nx).ceil().clamp(1.0, 4096.0);
         self.cells = [nx as usize, ny as usize];
@@ -216,7 +224,7 @@ impl ParallelShadows {
     /// The share (0 to 1) of triangle `prim` that the light reaches, on its side facing the
     /// light ([`Self::lit_share_of`] its corners).
     pub fn lit_share(&self, prim: u32) -> Option<f64> {
-        self.lit_share_of(&self.triangles[prim as usize])
+        self.lit_share_of(&self.corners(prim))
     }
 
     /// The share (0 to 1) of the planar convex polygon `receiver` (corners in order, scene
@@ -258,7 +266,7 @@ impl ParallelShadows {
         let mut next = Vec::new();
         let mut corners = Vec::with_capacity(4);
         for (k, shift) in candidates {
-            let occluder = self.triangles[k as usize].map(|p| p + shift);
+            let occluder = self.corners(k).map(|p| p + shift);
             clip_to_front(&occluder, ahead, &mut corners);
             if corners.len() < 3 {
                 continue;
@@ -316,10 +324,10 @@ impl ParallelShadows {
                 .collect(),
             None => {
                 // The receiver's bounds cover more cells than are binned: every triangle.
-                if self.triangles.len() > MAX_CANDIDATES {
+                if self.count() > MAX_CANDIDATES {
                     return None;
                 }
-                (0..self.triangles.len() as u32).collect()
+                (0..self.count() as u32).collect()
             }
         };
         found.extend_from_slice(&self.large);

@@ -29,6 +29,7 @@ use super::far_field::FarField;
 use crate::color::Rgb64;
 use crate::progress::{Cancel, NoProgress, ProgressListener};
 use crate::radiosity::element::{Element, Side};
+use crate::radiosity::light_links::exact_shadows;
 use crate::radiosity::surface;
 use crate::radiosity::visibility::Blockers;
 use crate::radiosity::{
@@ -225,14 +226,16 @@ impl RadiositySystem {
             )?),
         };
         let light_irradiance = linked.unwrap_or_else(|| {
+            let exact = exact_shadows(world, &visibility);
             elements
                 .par_iter()
                 .map(|e| {
-                    scene.lights.iter().fold(Rgb64::BLACK, |sum, light| {
+                    let lights = scene.lights.iter().zip(&exact);
+                    lights.fold(Rgb64::BLACK, |sum, (light, exact)| {
                         let patch = mesh.patch(e.patch);
                         sum + light_irradiance(
                             visibility.world(),
-                            &light.kind,
+                            (&light.kind, exact.as_ref()),
                             patch,
                             e.side,
                             options.link_samples,

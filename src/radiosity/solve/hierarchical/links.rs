@@ -228,22 +228,6 @@ fn quarter_values(patch: &Patch, value: impl Fn(usize) -> f64) -> [f32; 4] {
     v.map(|x| x as f32)
 }
 
-/// Per light of `world`'s scene, the shadows of a directional light cut out exactly in the
-/// world the light links' rays would be traced in (`visibility`'s, over the endless field for
-/// a periodic plot); `None` for the other lights and where that world holds what cannot be
-/// projected ([`ParallelShadows::new`]).
-pub fn exact_shadows(world: &World, visibility: &Visibility) -> Vec<Option<ParallelShadows>> {
-    let shadows = visibility.world().plot_world();
-    (world.scene.lights.iter())
-        .map(|light| match light.kind {
-            LightKind::Directional { direction, .. } => {
-                ParallelShadows::new(shadows, direction.as_dvec3())
-            }
-            _ => None,
-        })
-        .collect()
-}
-
 /// A receiver node gathering the irradiance of a light that only sends.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightLink {
