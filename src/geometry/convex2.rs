@@ -1,6 +1,8 @@
-//! Convex polygons in the plane, counter-clockwise: their area, clipping by a half-plane,
-//! and what remains of one when another is cut out of it, as convex pieces. What the exact
-//! shadows of a directional light are computed with ([`crate::world::ParallelShadows`]).
+//! Polygons in the plane: the signed area of any simple one (positive counter-clockwise),
+//! and for convex, counter-clockwise ones clipping by a half-plane and what remains of one
+//! when another is cut out of it, as convex pieces. What the exact shadows of a directional
+//! light are computed with ([`crate::world::ParallelShadows`]), and the scene's polygons and
+//! textures measured.
 
 use glam::DVec2;
 

@@ -8,6 +8,7 @@
 //! polygon's size, in `f64`), so they give the same answer for a polygon 10⁻⁶ or 10¹⁸ units
 //! across.
 
+use crate::geometry::convex2::{cross, signed_area};
 use glam::{DVec2, DVec3, Vec3};
 
 /// A corner may lie this fraction of the polygon's size (its bounding-box diagonal) away
@@ -219,9 +220,7 @@ impl Frame {
 
     /// Signed area in the plane, in units of the size squared.
     fn signed_area(&self) -> f64 {
-        let p = &self.flat;
-        let n = p.len();
-        0.5 * (0..n).map(|i| p[i].perp_dot(p[(i + 1) % n])).sum::<f64>()
+        signed_area(&self.flat)
     }
 
     /// True when every corner turns the same way and the edges go around once.
@@ -261,11 +260,6 @@ impl Frame {
         }
         None
     }
-}
-
-/// Twice the signed area of the triangle `a, b, c`.
-fn cross(a: DVec2, b: DVec2, c: DVec2) -> f64 {
-    (b - a).perp_dot(c - a)
 }
 
 /// True when `q` lies inside the triangle `a, b, c` or on its edges (either winding).

@@ -206,14 +206,16 @@ impl ParallelShadows {
             let cell = |x: f64| ((x - self.origin[axis]) / self.cell[axis]).floor() as i64;
             let (first, last) = (cell(b[0][axis]), cell(b[1][axis]));
             if self.period.is_some() {
-                (first, last.min(first + n - 1), n)
+                (first, last.min(first.saturating_add(n - 1)), n)
             } else {
                 (first.clamp(0, n - 1), last.clamp(0, n - 1), n)
             }
         };
         let (x0, x1, nx) = range(0);
         let (y0, y1, ny) = range(1);
-        let covered = ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize;
+        // Bounds far beyond the grid saturate; at most the whole grid each way.
+        let covered = (x1.saturating_sub(x0) + 1).saturating_mul(y1.saturating_sub(y0) + 1);
+        let covered = usize::try_from(covered).unwrap_or(usize::MAX);
         (covered <= limit).then(|| {
             (y0..=y1).flat_map(move |y| {
                 (x0..=x1).map(move |x| (y.rem_euclid(ny) * nx + x.rem_euclid(nx)) as usize)
@@ -231,8 +233,7 @@ impl ParallelShadows {
     /// units; a triangle of the world or a part of one) that the light reaches, on its side
     /// facing the light; `None` when too many triangles or shadows overlap it to cut them out
     /// (over 4,096 candidate triangles, or a lit part in over 1,024 convex pieces): rays must
-    /// tell then. A polygon seen edge-on
-    /// counts as lit (it receives nothing either way).
+    /// tell then. A polygon seen edge-on counts as lit (it receives nothing either way).
     pub fn lit_share_of(&self, receiver: &[DVec3]) -> Option<f64> {
         let normal = (receiver[1] - receiver[0]).cross(receiver[2] - receiver[0]);
         let facing = normal.dot(self.toward);
@@ -357,10 +358,10 @@ impl ParallelShadows {
                     shift[self.axes[1]] = i as f64 * period.x;
                     shift[self.axes[2]] = k2 as f64 * period.y;
                     candidates.push((k, shift));
+                    if candidates.len() > MAX_CANDIDATES {
+                        return None;
+                    }
                 }
-            }
-            if candidates.len() > MAX_CANDIDATES {
-                return None;
             }
         }
         (candidates.len() <= MAX_CANDIDATES).then_some(candidates)

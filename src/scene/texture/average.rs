@@ -9,6 +9,7 @@
 //! every texel clipped (the area of a clipped simple polygon stays exact).
 
 use super::{ALPHA_CUTOFF, Texture};
+use crate::geometry::convex2::signed_area;
 use glam::DVec2;
 
 /// What a texture holds over a polygon of texture space.
@@ -130,15 +131,6 @@ impl Texture {
             max,
         }
     }
-}
-
-/// The signed area of `polygon` (positive when counter-clockwise in its axes).
-fn signed_area(polygon: &[DVec2]) -> f64 {
-    let n = polygon.len();
-    (0..n)
-        .map(|i| polygon[i].perp_dot(polygon[(i + 1) % n]))
-        .sum::<f64>()
-        / 2.0
 }
 
 /// Whether `polygon` turns one way only (collinear corners allowed).
