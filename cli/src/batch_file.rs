@@ -9,18 +9,17 @@ use std::path::Path;
 use strahl::atomic_file::AtomicFile;
 use strahl::method::{Cancel, MethodError, ProgressListener};
 
-/// Runs one batch by `run` on `threads` threads (0: every core) under a progress bar named
+/// Runs one batch by `run` under a progress bar named
 /// `phase` (none when `quiet`). A batch stopped by Ctrl-C is refused: cut short, it could not
 /// be merged.
 pub fn run_whole<P: Send>(
     phase: &str,
     quiet: bool,
-    threads: usize,
     run: impl FnOnce(&dyn ProgressListener, &Cancel) -> Result<P, MethodError> + Send,
 ) -> Result<P> {
     let bar = super::progress::Bar::new(phase, quiet);
     let cancel = super::progress::cancel_flag();
-    let partial = super::with_threads(threads, || run(&bar, cancel))?.map_err(method_error)?;
+    let partial = run(&bar, cancel).map_err(method_error)?;
     if super::progress::interrupted() {
         bail!("interrupted: a batch cut short cannot be merged, so nothing is written");
     }

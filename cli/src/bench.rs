@@ -5,7 +5,6 @@
 //! vertical field of view.
 
 use super::choice::choice;
-use super::{useful_threads, with_threads};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use serde::Serialize;
@@ -54,8 +53,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     }
     let scene = strahl::scene::open(&args.scene, &strahl::scene::LoadOptions::default())?;
     let world = World::new(scene, args.accel).with_context(|| format!("scene '{}'", args.scene))?;
-    let threads = useful_threads(args.threads);
-    let bench = with_threads(threads, || bench_rays(&world, args.rays, args.repeat))??;
+    let threads = rayon::current_num_threads();
+    let bench = bench_rays(&world, args.rays, args.repeat)?;
     let result = BenchResult {
         scene: &args.scene,
         accel: args.accel.name(),

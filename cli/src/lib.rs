@@ -58,16 +58,16 @@ pub fn main() -> std::process::ExitCode {
     let result = match cli.command {
         Command::Render(args) => {
             progress::watch_memory(args.limits.memory_bytes());
-            render::run(&args)
+            with_threads(args.threads, || render::run(&args)).and_then(|done| done)
         }
         Command::Solve(args) => {
             progress::watch_memory(args.limits.memory_bytes());
-            solve::run(&args)
+            with_threads(args.threads, || solve::run(&args)).and_then(|done| done)
         }
         Command::Merge(args) => merge::run(&args),
         Command::Validate(args) => {
             progress::watch_memory(args.memory.bytes());
-            validate::run(&args)
+            with_threads(args.threads, || validate::run(&args)).and_then(|done| done)
         }
         Command::Scenes => {
             let list: String = strahl::scene::builtin::names()
@@ -82,7 +82,7 @@ pub fn main() -> std::process::ExitCode {
         }
         Command::Bench(args) => {
             progress::watch_memory(args.memory.bytes());
-            bench::run(&args)
+            with_threads(args.threads, || bench::run(&args)).and_then(|done| done)
         }
         Command::View(args) => {
             progress::watch_memory(args.limits.memory_bytes());
@@ -137,19 +137,17 @@ fn useful_threads(threads: usize) -> usize {
     }
 }
 
-/// Runs `method` on `world` on `threads` threads (0 = one per core) with a progress bar
-/// labelled `label` (none when `quiet`); Ctrl-C stops it, keeping what it has.
+/// Runs `method` on `world` with a progress bar labelled `label` (none when `quiet`);
+/// Ctrl-C stops it, keeping what it has.
 fn run_method(
     world: &std::sync::Arc<strahl::method::World>,
     method: &strahl::method::Method,
     label: &str,
     quiet: bool,
-    threads: usize,
 ) -> anyhow::Result<strahl::method::Outcome> {
     let bar = progress::Bar::new(label, quiet);
     let cancel = progress::cancel_flag();
-    with_threads(threads, || strahl::method::run(world, method, &bar, cancel))?
-        .map_err(radiosity::method_error)
+    strahl::method::run(world, method, &bar, cancel).map_err(radiosity::method_error)
 }
 
 /// [`run_method`] and the scene's parts: its wavelength bands' figures and its day's states
@@ -159,18 +157,16 @@ fn run_measuring(
     method: &strahl::method::Method,
     label: &str,
     quiet: bool,
-    threads: usize,
 ) -> anyhow::Result<(strahl::method::Outcome, strahl::method::Parts)> {
     let bar = progress::Bar::new(label, quiet);
     let cancel = progress::cancel_flag();
-    with_threads(threads, || {
-        strahl::method::run_with_parts(world, method, &bar, cancel)
-    })?
-    .map_err(radiosity::method_error)
+    strahl::method::run_with_parts(world, method, &bar, cancel).map_err(radiosity::method_error)
 }
 
-/// Runs `f` on a rayon pool of `threads` threads (0 = one per core), at most
-/// [`THREADS_PER_CORE`] per core ([`useful_threads`]).
+/// Runs `f` on a rayon pool of its own of `threads` threads (0 = one per core), at most
+/// [`THREADS_PER_CORE`] per core ([`useful_threads`]). A command runs whole on its pool, the
+/// scene's acceleration structure included (`--threads 1` means one thread throughout);
+/// the viewer's solver and renderer, which work at once, each on one of its own.
 fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> anyhow::Result<T> {
     let threads = useful_threads(threads);
     let pool = rayon::ThreadPoolBuilder::new()

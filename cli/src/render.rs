@@ -334,7 +334,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     let output = args.output.as_deref().context("-o names no image")?;
     let start = Instant::now();
     let tone_mapping = args.tone.mapping();
-    let outcome = run_method(&world, &method, "rendering", args.quiet, args.threads)?;
+    let outcome = run_method(&world, &method, "rendering", args.quiet)?;
     let seconds = start.elapsed().as_secs_f64();
     if let Some(solved) = &outcome.radiosity {
         radiosity::finish_solve(

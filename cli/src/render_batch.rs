@@ -35,7 +35,7 @@ pub fn write(
     batch: Batch,
     path: &Path,
 ) -> Result<()> {
-    let render = batch_file::run_whole("rendering", args.quiet, args.threads, |bar, cancel| {
+    let render = batch_file::run_whole("rendering", args.quiet, |bar, cancel| {
         strahl::method::run_render_batch(world, method, batch, bar, cancel)
     })?;
     let file = RenderPartialFile {

@@ -218,7 +218,7 @@ pub fn run(args: &SolveArgs) -> Result<()> {
     if let (Some(batch), Some(path)) = (args.batch, &args.partial) {
         return solve_batch(args, &world, &method, batch, path);
     }
-    let (outcome, parts) = run_measuring(&world, &method, "solving", args.quiet, args.threads)?;
+    let (outcome, parts) = run_measuring(&world, &method, "solving", args.quiet)?;
     match &outcome.radiosity {
         Some(solved) => {
             radiosity::finish_solve(
@@ -371,7 +371,7 @@ fn solve_batch(
     batch: Batch,
     path: &Path,
 ) -> Result<()> {
-    let partial = batch_file::run_whole("photons", args.quiet, args.threads, |bar, cancel| {
+    let partial = batch_file::run_whole("photons", args.quiet, |bar, cancel| {
         strahl::method::run_batch(world, method, batch, bar, cancel)
     })?;
     let file = PartialFile {

@@ -3,7 +3,7 @@
 //! check fails.
 
 use super::choice::choice_among;
-use super::{progress, with_threads};
+use super::progress;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use std::path::PathBuf;
@@ -80,11 +80,9 @@ pub fn run(args: &ValidateArgs) -> Result<()> {
         "case", "quantity", "method", "expected", "computed", "error", "±3σ", "pass", "time"
     );
     let cancel = progress::cancel_flag();
-    let rows = with_threads(args.threads, || {
-        run_suite(&methods, effort, args.seed, cancel, |r| {
-            println!("{}", line(r))
-        })
-    })??;
+    let rows = run_suite(&methods, effort, args.seed, cancel, |r| {
+        println!("{}", line(r))
+    })?;
     let failed = rows.iter().filter(|r| !r.pass).count();
     println!(
         "{} checks, {} passed, {failed} failed (tolerance {:.0} %, plus {STANDARD_ERRORS} \
