@@ -8,8 +8,9 @@
 
 use super::clip::Plane;
 use super::contact::{Face, split_at_contacts};
-use crate::scene::{MaterialId, PolygonMesh, Scene, Shape};
+use crate::scene::{MaterialId, Object, PolygonMesh, Scene, Shape};
 use glam::{DVec2, DVec3, Vec2, Vec3};
+use rayon::prelude::*;
 use std::fmt;
 use std::str::FromStr;
 
@@ -337,6 +338,42 @@ pub enum MeshError {
     },
 }
 
+/// The world-space faces of object `index` of `scene` (`object`), curved shapes
+/// tessellated with `segments`; `None` for an infinite plane, which has no finite surface.
+fn object_faces(
+    scene: &Scene,
+    index: usize,
+    object: &Object,
+    segments: u32,
+) -> Result<Option<Vec<Face>>, MeshError> {
+    if matches!(object.shape, Shape::Plane { .. }) {
+        return Ok(None);
+    }
+    let error = |reason: String| MeshError::Shape {
+        object: scene.object_name(index),
+        reason,
+    };
+    let polygons = object.shape.to_mesh(segments).map_err(error)?;
+    polygons.validate().map_err(error)?;
+    let to_world = |p: Vec3| object.transform.point(p).as_dvec3();
+    let mut faces = world_faces(
+        &polygons,
+        index as u32,
+        object.material,
+        to_world,
+        object.transform.flips_orientation(),
+    );
+    if object.shape.is_curved() {
+        // The facets are parts of one surface as large as the shape.
+        let size = shape_size(&faces);
+        for face in &mut faces {
+            face.source_edge = size;
+            face.part = true;
+        }
+    }
+    Ok(Some(faces))
+}
+
 /// All patches of a scene: the roots (one per planar face) and every quadtree node below them.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PatchMesh {
@@ -371,35 +408,20 @@ impl PatchMesh {
     /// root is subdivided as `options.size` asks. Degenerate faces (zero area) are dropped.
     pub fn from_scene(scene: &Scene, options: &MeshOptions) -> Result<PatchMesh, MeshError> {
         let mut mesh = PatchMesh::default();
+        // Each object's faces on its own (in parallel: a canopy has thousands of leaves),
+        // then taken in scene order, the first error with them.
+        let per_object: Vec<Result<Option<Vec<Face>>, MeshError>> = scene
+            .objects
+            .par_iter()
+            .enumerate()
+            .map(|(index, object)| object_faces(scene, index, object, options.segments))
+            .collect();
         let mut faces = Vec::new();
-        for (index, object) in scene.objects.iter().enumerate() {
-            if matches!(object.shape, Shape::Plane { .. }) {
-                mesh.skipped_objects.push(index as u32);
-                continue;
+        for (index, object_faces) in per_object.into_iter().enumerate() {
+            match object_faces? {
+                Some(object_faces) => faces.extend(object_faces),
+                None => mesh.skipped_objects.push(index as u32),
             }
-            let error = |reason: String| MeshError::Shape {
-                object: scene.object_name(index),
-                reason,
-            };
-            let polygons = object.shape.to_mesh(options.segments).map_err(error)?;
-            polygons.validate().map_err(error)?;
-            let to_world = |p: Vec3| object.transform.point(p).as_dvec3();
-            let mut object_faces = world_faces(
-                &polygons,
-                index as u32,
-                object.material,
-                to_world,
-                object.transform.flips_orientation(),
-            );
-            if object.shape.is_curved() {
-                // The facets are parts of one surface as large as the shape.
-                let size = shape_size(&object_faces);
-                for face in &mut object_faces {
-                    face.source_edge = size;
-                    face.part = true;
-                }
-            }
-            faces.extend(object_faces);
         }
         if options.contact_splits {
             faces = split_at_contacts(faces);

@@ -34,10 +34,14 @@ use crate::radiosity::mesh::{Patch, PatchId, PatchMesh};
 use crate::radiosity::visibility::Visibility;
 use crate::scene::{Scene, Shape};
 use glam::DVec3;
+use smallvec::SmallVec;
 use std::f64::consts::PI;
 
 /// At most this many root patches in a cluster whose children are patches.
 pub const LEAF_MEMBERS: usize = 4;
+
+/// The receiver members whose visibility a [`ClusterLink`] holds in itself.
+pub const VISIBLE_INLINE: usize = 16;
 
 /// Points of the emitting end that the visibility rays of a cluster link aim at.
 const TARGETS: usize = 8;
@@ -335,7 +339,7 @@ impl ClusterTree {
             emitter_radius: er,
             direction,
             distance,
-            visible: Box::default(),
+            visible: SmallVec::new(),
             seen: false,
         }
     }
@@ -369,7 +373,7 @@ impl ClusterTree {
         link: &ClusterLink,
         radiosity: &[Rgb64],
         rays: &mut u64,
-    ) -> Box<[u8]> {
+    ) -> SmallVec<[u8; VISIBLE_INLINE]> {
         let (direction, emitter_centre) = (link.direction, link.emitter_centre);
         let targets = self.ray_ends(
             mesh,
@@ -389,7 +393,7 @@ impl ClusterTree {
             .collect();
         let count = facing.iter().flatten().count();
         if count == 0 {
-            return vec![0; members.len()].into_boxed_slice();
+            return smallvec::smallvec![0; members.len()];
         }
         let per_member = MIN_RAYS.div_ceil(count);
         let mut next = 0;
@@ -700,8 +704,10 @@ pub struct ClusterLink {
     pub distance: f64,
     /// Per member of the receiver (in the tree's order), the share of its rays to the
     /// emitter that arrive, in 255ths (empty while the ends are not separated, or until
-    /// [`ClusterTree::see`] has looked).
-    pub visible: Box<[u8]>,
+    /// [`ClusterTree::see`] has looked). Held in the link up to [`VISIBLE_INLINE`] members
+    /// (all but about 1 % of a canopy's links): no allocation to make and free per link, no
+    /// pointer to follow when it gathers.
+    pub visible: SmallVec<[u8; VISIBLE_INLINE]>,
     /// Whether [`ClusterTree::see`] has looked.
     pub seen: bool,
 }

@@ -44,12 +44,23 @@ const GATHER_CHUNK: usize = 1 << 15;
 /// Bytes the chunks' sums of one gather may hold together.
 const GATHER_BYTES: usize = 256 << 20;
 
-/// The chunks a gather over `links` links into `nodes` nodes is cut into: one per
-/// [`GATHER_CHUNK`] links, as many as [`GATHER_BYTES`] allows (at least one). Depends on the
-/// problem alone, never on the thread count.
+/// More chunks than this in a gather are rounded down to a multiple of it, so that threads
+/// that divide it share them evenly (`canopy:3000`'s 9 chunks kept one of two threads
+/// waiting for the ninth).
+const GATHER_SHARES: usize = 4;
+
+/// The chunks a gather over `links` links into `nodes` nodes is cut into: about one per
+/// [`GATHER_CHUNK`] links (rounded to [`GATHER_SHARES`]), as many as [`GATHER_BYTES`]
+/// allows (at least one). Depends on the problem alone, never on the thread count.
 fn gather_chunks(links: usize, nodes: usize) -> usize {
     let by_memory = GATHER_BYTES / (nodes.max(1) * std::mem::size_of::<Rgb64>());
-    links.div_ceil(GATHER_CHUNK).min(by_memory).max(1)
+    let chunks = links.div_ceil(GATHER_CHUNK);
+    let shared = if chunks > GATHER_SHARES {
+        chunks - chunks % GATHER_SHARES
+    } else {
+        chunks
+    };
+    shared.min(by_memory).max(1)
 }
 
 /// What one pass of [`Solver::apply`] did.
@@ -423,12 +434,12 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         // The links before this index were kept earlier in this call: neither the radiosity
         // nor the patches change while it runs, so they would be kept again.
         let mut judged = 0;
+        let sent = tree.sent(&self.mesh, &self.nodes.radiosity);
         while !cancel.is_requested() {
             let (mesh, b, error) = (&self.mesh, &self.nodes.radiosity, self.limits.error);
             let importance = &self.importance;
             // Judged and split in parallel: what replaces each link refined, in link order.
             let near = self.near.as_ref();
-            let sent = tree.sent(mesh, b);
             let splits: Vec<Verdict> = self.cluster_links[judged..]
                 .par_iter()
                 .with_max_len(UNEVEN_RUN)
@@ -466,36 +477,26 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             if count == 0 {
                 break;
             }
-            let mut ends: Vec<(End, End)> = Vec::new();
-            let mut pairs: Vec<(usize, usize, Prior)> = Vec::new();
-            for (split, link) in splits.iter().zip(&self.cluster_links[judged..]) {
-                match split {
-                    Verdict::Keep => {}
-                    Verdict::Near => self.near_links.push((link.receiver, link.emitter)),
-                    &Verdict::Split(Split::Patches(r, e)) => {
-                        pairs.extend(Side::BOTH.into_iter().flat_map(|rs| {
-                            Side::BOTH.map(|es| (node(r, rs), node(e, es), Prior::Unknown))
-                        }))
-                    }
-                    Verdict::Split(split) => tree.split_ends(link, split, &mut ends),
-                }
+            // What replaces the links refined, gathered in parallel in link order.
+            let replaced: Vec<Replacements> = splits
+                .par_iter()
+                .zip(&self.cluster_links[judged..])
+                .fold(Replacements::default, |mut r, (split, link)| {
+                    r.add(tree, split, link);
+                    r
+                })
+                .collect();
+            let (mut ends, mut pairs) = (Vec::new(), Vec::new());
+            for r in replaced {
+                ends.extend(r.ends);
+                pairs.extend(r.pairs);
+                self.near_links.extend(r.near);
             }
-            // The links kept close up behind those judged before (a retain over the whole
-            // list would visit those again in every pass: 23 passes over up to 2.6·10⁵ links
-            // on canopy:3000).
-            let mut kept = judged;
-            for (index, split) in (judged..).zip(&splits) {
-                if matches!(split, Verdict::Keep) {
-                    if kept != index {
-                        self.cluster_links.swap(kept, index);
-                    }
-                    kept += 1;
-                }
-            }
-            self.cluster_links.truncate(kept);
+            // The links kept close up behind those judged before.
+            close_up(&mut self.cluster_links, judged, &splits);
             refined += count;
             judged = self.cluster_links.len();
-            // Written in place, in parallel: 2.6·10⁵ links of 136 bytes collected first and
+            // Written in place, in parallel: 2.6·10⁵ links collected first and
             // then moved took 20 ms on one thread (canopy:3000).
             self.cluster_links.par_extend(
                 ends.par_iter()
@@ -1005,12 +1006,11 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             gather_sums,
             ..
         } = self;
-        // Freeing 10⁵–10⁶ links (each cluster link with its own visibility list) takes a
-        // thread several milliseconds: another thread does it while this one builds the system.
-        let ((), system) = rayon::join(
-            move || drop((patch_links, cluster_links, gather_sums)),
-            move || RadiositySystem::from_mesh(world, mesh, options, Some(lit), Some(visibility)),
-        );
+        // Freeing 10⁵–10⁶ links takes several milliseconds, most of it giving their memory
+        // back to the system: a job of the thread pool does it while this thread goes on
+        // to the system and the report (on one thread, once the thread is free).
+        rayon::spawn(move || drop((patch_links, cluster_links, gather_sums)));
+        let system = RadiositySystem::from_mesh(world, mesh, options, Some(lit), Some(visibility));
         let system = system?;
         system.count_work(form_factors, rays);
         let solution = Solution {
@@ -1040,6 +1040,67 @@ pub(super) fn children(mesh: &mut PatchMesh, n: usize) -> [usize; 4] {
     ids.map(|c| node(c, side))
 }
 
+/// Keeps the links of `links[from..]` whose verdict (in `verdicts`, one per link from
+/// `from` on) is [`Verdict::Keep`]: the last ones kept are copied into the places of the
+/// first ones not, in parallel, and the rest cut off. Which link goes where depends on the
+/// verdicts alone. Keeping the links' order moved every link after the first one refined
+/// (2.6·10⁵ links to drop one in the canopy's second round), and moving them on one thread
+/// was the longest serial step of cluster refinement.
+fn close_up(links: &mut Vec<ClusterLink>, from: usize, verdicts: &[Verdict]) {
+    let keep = |i: usize| matches!(verdicts[i], Verdict::Keep);
+    let kept = (0..verdicts.len()).filter(|&i| keep(i)).count();
+    // The gaps among the first `kept` places, and as many links kept beyond them, last first.
+    let gaps: Vec<usize> = (0..kept).filter(|&i| !keep(i)).collect();
+    let movers: Vec<usize> = (kept..verdicts.len()).rev().filter(|&i| keep(i)).collect();
+    let (front, back) = links[from..].split_at_mut(kept);
+    let back = &*back;
+    front
+        .par_chunks_mut(CLOSE_UP_RUN)
+        .enumerate()
+        .for_each(|(chunk_index, chunk)| {
+            let start = chunk_index * CLOSE_UP_RUN;
+            let first = gaps.partition_point(|&g| g < start);
+            for (&gap, &mover) in gaps[first..].iter().zip(&movers[first..]) {
+                if gap >= start + chunk.len() {
+                    break;
+                }
+                chunk[gap - start].clone_from(&back[mover - kept]);
+            }
+        });
+    links.truncate(from + kept);
+}
+
+/// The places [`close_up`] looks at in one task.
+const CLOSE_UP_RUN: usize = 1 << 12;
+
+/// The links, patch pairs and near-field pairs that replace the cluster links refined in
+/// a run of judged links, in link order.
+#[derive(Default)]
+struct Replacements {
+    /// The ends of the new cluster links.
+    ends: Vec<(End, End)>,
+    /// The side pairs (receiver, emitter) of the new patch links.
+    pairs: Vec<(usize, usize, Prior)>,
+    /// The ends left to the near field's rays.
+    near: Vec<(End, End)>,
+}
+
+impl Replacements {
+    /// Adds what replaces `link` by its verdict `split`.
+    fn add(&mut self, tree: &ClusterTree, split: &Verdict, link: &ClusterLink) {
+        match split {
+            Verdict::Keep => {}
+            Verdict::Near => self.near.push((link.receiver, link.emitter)),
+            &Verdict::Split(Split::Patches(r, e)) => self.pairs.extend(
+                Side::BOTH
+                    .into_iter()
+                    .flat_map(|rs| Side::BOTH.map(|es| (node(r, rs), node(e, es), Prior::Unknown))),
+            ),
+            Verdict::Split(split) => tree.split_ends(link, split, &mut self.ends),
+        }
+    }
+}
+
 /// What judging a cluster link decides.
 enum Verdict {
     /// It brings its light well enough as it is.
@@ -1048,4 +1109,79 @@ enum Verdict {
     Near,
     /// It is replaced.
     Split(Split),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+    use smallvec::SmallVec;
+
+    /// A cluster link told apart by its distance, `id`.
+    fn link(id: usize) -> ClusterLink {
+        ClusterLink {
+            receiver: End::Patch(0),
+            emitter: End::Patch(1),
+            receiver_centre: DVec3::ZERO,
+            emitter_centre: DVec3::ZERO,
+            direction: DVec3::Y,
+            receiver_radius: 0.0,
+            emitter_radius: 0.0,
+            distance: id as f64,
+            visible: SmallVec::new(),
+            seen: false,
+        }
+    }
+
+    /// The ids of `links`.
+    fn ids(links: &[ClusterLink]) -> Vec<usize> {
+        links.iter().map(|l| l.distance as usize).collect()
+    }
+
+    #[test]
+    fn closing_up_keeps_every_link_kept_once_and_moves_only_into_gaps() {
+        // Ten thousand links judged after five kept before; every third one refined, so the
+        // gaps spread over several of the parallel runs.
+        let (from, judged) = (5, 10_000);
+        let verdicts: Vec<Verdict> = (0..judged)
+            .map(|i| match i % 3 {
+                1 => Verdict::Near,
+                _ => Verdict::Keep,
+            })
+            .collect();
+        let mut links: Vec<ClusterLink> = (0..from + judged).map(link).collect();
+        close_up(&mut links, from, &verdicts);
+        let ids = ids(&links);
+        assert_eq!(ids[..from], [0, 1, 2, 3, 4]);
+        let mut kept = ids[from..].to_vec();
+        kept.sort_unstable();
+        let expected: Vec<usize> = (0..judged)
+            .filter(|i| i % 3 != 1)
+            .map(|i| from + i)
+            .collect();
+        assert_eq!(kept, expected);
+        // A link kept stays where it was unless it moved into a gap; the gaps are filled
+        // by the last links kept, last first.
+        let gaps: Vec<usize> = (0..kept.len()).filter(|i| i % 3 == 1).collect();
+        for (place, &id) in ids.iter().enumerate().skip(from) {
+            if gaps.binary_search(&(place - from)).is_err() {
+                assert_eq!(id, place);
+            }
+        }
+        let movers: Vec<usize> = (kept.len()..judged).rev().filter(|i| i % 3 != 1).collect();
+        assert_eq!(ids[from + gaps[0]], from + movers[0]);
+    }
+
+    #[test]
+    fn closing_up_with_none_kept_or_none_refined() {
+        let mut links: Vec<ClusterLink> = (0..8).map(link).collect();
+        close_up(&mut links, 2, &[const { Verdict::Keep }; 6]);
+        assert_eq!(ids(&links), (0..8).collect::<Vec<_>>());
+        close_up(
+            &mut links,
+            3,
+            &(0..5).map(|_| Verdict::Near).collect::<Vec<_>>(),
+        );
+        assert_eq!(ids(&links), [0, 1, 2]);
+    }
 }
