@@ -416,7 +416,8 @@ impl PatchMesh {
             .enumerate()
             .map(|(index, object)| object_faces(scene, index, object, options.segments))
             .collect();
-        let mut faces = Vec::new();
+        let count = per_object.iter().flatten().flatten().map(Vec::len).sum();
+        let mut faces = Vec::with_capacity(count);
         for (index, object_faces) in per_object.into_iter().enumerate() {
             match object_faces? {
                 Some(object_faces) => faces.extend(object_faces),
