@@ -518,7 +518,8 @@ impl Linker<'_> {
             } else {
                 (lit, lit)
             };
-            return (lit > 0.0 || range.1 > 0.0).then_some(LightLink {
+            // A share strictly inside (0, 1) brings light: only a dark patch has no link.
+            return (lit > 0.0).then_some(LightLink {
                 receiver: receiver as u32,
                 light,
                 irradiance: arrival.irradiance,

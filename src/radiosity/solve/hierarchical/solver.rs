@@ -37,8 +37,9 @@ use std::time::Instant;
 /// Gathers per round at most (each is one bounce of light).
 const MAX_GATHERS: u32 = 1000;
 
-/// Links per chunk of a parallel gather ([`Solver::gather_from`]); fixed, so that the sums
-/// do not depend on the number of threads (fewer links are one chunk, in link order).
+/// About the links per chunk of a parallel gather ([`Solver::gather_from`]); the chunks
+/// depend on the link count alone, so that the sums do not depend on the number of threads
+/// (fewer links are one chunk, in link order).
 const GATHER_CHUNK: usize = 1 << 15;
 
 /// Bytes the chunks' sums of one gather may hold together.
