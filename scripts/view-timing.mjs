@@ -2,7 +2,8 @@
 // viewer*): the frame time while orbiting, and the time from a move to the preview and to
 // the final solution on screen. Run by scripts/view-timing.sh, which starts the viewer and
 // installs playwright-core; arguments: the viewer's address, the frames to orbit, the
-// object or light to move and the offset (NAME:X,Y,Z).
+// object or light to move and the offset (NAME:X,Y,Z); MOVES in the environment: how many
+// moves, there and back (3).
 import { chromium } from "playwright-core";
 
 const [address, frames, move] = process.argv.slice(2);
@@ -17,7 +18,7 @@ await page.waitForSelector("#frames[data-mean-ms]", { timeout: 600_000 });
 console.log("orbit:", await page.textContent("#frames"));
 const [name, by] = move.split(":");
 const [x, y, z] = by.split(",");
-for (let k = 0; k < 3; k++) {
+for (let k = 0; k < Number(process.env.MOVES || 3); k++) {
   await page.selectOption("#move-what", name);
   const sign = k % 2 === 0 ? 1 : -1;
   await page.fill("#move-x", String(sign * x));

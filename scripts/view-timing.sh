@@ -2,8 +2,8 @@
 # Times `strahl view` in headless Chromium (Debian's, or STRAHL_CHROMIUM) on the real clock:
 # frame times while orbiting and the time from a move to the preview and the final solution
 # on screen. Installs playwright-core into a temporary folder (npm registry).
-#   scripts/view-timing.sh [SCENE] [FRAMES] [NAME:X,Y,Z] [-- VIEW OPTIONS...]
-# e.g. scripts/view-timing.sh cornell 300 light:0,0,0.1
+#   [MOVES=N] scripts/view-timing.sh [SCENE] [FRAMES] [NAME:X,Y,Z] [-- VIEW OPTIONS...]
+# e.g. scripts/view-timing.sh cornell 300 light:0,0,0.1 (MOVES: the moves made, 3 unless set)
 set -euo pipefail
 scene=${1:-cornell}
 frames=${2:-300}

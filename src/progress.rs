@@ -19,9 +19,10 @@ pub trait ProgressListener: Sync {
     fn advance(&self, units: u64);
     /// The work ended (completed or cancelled).
     fn finish(&self);
-    /// Whether this listener shows solutions while they refine: solvers that refine in
-    /// rounds then hand each round's solution to [`ProgressListener::round`] (making it
-    /// costs time, so only when asked). False by default.
+    /// Whether this listener shows the solution of the round just ended: solvers that refine
+    /// in rounds ask after each round and then hand its solution to
+    /// [`ProgressListener::round`] (making it costs time, so only when asked). False by
+    /// default.
     fn wants_rounds(&self) -> bool {
         false
     }

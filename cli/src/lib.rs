@@ -166,14 +166,20 @@ fn run_measuring(
 /// Runs `f` on a rayon pool of its own of `threads` threads (0 = one per core), at most
 /// [`THREADS_PER_CORE`] per core ([`useful_threads`]). A command runs whole on its pool, the
 /// scene's acceleration structure included (`--threads 1` means one thread throughout);
-/// the viewer's solver and renderer, which work at once, each on one of its own.
+/// the viewer's renderer, which works while the solver does, on one of its own for each
+/// pass (the solver keeps one: [`thread_pool`]).
 fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> anyhow::Result<T> {
+    Ok(thread_pool(threads)?.install(f))
+}
+
+/// A rayon pool of `threads` threads (0 = one per core), at most [`THREADS_PER_CORE`] per
+/// core ([`useful_threads`]).
+fn thread_pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
     let threads = useful_threads(threads);
-    let pool = rayon::ThreadPoolBuilder::new()
+    rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
-        .map_err(|e| anyhow::anyhow!("cannot start {threads} threads: {e}"))?;
-    Ok(pool.install(f))
+        .map_err(|e| anyhow::anyhow!("cannot start {threads} threads: {e}"))
 }
 
 /// Writes `text` to standard output; a reader that stops reading early (`strahl info … |

@@ -199,6 +199,67 @@ fn inside_the_furnace_a_click_reads_its_closed_form_and_the_mesh_is_whole() {
     );
 }
 
+/// The parts of an `/api/solution` answer: each its length (u32, little-endian), its bytes
+/// and zeros to a multiple of four.
+fn parts(mut answer: &[u8]) -> Vec<Vec<u8>> {
+    let mut parts = Vec::new();
+    while !answer.is_empty() {
+        let length = u32::from_le_bytes(answer[..4].try_into().unwrap()) as usize;
+        parts.push(answer[4..4 + length].to_vec());
+        let padded = 4 + length.next_multiple_of(4);
+        assert!(answer[4 + length..padded].iter().all(|&b| b == 0));
+        answer = &answer[padded..];
+    }
+    parts
+}
+
+#[test]
+fn one_request_brings_the_status_and_what_is_new_of_the_latest_solution() {
+    let (viewer, _) = furnace("news", "");
+    let address = viewer.address.as_str();
+    let status = json(&get(address, "/api/status").2);
+    let version = status["version"].as_u64().unwrap();
+    let mesh_version = status["mesh_version"].as_u64().unwrap();
+    let [scene, mesh, lightmaps] = ["/api/scene", "/api/mesh", "/api/lightmaps"].map(|path| {
+        let (code, _, body) = get(address, path);
+        assert_eq!(code, 200, "{path}");
+        body
+    });
+    // A page that has nothing: the status, then the scene, mesh and lightmaps as served
+    // one by one.
+    let (code, head, answer) = get(address, "/api/solution");
+    assert_eq!(code, 200);
+    assert!(head.contains("application/octet-stream"));
+    let all = parts(&answer);
+    assert_eq!(all.len(), 4);
+    assert_eq!(json(&all[0])["version"].as_u64(), Some(version));
+    assert_eq!((&all[1], &all[2], &all[3]), (&scene, &mesh, &lightmaps));
+    // A page that has an earlier solution with this mesh: the status and the scene only.
+    let earlier = format!("/api/solution?after={}&mesh={mesh_version}", version - 1);
+    let news = parts(&get(address, &earlier).2);
+    assert_eq!((news.len(), &news[1]), (2, &scene));
+    // A page that has this solution: nothing new comes within the wait (two seconds), then
+    // the status alone.
+    let started = Instant::now();
+    let news = parts(
+        &get(
+            address,
+            &format!("/api/solution?after={version}&mesh={mesh_version}"),
+        )
+        .2,
+    );
+    assert!(started.elapsed() >= Duration::from_millis(1900));
+    assert_eq!(news.len(), 1);
+    assert_eq!(json(&news[0])["version"].as_u64(), Some(version));
+    for query in ["after=x", "mesh=-1", "version=1"] {
+        assert_eq!(
+            get(address, &format!("/api/solution?{query}")).0,
+            400,
+            "{query}"
+        );
+    }
+}
+
 #[test]
 fn it_serves_its_page_and_scene_refuses_everything_else_and_keeps_serving() {
     let viewer = start(&["cornell"]);

@@ -98,7 +98,11 @@ pub fn run(args: &ViewArgs) -> Result<()> {
     // Checked here, so that a scene that cannot be compiled fails before anything is served.
     World::new(scene.clone(), AccelKind::Bvh).with_context(|| format!("scene '{}'", args.scene))?;
     radiosity::warn_non_diffuse(&scene, MethodKind::RadiosityImage);
-    let server = tiny_http::Server::http((args.bind, args.port)).map_err(|e| {
+    let server = match server::listen(args.bind, args.port) {
+        Ok(listener) => tiny_http::Server::from_listener(listener, None),
+        Err(e) => Err(e.into()),
+    }
+    .map_err(|e| {
         anyhow::anyhow!(
             "cannot listen on {}:{}: {e} (--port 0 picks a free port)",
             args.bind,
@@ -117,7 +121,7 @@ pub fn run(args: &ViewArgs) -> Result<()> {
             args.shading,
             args.quiet,
             args.radiosity.export.clone(),
-        ),
+        )?,
         rendering: Rendering::new(args.threads),
     };
     println!("strahl view: http://{address}/ (Ctrl-C stops)");

@@ -4,7 +4,7 @@
 //! stops it within a work unit and starts over from the moved scene; the progress of the
 //! running solve is readable at any time.
 
-use super::super::{progress, radiosity, with_threads};
+use super::super::{progress, radiosity, thread_pool};
 use super::snapshot::{Snapshot, Stage};
 use anyhow::{Context, Result};
 use glam::Vec3;
@@ -86,7 +86,9 @@ struct State {
 pub struct Solving {
     /// The final solve.
     method: Method,
-    threads: usize,
+    /// The threads every solve and gather runs on (one pool for the viewer's life: a pool
+    /// started for each stage cost the preview after a move about 5 ms of the Cornell box's 30).
+    pool: rayon::ThreadPool,
     shading: Shading,
     quiet: bool,
     /// Where to export the first final solution.
@@ -113,10 +115,10 @@ impl Solving {
         shading: Shading,
         quiet: bool,
         export: Option<PathBuf>,
-    ) -> Self {
-        Solving {
+    ) -> Result<Self> {
+        Ok(Solving {
             method,
-            threads,
+            pool: thread_pool(threads)?,
             shading,
             quiet,
             export,
@@ -136,7 +138,7 @@ impl Solving {
             done: AtomicU64::new(0),
             total: AtomicU64::new(0),
             kept: Mutex::new(KeptLinks::new()),
-        }
+        })
     }
 
     fn lock(&self) -> MutexGuard<'_, State> {
@@ -202,9 +204,14 @@ impl Solving {
         self.lock().status.version + 1
     }
 
-    /// The status now, or — when the latest solution is `version` and nothing changes —
-    /// after at most `wait`.
-    pub fn status_after(&self, version: Option<u64>, wait: Duration) -> Status {
+    /// The status and the latest solution (or solution between rounds) now, or — when the
+    /// latest solution is `version` and nothing changes — after at most `wait`; the two read
+    /// together (the solution is the status's version).
+    pub fn news_after(
+        &self,
+        version: Option<u64>,
+        wait: Duration,
+    ) -> (Status, Option<Arc<Snapshot>>) {
         let until = Instant::now() + wait;
         let mut state = self.lock();
         while version == Some(state.status.version) && !state.shutdown {
@@ -223,7 +230,7 @@ impl Solving {
         let mut status = state.status.clone();
         status.done = self.done.load(Ordering::Relaxed);
         status.total = self.total.load(Ordering::Relaxed);
-        status
+        (status, state.snapshot.clone())
     }
 
     /// Moves the object or light `name` by `by` and starts solving the moved scene (stopping
@@ -328,12 +335,12 @@ impl Solving {
             // same solution as without, in less time (`method::run_keeping`).
             let mut kept =
                 std::mem::take(&mut *self.kept.lock().unwrap_or_else(|e| e.into_inner()));
-            let outcome = with_threads(self.threads, || {
+            let outcome = self.pool.install(|| {
                 strahl::method::run_keeping(&world, &method, &observer, cancel, &mut kept)
             });
             let links = (kept.reused(), kept.computed());
             *self.kept.lock().unwrap_or_else(|e| e.into_inner()) = kept;
-            let outcome = outcome?.map_err(radiosity::method_error)?;
+            let outcome = outcome.map_err(radiosity::method_error)?;
             if cancel.is_requested() {
                 return Ok(());
             }
@@ -364,6 +371,9 @@ impl Solving {
             } else {
                 self.publish(snapshot, version, stage, moves);
             }
+            // The links kept merged once the solution is out (on the Cornell box 6 ms after
+            // the preview, up to 50 ms after the final solve).
+            self.kept.lock().unwrap_or_else(|e| e.into_inner()).settle();
         }
         Ok(())
     }
@@ -394,17 +404,17 @@ impl Solving {
         let gathered = std::thread::scope(|scope| {
             let (done, finished) = std::sync::mpsc::channel();
             scope.spawn(move || {
-                let gathered = with_threads(self.threads, || {
+                let gathered = self.pool.install(|| {
                     solution.gathered_measurement(settings.surface_gather, seed, progress, cancel)
                 });
                 // The receiver waits until this is sent: it cannot be gone.
                 let _ = done.send(gathered);
             });
             if let Ok(gathered) = finished.recv_timeout(ROUND_INTERVAL) {
-                return gathered;
+                return Ok(gathered);
             }
             self.publish(Arc::clone(&solved), version, Stage::Solved, solved.moves());
-            finished.recv().context("the final gather stopped")?
+            finished.recv().context("the final gather stopped")
         })?;
         let Some((measurement, phrase)) = gathered.filter(|_| !cancel.is_requested()) else {
             return Ok(());
@@ -451,12 +461,9 @@ impl ProgressListener for Observer<'_> {
         self.bar.finish();
     }
     fn wants_rounds(&self) -> bool {
-        true
+        self.solving.lock().shown_at.elapsed() >= ROUND_INTERVAL
     }
     fn round(&self, solution: &RoundSolution) {
-        if self.solving.lock().shown_at.elapsed() < ROUND_INTERVAL {
-            return;
-        }
         let version = self.solving.next_version();
         let made = Snapshot::round(version, self.moves, self.scene, solution);
         match made {

@@ -342,7 +342,7 @@ const fetchOk = async (url, options) => {
 
 // What is drawn: the latest solution loaded, its GPU buffers and the links.
 const shown = {
-  scene: null, report: null, mesh: null, lightmaps: null, links: null, picked: -1, version: 0,
+  scene: null, report: null, mesh: null, lightmaps: null, links: null, picked: -1, version: 0, meshVersion: 0,
   luminance: { logAverage: 0, max: 0 },
 };
 let prog, vao, linkVao, triangleBuffer, lineBuffer, lineCount = 0, linkIndexBuffer, linkCount = 0;
@@ -352,34 +352,19 @@ let sensorVao, sensorCount = 0;
 let triangleGroups = [], textures = [], masks = [];
 const control = (id) => document.getElementById(id);
 
-// Loads the latest solution (`st`, the status that announced it) and draws it; resolves to
-// its scene description. A solution whose report alone is new (the final gather's, after the
-// final solve was shown) keeps the mesh, lightmaps and links drawn.
-async function load(st) {
-  const wantLinks = control("links").checked || params.has("links");
+// Shows a solution: its scene description (`scene`, parsed) with its mesh and lightmaps
+// where they are new (`meshBytes`, `lightmapBytes`; null: a solution whose report alone is
+// new, the final gather's after the final solve was shown, keeps the mesh, lightmaps and
+// links drawn), then its links where they are shown; resolves to `scene`.
+async function load(scene, meshBytes, lightmapBytes) {
   const first = shown.scene === null;
-  const keep = (meshVersion) => !first && meshVersion === shown.meshVersion && (shown.links || !wantLinks);
-  let scene = keep(st.mesh_version) ? await fetchOk("/api/scene").then((r) => r.json()) : null;
-  const sameMesh = scene !== null && keep(scene.mesh_version);
   // Between rounds there is no report: picks read the latest whole solution and its report.
-  const report = (scene) => scene.report || shown.report;
-  if (sameMesh) {
-    Object.assign(shown, { scene, version: scene.version, report: report(scene) });
-  } else {
-    let meshBytes, lightmapBytes, linkBytes;
-    [scene, meshBytes, lightmapBytes, linkBytes] = await Promise.all([
-      fetchOk("/api/scene").then((r) => r.json()),
-      fetchOk("/api/mesh").then((r) => r.arrayBuffer()),
-      fetchOk("/api/lightmaps").then((r) => r.arrayBuffer()),
-      wantLinks ? fetchOk("/api/links").then((r) => r.arrayBuffer()) : null,
-    ]);
+  const report = scene.report || shown.report;
+  Object.assign(shown, { scene, version: scene.version, report });
+  if (meshBytes) {
     const mesh = parseMesh(meshBytes);
     const lightmaps = parseLightmaps(lightmapBytes, mesh);
-    const links = linkBytes && parseLinks(linkBytes);
-    if (links) offerLevels(links);
-    Object.assign(shown, {
-      scene, mesh, lightmaps, links, version: scene.version, meshVersion: scene.mesh_version, report: report(scene),
-    });
+    Object.assign(shown, { mesh, lightmaps, links: null, meshVersion: scene.mesh_version });
     // The tone mapping's statistics come from the latest whole solution (the flat ones
     // between rounds would change the exposure as the solve goes on).
     if (scene.stage !== "round" || shown.luminance.max === 0) shown.luminance = luminanceStatistics(mesh);
@@ -394,7 +379,22 @@ async function load(st) {
   listSensors(shown.report);
   describeSolution();
   draw();
+  // Drawn to the end before the next request goes out (and before a move's timing reads
+  // the clock).
+  gl.finish();
+  if ((control("links").checked || params.has("links")) && !shown.links) {
+    await fetchLinks();
+    uploadLinks();
+    describeSolution();
+    draw();
+  }
   return scene;
+}
+
+// The links of the solution shown (fetched only while they are shown).
+async function fetchLinks() {
+  shown.links = parseLinks(await fetchOk("/api/links").then((r) => r.arrayBuffer()));
+  offerLevels(shown.links);
 }
 
 // The solution's GPU buffers.
@@ -629,26 +629,42 @@ function draw() {
 const redraw = () => requestAnimationFrame(draw);
 
 // Waits for solutions newer than the one shown, loads each; shows the solver's progress
-// meanwhile. Each request waits at the server for news (at most two seconds). Stops when
-// `onSolution` says it is done.
+// meanwhile. Each request waits at the server for news (at most two seconds) and brings the
+// solution with it (`/api/solution`). Stops when `onSolution` says it is done.
 async function watch(onSolution) {
+  const text = new TextDecoder();
   for (;;) {
-    let st;
+    let parts;
     try {
-      st = await fetchOk(`/api/status?version=${shown.version}`).then((r) => r.json());
+      const query = `after=${shown.version}&mesh=${shown.meshVersion}`;
+      parts = splitParts(await fetchOk(`/api/solution?${query}`).then((r) => r.arrayBuffer()));
     } catch (e) {
       status.textContent = `the server is gone (${e.message})`;
       return;
     }
+    const st = JSON.parse(text.decode(parts[0]));
     if (st.error) status.textContent = `error: ${st.error}`;
-    if (st.version !== shown.version && st.version > 0) {
-      const scene = await load(st);
+    if (parts.length > 1) {
+      const scene = await load(JSON.parse(text.decode(parts[1])), parts[2] ?? null, parts[3] ?? null);
       if (await onSolution(scene, st)) return;
     } else if (st.solving) {
       const share = st.total > 0 ? ` ${st.done}/${st.total}` : "";
       status.textContent = `solving (${st.phase}${share})…`;
     }
   }
+}
+
+// The parts of an `/api/solution` answer (cli/src/view/server.rs, `news`), each in a buffer
+// of its own: the status, then the scene, mesh and lightmaps where they came.
+function splitParts(buffer) {
+  const data = new DataView(buffer);
+  const parts = [];
+  for (let at = 0; at < buffer.byteLength; ) {
+    const length = data.getUint32(at, true);
+    parts.push(buffer.slice(at + 4, at + 4 + length));
+    at += 4 + 4 * Math.ceil(length / 4);
+  }
+  return parts;
 }
 
 function fillMovable(names) {
@@ -775,10 +791,7 @@ async function main() {
   }
   for (const id of ["links", "links-picked", "links-level"]) {
     control(id).addEventListener("change", async () => {
-      if (control("links").checked && !shown.links) {
-        shown.links = parseLinks(await fetchOk("/api/links").then((r) => r.arrayBuffer()));
-        offerLevels(shown.links);
-      }
+      if (control("links").checked && !shown.links) await fetchLinks();
       uploadLinks();
       describeSolution();
       redraw();
