@@ -51,80 +51,114 @@ pub struct SmoothCorners {
 }
 
 /// Smooth corner values of every leaf `leaves[k]` from the per-leaf `values[k]` (flat
-/// radiosity), as the module describes.
+/// radiosity), as the module describes. For several sets of values over the same leaves,
+/// [`VertexWelding`] finds the vertices once.
 pub fn vertex_radiosity(mesh: &PatchMesh, leaves: &[PatchId], values: &[Rgb64]) -> SmoothCorners {
-    let patches: Vec<&Patch> = leaves.iter().map(|&id| mesh.patch(id)).collect();
-    let extent = patches
-        .iter()
-        .flat_map(|p| p.corners().iter())
-        .fold(0.0f64, |m, c| m.max(c.abs().max_element()));
-    let weld = (extent * WELD_RELATIVE).max(f64::MIN_POSITIVE);
-    let mut index = VertexIndex {
-        weld,
-        cells: HashMap::new(),
-        count: 0,
-    };
-    // Each leaf's corner vertices, found once.
-    let ids: Vec<[usize; 4]> = patches
-        .iter()
-        .map(|p| {
-            let mut ids = [0; 4];
-            for (slot, &c) in ids.iter_mut().zip(p.corners()) {
-                *slot = index.find_or_insert(p, c);
-            }
-            ids
-        })
-        .collect();
-    let mut sums = vec![(Rgb64::BLACK, 0.0); index.count];
-    for (k, p) in patches.iter().enumerate() {
-        for &v in &ids[k][..p.corners().len()] {
-            let (sum, weight) = &mut sums[v];
-            *sum += values[k] * p.area;
-            *weight += p.area;
-        }
-    }
-    let mut vertex: Vec<Rgb64> = sums
-        .iter()
-        .map(|(s, w)| {
-            if *w > 0.0 {
-                s.map(|x| x / w)
-            } else {
-                Rgb64::BLACK
-            }
-        })
-        .collect();
-    let mut edge = EdgeWalk {
-        min_length: MIN_EDGE_CELLS * weld,
-        lookups: 0,
-    };
-    let mut order: Vec<usize> = (0..patches.len()).collect();
-    order.sort_by_key(|&k| patches[k].depth);
-    for k in order {
-        let patch = patches[k];
-        let (c, n) = (patch.corners(), patch.corners().len());
-        let lookup = |p: DVec3| index.find(patch, p);
-        for e in 0..n {
-            let ends = (ids[k][e], ids[k][(e + 1) % n]);
-            edge.fix(
-                &lookup,
-                &mut vertex,
-                (c[e], c[(e + 1) % n]),
-                ends,
-                MAX_EDGE_DEPTH,
-            );
-        }
-    }
-    let corners = patches
-        .iter()
-        .zip(&ids)
-        .map(|(p, ids)| {
-            let n = p.corners().len();
-            std::array::from_fn(|i| if i < n { vertex[ids[i]] } else { Rgb64::BLACK })
-        })
-        .collect();
+    let welding = VertexWelding::new(mesh, leaves);
     SmoothCorners {
-        corners,
-        midpoint_lookups: edge.lookups,
+        corners: welding.smooth(values),
+        midpoint_lookups: welding.midpoint_lookups,
+    }
+}
+
+/// The corners of a set of leaves as shared vertices, found once for any number of sets of
+/// values over them ([`VertexWelding::smooth`]): the vertex at each corner, the leaves'
+/// areas, and the T-vertices to set, in the order they are set.
+#[derive(Clone, Debug)]
+pub struct VertexWelding {
+    /// Per leaf, the vertex at each corner and how many corners it has.
+    corners: Vec<([usize; 4], usize)>,
+    /// Per leaf, its area (scene units²).
+    areas: Vec<f64>,
+    /// Vertices in all.
+    vertices: usize,
+    /// Per T-vertex, in order: the vertex set to the mean of the two after it.
+    fixes: Vec<[usize; 3]>,
+    /// Midpoints looked up along the leaves' edges ([`SmoothCorners::midpoint_lookups`]).
+    pub midpoint_lookups: u64,
+}
+
+impl VertexWelding {
+    /// The vertices of `leaves` of `mesh`.
+    pub fn new(mesh: &PatchMesh, leaves: &[PatchId]) -> VertexWelding {
+        let patches: Vec<&Patch> = leaves.iter().map(|&id| mesh.patch(id)).collect();
+        let extent = patches
+            .iter()
+            .flat_map(|p| p.corners().iter())
+            .fold(0.0f64, |m, c| m.max(c.abs().max_element()));
+        let weld = (extent * WELD_RELATIVE).max(f64::MIN_POSITIVE);
+        let mut index = VertexIndex {
+            weld,
+            cells: HashMap::new(),
+            count: 0,
+        };
+        // Each leaf's corner vertices, found once.
+        let corners: Vec<([usize; 4], usize)> = patches
+            .iter()
+            .map(|p| {
+                let mut ids = [0; 4];
+                for (slot, &c) in ids.iter_mut().zip(p.corners()) {
+                    *slot = index.find_or_insert(p, c);
+                }
+                (ids, p.corners().len())
+            })
+            .collect();
+        let mut edge = EdgeWalk {
+            min_length: MIN_EDGE_CELLS * weld,
+            lookups: 0,
+            fixes: Vec::new(),
+        };
+        let mut order: Vec<usize> = (0..patches.len()).collect();
+        order.sort_by_key(|&k| patches[k].depth);
+        for k in order {
+            let patch = patches[k];
+            let (c, n) = (patch.corners(), patch.corners().len());
+            let lookup = |p: DVec3| index.find(patch, p);
+            let ids = corners[k].0;
+            for e in 0..n {
+                let ends = (ids[e], ids[(e + 1) % n]);
+                edge.fix(&lookup, (c[e], c[(e + 1) % n]), ends, MAX_EDGE_DEPTH);
+            }
+        }
+        VertexWelding {
+            corners,
+            areas: patches.iter().map(|p| p.area).collect(),
+            vertices: index.count,
+            fixes: edge.fixes,
+            midpoint_lookups: edge.lookups,
+        }
+    }
+
+    /// The smooth values at the corners of every leaf from the per-leaf `values` (in the
+    /// order of the leaves given to [`VertexWelding::new`]).
+    pub fn smooth(&self, values: &[Rgb64]) -> Vec<CornerValues> {
+        let mut sums = vec![(Rgb64::BLACK, 0.0); self.vertices];
+        for ((ids, n), (&value, &area)) in self.corners.iter().zip(values.iter().zip(&self.areas)) {
+            for &v in &ids[..*n] {
+                let (sum, weight) = &mut sums[v];
+                *sum += value * area;
+                *weight += area;
+            }
+        }
+        let mut vertex: Vec<Rgb64> = sums
+            .iter()
+            .map(|(s, w)| {
+                if *w > 0.0 {
+                    s.map(|x| x / w)
+                } else {
+                    Rgb64::BLACK
+                }
+            })
+            .collect();
+        for &[m, a, b] in &self.fixes {
+            vertex[m] = (vertex[a] + vertex[b]) * 0.5;
+        }
+        self.corners
+            .iter()
+            .map(|(ids, n)| {
+                std::array::from_fn(|i| if i < *n { vertex[ids[i]] } else { Rgb64::BLACK })
+            })
+            .collect()
     }
 }
 
@@ -167,21 +201,23 @@ impl VertexIndex {
     }
 }
 
-/// The walk along leaf edges that sets their T-vertices.
+/// The walk along leaf edges that finds their T-vertices.
 struct EdgeWalk {
     /// Shortest edge followed into its midpoint, scene units.
     min_length: f64,
     /// Midpoints looked up so far.
     lookups: u64,
+    /// The T-vertices found, each with the ends of the edge it lies on, in the order found.
+    fixes: Vec<[usize; 3]>,
 }
 
 impl EdgeWalk {
-    /// Sets every vertex found at the midpoints along the edge `a`–`b` (recursively) to the
-    /// linear interpolation of the edge's end values.
+    /// Every vertex found at the midpoints along the edge `a`–`b` (recursively), to be set
+    /// to the linear interpolation of the edge's end values: each midpoint is set to the
+    /// mean of its edge's ends, before the two halves' midpoints.
     fn fix(
         &mut self,
         lookup: &impl Fn(DVec3) -> Option<usize>,
-        vertex: &mut [Rgb64],
         (a, b): (DVec3, DVec3),
         (va, vb): (usize, usize),
         depth: u32,
@@ -194,9 +230,9 @@ impl EdgeWalk {
         let Some(vm) = lookup(m).filter(|&vm| vm != va && vm != vb) else {
             return;
         };
-        vertex[vm] = (vertex[va] + vertex[vb]) * 0.5;
-        self.fix(lookup, vertex, (a, m), (va, vm), depth - 1);
-        self.fix(lookup, vertex, (m, b), (vm, vb), depth - 1);
+        self.fixes.push([vm, va, vb]);
+        self.fix(lookup, (a, m), (va, vm), depth - 1);
+        self.fix(lookup, (m, b), (vm, vb), depth - 1);
     }
 }
 

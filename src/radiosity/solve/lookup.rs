@@ -2,7 +2,7 @@
 //! a value per element shown flat or interpolated from the patch corners. The display shows
 //! what camera rays meet; final gathering reads the light reflected where gather rays land.
 
-use super::interpolate::{CornerValues, vertex_radiosity};
+use super::interpolate::{CornerValues, VertexWelding};
 use super::patch_triangles::{PatchTriangles, hit_in_field};
 use super::system::RadiositySystem;
 use crate::accel::{AccelKind, Accelerator, PrimHit};
@@ -54,14 +54,18 @@ struct ElementValues {
 
 impl ElementValues {
     fn new(system: &RadiositySystem, values: Vec<Rgb64>, shading: Shading) -> Self {
-        let corners = Side::BOTH.map(|side| match shading {
-            Shading::Smooth => {
+        let welding = match shading {
+            Shading::Smooth => Some(VertexWelding::new(&system.mesh, &system.leaves)),
+            Shading::Flat => None,
+        };
+        let corners = Side::BOTH.map(|side| match &welding {
+            Some(welding) => {
                 let per_leaf: Vec<Rgb64> = (0..system.leaves.len())
                     .map(|k| values[RadiositySystem::element(k, side)])
                     .collect();
-                vertex_radiosity(&system.mesh, &system.leaves, &per_leaf).corners
+                welding.smooth(&per_leaf)
             }
-            Shading::Flat => Vec::new(),
+            None => Vec::new(),
         });
         ElementValues {
             flat: values,

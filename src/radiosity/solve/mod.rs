@@ -24,7 +24,7 @@ mod unshot_progress;
 
 pub use counted_twice::CountedTwice;
 pub use display::{DisplaySettings, LinkDisplay, Probe, ProbeHit, render_solution, value_image};
-pub use interpolate::{CornerValues, SmoothCorners, vertex_radiosity};
+pub use interpolate::{CornerValues, SmoothCorners, VertexWelding, vertex_radiosity};
 pub use lookup::{LeafHit, RadiosityLookup, Shading};
 pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};

@@ -15,7 +15,7 @@
 //! least zero: where the form factors of a closed scene add up to a little more than one, the
 //! patches absorb a little more than is emitted, and that shows in the absorbed power.
 
-use super::interpolate::vertex_radiosity;
+use super::interpolate::VertexWelding;
 use super::lightmap;
 use super::lookup::{RadiosityLookup, Shading};
 use super::rounds::RoundStats;
@@ -337,8 +337,9 @@ impl Solution {
     }
 
     /// The solution as a lit mesh: both sides of every leaf as polygons (the back with its
-    /// corners reversed and its normal turned), with the smooth corner values of
-    /// [`vertex_radiosity`] (display radiosity and irradiance, ambient term included) of that side; the
+    /// corners reversed and its normal turned), with the smooth corner values
+    /// ([`VertexWelding::smooth`]: display radiosity and irradiance, ambient term included) of
+    /// that side; the
     /// polygons of textured materials also carry their texture coordinates and their place in
     /// their surface's lightmap (baked by `radiosity::solve::lightmap`) when `lightmaps`
     /// asks for them (a format that carries textures).
@@ -356,14 +357,16 @@ impl Solution {
         let irradiance = self.display_irradiance();
         // A periodic scene's plot alone, without the copies around it.
         let own = system.world().own_objects() as u32;
+        // The vertices found once for both sides and both quantities.
+        let welding = VertexWelding::new(&system.mesh, &system.leaves);
         for side in Side::BOTH {
             let smooth = |per_element: &[Rgb64]| {
                 let values: Vec<Rgb64> = (0..system.leaves.len())
                     .map(|k| per_element[RadiositySystem::element(k, side)])
                     .collect();
-                vertex_radiosity(&system.mesh, &system.leaves, &values).corners
+                welding.smooth(&values)
             };
-            let (corners, arriving) = (smooth(&display), smooth(&irradiance));
+            let (corners, arriving) = rayon::join(|| smooth(&display), || smooth(&irradiance));
             for (k, values) in corners.iter().enumerate() {
                 let patch = system.mesh.patch(system.leaves[k]);
                 if patch.object >= own {
