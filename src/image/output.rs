@@ -154,7 +154,7 @@ fn load_png(path: &Path) -> Result<Film, ImageError> {
 }
 
 fn save_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
-    use exr::prelude::{Image, SpecificChannels, Vec2, WritableImage};
+    use exr::prelude::{Encoding, Image, LineOrder, SpecificChannels, Vec2, WritableImage};
     let width = film.width() as usize;
     let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
         let p = film.pixels()[y * width + x];
@@ -165,7 +165,13 @@ fn save_exr(film: &Film, path: &Path) -> Result<(), ImageError> {
         source,
     };
     let mut out = AtomicFile::create(path).map_err(io_error)?;
-    Image::from_channels((width, film.height() as usize), channels)
+    // The tiles in increasing order: compressed in parallel, they were written in the order
+    // they came done, so the same image made files that differed from run to run.
+    let encoding = Encoding {
+        line_order: LineOrder::Increasing,
+        ..Encoding::FAST_LOSSLESS
+    };
+    Image::from_encoded_channels((width, film.height() as usize), encoding, channels)
         .write()
         .to_buffered(&mut out)
         .map_err(|source| ImageError::Exr {
@@ -265,6 +271,27 @@ mod tests {
         let file = TempFile::new("exr");
         let film = test_film();
         save(&film, &file.0, &linear(-5.0)).expect("write EXR");
+        assert_eq!(load(&file.0).expect("read EXR"), film);
+    }
+
+    #[test]
+    fn an_exr_file_is_the_same_every_time() {
+        // Many tiles of 64 × 64 pixels, compressed in parallel.
+        let mut film = Film::new(640, 320);
+        for y in 0..320 {
+            for x in 0..640 {
+                film.set(x, y, Rgb::new(x as f32, y as f32, ((x * y) % 7) as f32));
+            }
+        }
+        let bytes = |_| {
+            let file = TempFile::new("exr");
+            save(&film, &file.0, &linear(0.0)).expect("write EXR");
+            std::fs::read(&file.0).expect("read back")
+        };
+        let first = bytes(0);
+        assert!((1..8).all(|k| bytes(k) == first));
+        let file = TempFile::new("exr");
+        std::fs::write(&file.0, &first).unwrap();
         assert_eq!(load(&file.0).expect("read EXR"), film);
     }
 
