@@ -1,10 +1,11 @@
 //! The `strahl` Python package's extension module (`strahl._strahl`): scenes opened by name
 //! or file, every method run through the library's method API with the GIL released,
 //! Ctrl-C (`KeyboardInterrupt`) and a progress callback looked at every 50 ms, results as
-//! the report's JSON and images as raw `f32` bytes (the Python side turns both into numpy
-//! arrays: `python/strahl/__init__.py`).
+//! the report's JSON (read into numpy columns by [`table::ReportTable`]) and images as raw
+//! `f32` bytes (the Python side turns both into arrays: `python/strahl/__init__.py`).
 
 mod arrays;
+mod table;
 
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -612,6 +613,7 @@ fn write_report(report: &str, path: std::path::PathBuf) -> PyResult<()> {
 #[pymodule]
 fn _strahl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
+    m.add_class::<table::ReportTable>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(scene_from_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(write_report, m)?)?;

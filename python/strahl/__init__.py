@@ -17,6 +17,7 @@ import json
 import uuid
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from typing import Callable, NamedTuple, Optional
 
 import numpy as np
@@ -112,8 +113,7 @@ class Result:
     """Illuminance at each sensor, lux, shape (s,)."""
     sensor_irradiance_w_m2: np.ndarray
     """Irradiance at each sensor, W/m², shape (s, 3)."""
-    report: dict = field(repr=False)
-    """The whole report, as `strahl solve --report FILE.json` writes it."""
+    _json: str = field(repr=False, compare=False)
     bands: dict = field(default_factory=dict)
     """For a scene with ``[[bands]]``: each band's :class:`Band` by its name, in the scene's
     order; empty otherwise."""
@@ -124,6 +124,12 @@ class Result:
     """The red : far-red ratio of the photon irradiance per surface, shape (n,) (NaN where
     there is no far red), for scenes with bands named ``red`` and ``far-red``; else None."""
 
+    @cached_property
+    def report(self) -> dict:
+        """The whole report, as `strahl solve --report FILE.json` writes it (read from its
+        JSON when first asked for)."""
+        return json.loads(self._json)
+
     def report_json(self) -> str:
         """The report as JSON text."""
         return json.dumps(self.report, indent=2)
@@ -131,7 +137,7 @@ class Result:
     def write_report(self, path) -> None:
         """Writes the report as ``strahl solve --report PATH`` does: ``.json`` (the whole
         report) or ``.csv`` (one row per surface, the sensors in ``NAME.sensors.csv``)."""
-        _strahl.write_report(json.dumps(self.report), str(path))
+        _strahl.write_report(self._json, str(path))
 
     def by_object(self) -> "Result":
         """The rows of each object (its faces, when reported per face) summed into one row
@@ -205,72 +211,59 @@ def _ratio(bands: dict, order: list, total) -> np.ndarray:
 
 
 def _result(report_json: str) -> Result:
-    report = json.loads(report_json)
-    rows = report["objects"]
+    table = _strahl.ReportTable(report_json)
 
-    def rgb(key):
-        return np.array([row.get(key) or [np.nan] * 3 for row in rows], dtype=float).reshape(-1, 3)
+    def numbers(rows, key, width=1):
+        values = np.frombuffer(table.numbers(rows, key, width), dtype="<f8")
+        return values.reshape(-1, width) if width > 1 else values
 
-    def scalar(key):
-        return np.array([np.nan if row.get(key) is None else row[key] for row in rows], dtype=float)
-
-    sensors = report.get("sensors", [])
-
-    def band(b):
-        def column(entries, key):
-            return np.array([np.nan if e.get(key) is None else e[key] for e in entries], dtype=float)
-
-        objects, band_sensors = b["objects"], b.get("sensors", [])
+    def band(k, name):
+        objects, sensors = f"/bands/{k}/objects", f"/bands/{k}/sensors"
         return Band(
-            name=b["name"],
-            from_nm=b["from_nm"],
-            to_nm=b["to_nm"],
-            incident_w=column(objects, "incident_power"),
-            absorbed_w=column(objects, "absorbed_power"),
-            irradiance_w_m2=column(objects, "irradiance"),
-            incident_umol_s=column(objects, "incident_photons_umol_s"),
-            absorbed_umol_s=column(objects, "absorbed_photons_umol_s"),
-            photon_irradiance_umol_m2_s=column(objects, "photon_irradiance_umol_m2_s"),
-            incident_w_sigma=column(objects, "incident_power_standard_error"),
-            sensor_irradiance_w_m2=column(band_sensors, "irradiance"),
-            sensor_photon_irradiance_umol_m2_s=column(band_sensors, "photon_irradiance_umol_m2_s"),
+            name=name,
+            from_nm=float(numbers("/bands", "from_nm")[k]),
+            to_nm=float(numbers("/bands", "to_nm")[k]),
+            incident_w=numbers(objects, "incident_power"),
+            absorbed_w=numbers(objects, "absorbed_power"),
+            irradiance_w_m2=numbers(objects, "irradiance"),
+            incident_umol_s=numbers(objects, "incident_photons_umol_s"),
+            absorbed_umol_s=numbers(objects, "absorbed_photons_umol_s"),
+            photon_irradiance_umol_m2_s=numbers(objects, "photon_irradiance_umol_m2_s"),
+            incident_w_sigma=numbers(objects, "incident_power_standard_error"),
+            sensor_irradiance_w_m2=numbers(sensors, "irradiance"),
+            sensor_photon_irradiance_umol_m2_s=numbers(sensors, "photon_irradiance_umol_m2_s"),
         )
 
-    ratio = report.get("red_far_red")
-
-    def state(st):
-        def triple(key):
-            return np.array([o.get(key) or [np.nan] * 3 for o in st["objects"]], dtype=float).reshape(-1, 3)
-
+    def state(k, time):
+        objects = f"/states/{k}/objects"
         return State(
-            time=st["time"],
-            incident_w=triple("incident_power"),
-            absorbed_w=triple("absorbed_power"),
-            irradiance_w_m2=triple("irradiance"),
+            time=time,
+            incident_w=numbers(objects, "incident_power", 3),
+            absorbed_w=numbers(objects, "absorbed_power", 3),
+            irradiance_w_m2=numbers(objects, "irradiance", 3),
         )
 
+    faces = numbers("/objects", "face")
     return Result(
-        states=[state(st) for st in report.get("states", [])],
-        bands={b["name"]: band(b) for b in report.get("bands", [])},
-        red_far_red=None
-        if ratio is None
-        else np.array([np.nan if r is None else r for r in ratio["objects"]], dtype=float),
-        sensor_names=[r["name"] for r in sensors],
-        sensor_lux=np.array([r["illuminance_lux"] for r in sensors], dtype=float),
-        sensor_irradiance_w_m2=np.array([r["irradiance"] for r in sensors], dtype=float).reshape(-1, 3),
-        names=[row["name"] for row in rows],
-        area_m2=scalar("area"),
-        incident_w=rgb("incident_power"),
-        absorbed_w=rgb("absorbed_power"),
-        irradiance_w_m2=rgb("irradiance"),
-        illuminance_lux=scalar("illuminance_lux"),
-        faces=np.array([-1 if row.get("face") is None else row["face"] for row in rows], dtype=int),
-        direct_w=rgb("direct_power"),
-        direct_lux=scalar("direct_illuminance_lux"),
-        indirect_lux=scalar("indirect_illuminance_lux"),
-        incident_w_sigma=rgb("incident_power_standard_error"),
-        lux_sigma=scalar("illuminance_standard_error_lux"),
-        report=report,
+        states=[state(k, time) for k, time in enumerate(table.strings("/states", "time"))],
+        bands={name: band(k, name) for k, name in enumerate(table.strings("/bands", "name"))},
+        red_far_red=numbers("/red_far_red/objects", "") if table.has("/red_far_red") else None,
+        sensor_names=table.strings("/sensors", "name"),
+        sensor_lux=numbers("/sensors", "illuminance_lux"),
+        sensor_irradiance_w_m2=numbers("/sensors", "irradiance", 3),
+        names=table.strings("/objects", "name"),
+        area_m2=numbers("/objects", "area"),
+        incident_w=numbers("/objects", "incident_power", 3),
+        absorbed_w=numbers("/objects", "absorbed_power", 3),
+        irradiance_w_m2=numbers("/objects", "irradiance", 3),
+        illuminance_lux=numbers("/objects", "illuminance_lux"),
+        faces=np.where(np.isnan(faces), -1, faces).astype(int),
+        direct_w=numbers("/objects", "direct_power", 3),
+        direct_lux=numbers("/objects", "direct_illuminance_lux"),
+        indirect_lux=numbers("/objects", "indirect_illuminance_lux"),
+        incident_w_sigma=numbers("/objects", "incident_power_standard_error", 3),
+        lux_sigma=numbers("/objects", "illuminance_standard_error_lux"),
+        _json=report_json,
     )
 
 

@@ -85,3 +85,17 @@ def sun_position(
     delta_t_s: float = 69.0,
 ) -> Tuple[float, float, Tuple[float, float, float], float]: ...
 def write_report(report: str, path: str) -> None: ...
+
+class ReportTable:
+    """A report's JSON parsed once; its tables read column by column."""
+
+    def __init__(self, json: str) -> None: ...
+    def has(self, pointer: str) -> bool:
+        """Whether the report has a non-null value at the JSON pointer (``/red_far_red``)."""
+    def rows(self, rows: str) -> int:
+        """How many rows the array at the JSON pointer ``rows`` holds (0 where none)."""
+    def numbers(self, rows: str, key: str, width: int) -> bytearray:
+        """Field ``key`` of every row at ``rows`` (``""``: the rows themselves), ``width``
+        numbers a row, NaN where null or absent, as little-endian float64 bytes."""
+    def strings(self, rows: str, key: str) -> list[str]:
+        """Field ``key`` of every row at ``rows``, a string each."""

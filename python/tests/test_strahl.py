@@ -51,6 +51,26 @@ def test_python_gives_the_command_lines_report(tmp_path):
     assert by_python["totals"] == by_cli["totals"]
 
 
+def test_the_arrays_are_the_reports_columns():
+    result = strahl.load("cornell").solve("hierarchical", per_face=True)
+    rows = result.report["objects"]
+    assert result.names == [r["name"] for r in rows]
+    np.testing.assert_array_equal(result.absorbed_w, [r["absorbed_power"] for r in rows])
+    np.testing.assert_array_equal(result.illuminance_lux, [r["illuminance_lux"] for r in rows])
+    np.testing.assert_array_equal(result.faces, [-1 if r.get("face") is None else r["face"] for r in rows])
+    # Standard errors only where the final gather at the surfaces gathered: NaN elsewhere.
+    sigma = [r.get("incident_power_standard_error") or [np.nan] * 3 for r in rows]
+    np.testing.assert_array_equal(result.incident_w_sigma, sigma)
+    assert np.isnan(result.incident_w_sigma).any() and not np.isnan(result.incident_w_sigma).all()
+    table = strahl._strahl.ReportTable('{"rows": [{"a": 1.5}, {"a": null}, {}]}')
+    np.testing.assert_array_equal(np.frombuffer(table.numbers("/rows", "a", 1)), [1.5, np.nan, np.nan])
+    assert table.rows("/none") == 0 and not table.has("/none")
+    with pytest.raises(ValueError, match="row 0: 'a' is 1.5, not 3 number"):
+        table.numbers("/rows", "a", 3)
+    with pytest.raises(ValueError, match="not a strahl report"):
+        strahl._strahl.ReportTable("{")
+
+
 def test_radiosity_and_the_light_model_agree_surface_by_surface():
     scene = strahl.load("cornell")
     radiosity = scene.solve("hierarchical")
