@@ -1,7 +1,7 @@
 //! The `strahl` Python package's extension module (`strahl._strahl`): scenes opened by name
 //! or file, every method run through the library's method API with the GIL released,
 //! Ctrl-C (`KeyboardInterrupt`) and a progress callback looked at every 50 ms, results as
-//! the report's JSON (read into numpy columns by [`table::ReportTable`]) and images as raw
+//! the report's JSON (read into numpy columns by [`table::report_columns`]) and images as raw
 //! `f32` bytes (the Python side turns both into arrays: `python/strahl/__init__.py`).
 
 mod arrays;
@@ -613,10 +613,10 @@ fn write_report(report: &str, path: std::path::PathBuf) -> PyResult<()> {
 #[pymodule]
 fn _strahl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
-    m.add_class::<table::ReportTable>()?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(scene_from_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(write_report, m)?)?;
+    m.add_function(wrap_pyfunction!(table::report_columns, m)?)?;
     m.add_function(wrap_pyfunction!(sun_position, m)?)?;
     Ok(())
 }

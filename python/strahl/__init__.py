@@ -211,58 +211,56 @@ def _ratio(bands: dict, order: list, total) -> np.ndarray:
 
 
 def _result(report_json: str) -> Result:
-    table = _strahl.ReportTable(report_json)
+    columns = _strahl.report_columns(report_json)
 
-    def numbers(rows, key, width=1):
-        values = np.frombuffer(table.numbers(rows, key, width), dtype="<f8")
+    def array(values, width=1):
+        values = np.frombuffer(values, dtype="<f8")
         return values.reshape(-1, width) if width > 1 else values
 
-    def band(k, name):
-        objects, sensors = f"/bands/{k}/objects", f"/bands/{k}/sensors"
+    def band(b):
         return Band(
-            name=name,
-            from_nm=float(numbers("/bands", "from_nm")[k]),
-            to_nm=float(numbers("/bands", "to_nm")[k]),
-            incident_w=numbers(objects, "incident_power"),
-            absorbed_w=numbers(objects, "absorbed_power"),
-            irradiance_w_m2=numbers(objects, "irradiance"),
-            incident_umol_s=numbers(objects, "incident_photons_umol_s"),
-            absorbed_umol_s=numbers(objects, "absorbed_photons_umol_s"),
-            photon_irradiance_umol_m2_s=numbers(objects, "photon_irradiance_umol_m2_s"),
-            incident_w_sigma=numbers(objects, "incident_power_standard_error"),
-            sensor_irradiance_w_m2=numbers(sensors, "irradiance"),
-            sensor_photon_irradiance_umol_m2_s=numbers(sensors, "photon_irradiance_umol_m2_s"),
+            name=b["name"],
+            from_nm=b["from_nm"],
+            to_nm=b["to_nm"],
+            incident_w=array(b["incident_power"]),
+            absorbed_w=array(b["absorbed_power"]),
+            irradiance_w_m2=array(b["irradiance"]),
+            incident_umol_s=array(b["incident_photons_umol_s"]),
+            absorbed_umol_s=array(b["absorbed_photons_umol_s"]),
+            photon_irradiance_umol_m2_s=array(b["photon_irradiance_umol_m2_s"]),
+            incident_w_sigma=array(b["incident_power_standard_error"]),
+            sensor_irradiance_w_m2=array(b["sensor_irradiance"]),
+            sensor_photon_irradiance_umol_m2_s=array(b["sensor_photon_irradiance_umol_m2_s"]),
         )
 
-    def state(k, time):
-        objects = f"/states/{k}/objects"
+    def state(st):
         return State(
-            time=time,
-            incident_w=numbers(objects, "incident_power", 3),
-            absorbed_w=numbers(objects, "absorbed_power", 3),
-            irradiance_w_m2=numbers(objects, "irradiance", 3),
+            time=st["time"],
+            incident_w=array(st["incident_power"], 3),
+            absorbed_w=array(st["absorbed_power"], 3),
+            irradiance_w_m2=array(st["irradiance"], 3),
         )
 
-    faces = numbers("/objects", "face")
+    sensors, ratio, faces = columns["sensors"], columns["red_far_red"], array(columns["face"])
     return Result(
-        states=[state(k, time) for k, time in enumerate(table.strings("/states", "time"))],
-        bands={name: band(k, name) for k, name in enumerate(table.strings("/bands", "name"))},
-        red_far_red=numbers("/red_far_red/objects", "") if table.has("/red_far_red") else None,
-        sensor_names=table.strings("/sensors", "name"),
-        sensor_lux=numbers("/sensors", "illuminance_lux"),
-        sensor_irradiance_w_m2=numbers("/sensors", "irradiance", 3),
-        names=table.strings("/objects", "name"),
-        area_m2=numbers("/objects", "area"),
-        incident_w=numbers("/objects", "incident_power", 3),
-        absorbed_w=numbers("/objects", "absorbed_power", 3),
-        irradiance_w_m2=numbers("/objects", "irradiance", 3),
-        illuminance_lux=numbers("/objects", "illuminance_lux"),
+        states=[state(st) for st in columns["states"]],
+        bands={b["name"]: band(b) for b in columns["bands"]},
+        red_far_red=None if ratio is None else array(ratio),
+        sensor_names=sensors["names"],
+        sensor_lux=array(sensors["illuminance_lux"]),
+        sensor_irradiance_w_m2=array(sensors["irradiance"], 3),
+        names=columns["names"],
+        area_m2=array(columns["area"]),
+        incident_w=array(columns["incident_power"], 3),
+        absorbed_w=array(columns["absorbed_power"], 3),
+        irradiance_w_m2=array(columns["irradiance"], 3),
+        illuminance_lux=array(columns["illuminance_lux"]),
         faces=np.where(np.isnan(faces), -1, faces).astype(int),
-        direct_w=numbers("/objects", "direct_power", 3),
-        direct_lux=numbers("/objects", "direct_illuminance_lux"),
-        indirect_lux=numbers("/objects", "indirect_illuminance_lux"),
-        incident_w_sigma=numbers("/objects", "incident_power_standard_error", 3),
-        lux_sigma=numbers("/objects", "illuminance_standard_error_lux"),
+        direct_w=array(columns["direct_power"], 3),
+        direct_lux=array(columns["direct_illuminance_lux"]),
+        indirect_lux=array(columns["indirect_illuminance_lux"]),
+        incident_w_sigma=array(columns["incident_power_standard_error"], 3),
+        lux_sigma=array(columns["illuminance_standard_error_lux"]),
         _json=report_json,
     )
 

@@ -86,16 +86,10 @@ def sun_position(
 ) -> Tuple[float, float, Tuple[float, float, float], float]: ...
 def write_report(report: str, path: str) -> None: ...
 
-class ReportTable:
-    """A report's JSON parsed once; its tables read column by column."""
-
-    def __init__(self, json: str) -> None: ...
-    def has(self, pointer: str) -> bool:
-        """Whether the report has a non-null value at the JSON pointer (``/red_far_red``)."""
-    def rows(self, rows: str) -> int:
-        """How many rows the array at the JSON pointer ``rows`` holds (0 where none)."""
-    def numbers(self, rows: str, key: str, width: int) -> bytearray:
-        """Field ``key`` of every row at ``rows`` (``""``: the rows themselves), ``width``
-        numbers a row, NaN where null or absent, as little-endian float64 bytes."""
-    def strings(self, rows: str, key: str) -> list[str]:
-        """Field ``key`` of every row at ``rows``, a string each."""
+def report_columns(json: str) -> dict:
+    """The report ``json`` as columns: the objects' ``names`` and their figures as
+    little-endian float64 bytes (NaN where the report has none; ``incident_power``,
+    ``absorbed_power``, ``irradiance``, ``direct_power``, ``incident_power_standard_error``
+    three numbers a row, ``area``, ``face``, ``illuminance_lux``, ``direct_illuminance_lux``,
+    ``indirect_illuminance_lux``, ``illuminance_standard_error_lux`` one), ``sensors``,
+    ``bands`` and ``states`` (a dict each) and ``red_far_red`` (or None)."""
