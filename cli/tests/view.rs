@@ -462,6 +462,25 @@ fn the_links_are_served_with_the_objects_at_their_ends() {
 }
 
 #[test]
+fn the_links_asked_for_with_a_mesh_are_that_meshs_or_none() {
+    let viewer = start(&["cornell"]);
+    let address = viewer.address.as_str();
+    solved(address);
+    let (_, _, scene) = get(address, "/api/scene");
+    let mesh = json(&scene)["mesh_version"].as_u64().unwrap();
+    let (status, _, latest) = get(address, "/api/links");
+    assert_eq!(status, 200);
+    let (status, _, of_mesh) = get(address, &format!("/api/links?mesh={mesh}"));
+    assert_eq!(status, 200);
+    assert_eq!(of_mesh, latest);
+    // A page that still draws an older mesh gets no links of a newer one.
+    let (status, _, body) = get(address, &format!("/api/links?mesh={}", mesh + 1));
+    assert_eq!(status, 409, "{}", String::from_utf8_lossy(&body));
+    let (status, _, _) = get(address, "/api/links?mesh=first");
+    assert_eq!(status, 400);
+}
+
+#[test]
 fn the_links_from_the_sun_and_the_sky_are_served() {
     // The canopy's leaves are lit by a sun and a sky (lights 0 and 1): links from both come
     // with the patches' links, their emitter end no object.

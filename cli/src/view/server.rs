@@ -23,6 +23,9 @@ const MAX_URL: usize = 2048;
 /// The longest a status request waits for a new solution before it answers.
 const LONGEST_WAIT: Duration = Duration::from_secs(2);
 
+/// The answer to a request for a solution's part before the first solution.
+const NO_SOLUTION: &str = "no solution yet: /api/status tells when there is one\n";
+
 /// An answer: status, content type and body.
 type Answer = (u16, &'static str, Vec<u8>);
 
@@ -93,10 +96,7 @@ fn get(viewer: &Viewer, path: &str, params: &[(String, String)]) -> Answer {
     let solving = &viewer.solving;
     let solution = |serve: fn(&Snapshot) -> Answer| match solving.snapshot() {
         Some(snapshot) => serve(&snapshot),
-        None => text(
-            503,
-            "no solution yet: /api/status tells when there is one\n",
-        ),
+        None => text(503, NO_SOLUTION),
     };
     match path {
         "/" | "/index.html" => (200, "text/html; charset=utf-8", INDEX.as_bytes().to_vec()),
@@ -126,7 +126,10 @@ fn get(viewer: &Viewer, path: &str, params: &[(String, String)]) -> Answer {
         "/api/scene" => solution(|s| (200, "application/json", s.scene.clone())),
         "/api/mesh" => solution(|s| (200, "application/octet-stream", s.mesh.clone())),
         "/api/lightmaps" => solution(|s| (200, "application/octet-stream", s.lightmaps.clone())),
-        "/api/links" => solution(|s| (200, "application/octet-stream", s.links.clone())),
+        "/api/links" => match known(params, &["mesh"]).and_then(|()| count(params, "mesh")) {
+            Ok(mesh) => links(solving.snapshot().as_deref(), mesh),
+            Err(problem) => text(400, &format!("{problem}\n")),
+        },
         "/api/render" => json(&viewer.rendering.status()),
         "/api/render.png" => match viewer.rendering.png() {
             Some(png) => (200, "image/png", png.to_vec()),
@@ -311,6 +314,25 @@ fn news(
         }
     }
     Ok(parts)
+}
+
+/// `/api/links?mesh=VERSION`: the latest solution's links; with `mesh`, only while its mesh
+/// is that version (409 once a newer one came: the page asks with the mesh it draws, so the
+/// links drawn are always that mesh's).
+fn links(latest: Option<&Snapshot>, mesh: Option<u64>) -> Answer {
+    let Some(latest) = latest else {
+        return text(503, NO_SOLUTION);
+    };
+    match mesh.filter(|&m| m != latest.mesh_version()) {
+        Some(gone) => text(
+            409,
+            &format!(
+                "mesh {gone} is no longer the latest (mesh {} is): its links are gone\n",
+                latest.mesh_version()
+            ),
+        ),
+        None => (200, "application/octet-stream", latest.links.clone()),
+    }
 }
 
 /// The value of `key`, if given.

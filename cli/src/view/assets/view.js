@@ -391,9 +391,13 @@ async function load(scene, meshBytes, lightmapBytes) {
   return scene;
 }
 
-// The links of the solution shown (fetched only while they are shown).
+// The links of the solution shown (fetched only while they are shown). A 409: a newer
+// solution came meanwhile, and its links come with it when it is loaded.
 async function fetchLinks() {
-  shown.links = parseLinks(await fetchOk("/api/links").then((r) => r.arrayBuffer()));
+  const r = await fetch(`/api/links?mesh=${shown.meshVersion}`);
+  if (r.status === 409) return;
+  if (!r.ok) throw new Error(`/api/links: ${r.status} ${await r.text()}`);
+  shown.links = parseLinks(await r.arrayBuffer());
   offerLevels(shown.links);
 }
 
