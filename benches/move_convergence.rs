@@ -11,7 +11,8 @@
 //! the couplings that changed, the sweeps or shots, the couplings visited in units of whole
 //! sweeps, and the seconds. Shooting checks its error every 64 shots.
 //!
-//! Run: `cargo bench --bench move_convergence [-- TARGET]` (TARGET defaults to 1e-4).
+//! Run: `cargo bench --bench move_convergence [-- TARGET]` (TARGET defaults to 1e-4); a
+//! name given to `cargo bench -- NAME` that is not part of this one's skips it.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -163,10 +164,16 @@ fn solve_exactly(system: &RadiositySystem, rows: &[Line], b: &mut [Rgb64]) {
 }
 
 fn main() {
-    let target: f64 = std::env::args()
-        .skip(1)
-        .find_map(|a| a.parse().ok())
-        .unwrap_or(1e-4);
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    // `cargo bench -- NAME` passes NAME to every bench: run only when it names this one.
+    let filtered = args
+        .iter()
+        .filter(|a| !a.starts_with('-') && a.parse::<f64>().is_err())
+        .any(|a| !"move_convergence".contains(a.as_str()));
+    if filtered {
+        return;
+    }
+    let target: f64 = args.iter().find_map(|a| a.parse().ok()).unwrap_or(1e-4);
     let mut scene = builtin::load("cornell")
         .expect("built-in scene")
         .expect("valid scene");
