@@ -7,6 +7,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 use strahl::accel::AccelKind;
 use strahl::method::{KeptLinks, Method, RadiositySettings, run_keeping, solve_radiosity};
 use strahl::progress::Cancel;
@@ -144,8 +145,11 @@ fn solve_cornell(c: &mut Criterion) {
 }
 
 /// The Cornell box at the defaults solved again after its light moved 5 cm back and forth,
-/// each solve taking the patch links of the one before (`links_kept`), or none
-/// (`from_scratch`, the same links computed anew; the same solution bit for bit).
+/// by hierarchical radiosity and the matrix solver, each solve taking the links of the one
+/// before (`links_kept`: patch links, or couplings and the solution to start from), or none
+/// (`from_scratch`, the same links computed anew; the same solution bit for bit, or within
+/// the matrix solver's tolerance). What is timed is the solve: the merge of the links kept
+/// after it is not (the viewer merges them once the solution is shown).
 fn solve_after_a_move(c: &mut Criterion) {
     let scene = builtin::load("cornell")
         .expect("built-in scene")
@@ -158,25 +162,37 @@ fn solve_after_a_move(c: &mut Criterion) {
         .into_iter()
         .map(|s| Arc::new(World::new(s, AccelKind::Bvh).expect("world")))
         .collect();
-    let method = Method::Radiosity(RadiositySettings::new(SolverKind::Hierarchical));
     let mut group = c.benchmark_group("radiosity_after_a_move");
     group.sample_size(10);
-    for keep in [true, false] {
-        let mut kept = KeptLinks::new();
-        let mut turn = 0;
-        let name = if keep { "links_kept" } else { "from_scratch" };
-        group.bench_function(name, |b| {
-            b.iter(|| {
-                turn += 1;
-                if !keep {
-                    kept = KeptLinks::new();
-                }
-                let world = &worlds[turn % 2];
-                let outcome = run_keeping(world, &method, &NoProgress, &Cancel::new(), &mut kept)
-                    .expect("solve");
-                black_box(outcome.measurement.is_some())
-            })
-        });
+    for solver in [SolverKind::Hierarchical, SolverKind::Matrix] {
+        let method = Method::Radiosity(RadiositySettings::new(solver));
+        for keep in [true, false] {
+            let mut kept = KeptLinks::new();
+            let mut turn = 0;
+            let name = if keep { "links_kept" } else { "from_scratch" };
+            group.bench_function(format!("{solver}/{name}"), |b| {
+                // The links kept are merged before the clock starts, as the viewer merges
+                // them after showing the solution (`KeptLinks::settle`).
+                b.iter_custom(|iterations| {
+                    let mut spent = Duration::ZERO;
+                    for _ in 0..iterations {
+                        turn += 1;
+                        if !keep {
+                            kept = KeptLinks::new();
+                        }
+                        kept.settle();
+                        let world = &worlds[turn % 2];
+                        let start = Instant::now();
+                        let outcome =
+                            run_keeping(world, &method, &NoProgress, &Cancel::new(), &mut kept)
+                                .expect("solve");
+                        spent += start.elapsed();
+                        black_box(outcome.measurement.is_some());
+                    }
+                    spent
+                })
+            });
+        }
     }
     group.finish();
 }

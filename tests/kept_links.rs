@@ -8,8 +8,8 @@
 use glam::Vec3;
 use std::sync::Arc;
 use strahl::method::{
-    AccelKind, Cancel, KeptLinks, Method, NoProgress, RadiositySettings, SolverKind, World,
-    run_keeping,
+    AccelKind, Cancel, KeptLinks, MeshSize, Method, NoProgress, RadiositySettings, SolverKind,
+    World, run_keeping,
 };
 use strahl::report::Report;
 use strahl::scene::{Scene, open};
@@ -17,13 +17,25 @@ use strahl::scene::{Scene, open};
 /// The report of `scene` solved by hierarchical radiosity at the defaults with the links
 /// `kept`, its statistics (times, rays, counts) left out.
 fn solved(scene: &Scene, kept: &mut KeptLinks) -> serde_json::Value {
+    let settings = RadiositySettings::new(SolverKind::Hierarchical);
+    solved_by(scene, settings, kept).0
+}
+
+/// The report of `scene` solved by radiosity with `settings` and the links `kept`, its
+/// statistics left out, and the solver's iterations.
+fn solved_by(
+    scene: &Scene,
+    settings: RadiositySettings,
+    kept: &mut KeptLinks,
+) -> (serde_json::Value, usize) {
     let world = Arc::new(World::new(scene.clone(), AccelKind::Bvh).unwrap());
-    let method = Method::Radiosity(RadiositySettings::new(SolverKind::Hierarchical));
+    let method = Method::Radiosity(settings);
     let outcome = run_keeping(&world, &method, &NoProgress, &Cancel::new(), kept).unwrap();
+    let iterations = outcome.radiosity.as_ref().unwrap().solution.iterations();
     let report = Report::new(&scene.name, outcome.measurement.as_ref().unwrap());
     let mut value = serde_json::to_value(&report).unwrap();
     value.as_object_mut().unwrap().remove("stats");
-    value
+    (value, iterations)
 }
 
 /// Solves `scene`, moves `name` by `by`, solves again keeping links; checks its report
@@ -92,4 +104,73 @@ fn a_scene_changed_otherwise_than_by_moves_keeps_no_links() {
     scene.materials[0].diffuse = strahl::color::Rgb::splat(0.1);
     solved(&scene, &mut kept);
     assert_eq!(kept.reused(), 0);
+}
+
+/// The matrix solver on a mesh of two levels (a quarter of the default's leaves: 1,000
+/// elements on the Cornell box), iterated until a sweep changes the radiosity by at most `tolerance` of the
+/// source power.
+fn matrix(tolerance: f64) -> RadiositySettings {
+    let mut settings = RadiositySettings::new(SolverKind::Matrix);
+    settings.system.mesh.size = MeshSize::Levels(2);
+    settings.matrix.tolerance = tolerance;
+    settings
+}
+
+/// Every object's incident power per channel, W, in the report's order.
+fn incident_powers(report: &serde_json::Value) -> Vec<f64> {
+    let objects = report["objects"].as_array().unwrap();
+    let channels = objects
+        .iter()
+        .flat_map(|o| o["incident_power"].as_array().unwrap());
+    channels.map(|c| c.as_f64().unwrap()).collect()
+}
+
+/// The largest difference between two reports' objects, relative to the second's.
+fn largest_difference(a: &serde_json::Value, b: &serde_json::Value) -> f64 {
+    let (a, b) = (incident_powers(a), incident_powers(b));
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(&b)
+        .map(|(x, y)| (x - y).abs() / y.abs().max(1e-12))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_moved_light_is_solved_by_the_matrix_from_the_couplings_and_solution_before() {
+    let mut scene = open("cornell", &Default::default()).unwrap();
+    let default = RadiositySettings::new(SolverKind::Matrix).matrix.tolerance;
+    let (exact, default) = (matrix(1e-12), matrix(default));
+    let mut kept = KeptLinks::new();
+    solved_by(&scene, exact, &mut kept);
+    let mut kept_default = KeptLinks::new();
+    let (before, _) = solved_by(&scene, default, &mut kept_default);
+    scene
+        .move_named("light", Vec3::new(0.0, 0.0, 0.05))
+        .unwrap();
+
+    // Iterated to the end, the couplings kept give the moved box's own matrix: the same
+    // fixed point as the matrix computed in full, to the iteration's last digits.
+    let (again, _) = solved_by(&scene, exact, &mut kept);
+    let share = kept.reused() as f64 / (kept.reused() + kept.computed()) as f64;
+    let (from_scratch, _) = solved_by(&scene, exact, &mut KeptLinks::new());
+    let exact_difference = largest_difference(&again, &from_scratch);
+    eprintln!(
+        "matrix, light moved: {:.1} % of the couplings kept, {exact_difference:.1e} apart",
+        100.0 * share
+    );
+    assert!(share > 0.5, "{share}");
+    assert!(exact_difference < 1e-9, "{exact_difference}");
+
+    // At the default tolerance the solve starts from the solution before: fewer sweeps, the
+    // same solution within the tolerance.
+    let (warm, warm_sweeps) = solved_by(&scene, default, &mut kept_default);
+    let (cold, cold_sweeps) = solved_by(&scene, default, &mut KeptLinks::new());
+    let difference = largest_difference(&warm, &cold);
+    eprintln!("sweeps {warm_sweeps} warm, {cold_sweeps} cold; {difference:.1e} apart");
+    assert!(warm_sweeps < cold_sweeps);
+    assert!(difference < 1e-3, "{difference}");
+    assert!(
+        largest_difference(&before, &cold) > 1e-2,
+        "the move changed nothing"
+    );
 }

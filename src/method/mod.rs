@@ -69,12 +69,10 @@ pub use crate::measure::{
     resident_bytes, usable_memory_bytes,
 };
 pub use crate::progress::{Cancel, NoProgress, ProgressListener};
-pub use crate::radiosity::solve::hierarchical::{
-    HierarchicalSettings, KeptLinks, Oracle, RefinePass,
-};
+pub use crate::radiosity::solve::hierarchical::{HierarchicalSettings, Oracle, RefinePass};
 pub use crate::radiosity::solve::{
-    DisplaySettings, Iteration, LinkDisplay, MatrixSettings, Probe, ProbeHit, RoundStats, Shading,
-    ShootingSettings, Solution, SolverKind, SystemOptions,
+    DisplaySettings, Iteration, KeptLinks, LinkDisplay, MatrixSettings, Probe, ProbeHit,
+    RoundStats, Shading, ShootingSettings, Solution, SolverKind, SystemOptions,
 };
 pub use crate::radiosity::{
     FormFactorMethod, FormFactorOptions, MeshOptions, MeshSize, VisRays, VisibilityOptions,

@@ -10,11 +10,11 @@ use crate::choice::Choice;
 use crate::light_model::{LightTraceOutput, LightTraceSettings, trace_light};
 use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::solve::hierarchical::{
-    KeptLinks, solve_hierarchical_keeping, solve_hierarchical_shooting,
+    solve_hierarchical_keeping, solve_hierarchical_shooting,
 };
 use crate::radiosity::solve::{
-    DisplaySettings, LinkDisplay, RadiositySystem, SolveError, SolverKind, solve_matrix,
-    solve_progressive,
+    DisplaySettings, KeptLinks, LinkDisplay, RadiositySystem, SolveError, SolverKind,
+    solve_matrix_keeping, solve_progressive,
 };
 use crate::sampling::SequenceKind;
 use crate::scene::LightKind;
@@ -42,10 +42,13 @@ pub fn run(
 
 /// [`run`] for a scene solved again and again as its objects move (the viewer): hierarchical
 /// radiosity takes the patch links `kept` from the solve before wherever nothing moved
-/// between their ends, and keeps this solve's for the next ([`KeptLinks`]). The outcome is
-/// the same, bit for bit, as this call's with no links kept, in less time; its rays are
-/// seeded by what the patches are rather than by their indices, so it is as accurate as
-/// [`run`]'s and not the same bit for bit. The other methods run as [`run`] runs them.
+/// between their ends, and keeps this solve's for the next ([`KeptLinks`]); its outcome is
+/// the same, bit for bit, as this call's with no links kept, in less time. The matrix
+/// solver takes the couplings no move reached in the same way and starts its iteration from
+/// the solution before: the same matrix entry for entry, the solution the same within the
+/// solver's tolerance. Their rays are seeded by what the patches are rather than by their
+/// indices, so they are as accurate as [`run`]'s and not the same bit for bit. The other
+/// methods run as [`run`] runs them.
 pub fn run_keeping(
     world: &Arc<World>,
     method: &Method,
@@ -188,7 +191,8 @@ pub fn solve_radiosity(
     solve_radiosity_keeping(world, settings, progress, cancel, None)
 }
 
-/// [`solve_radiosity`], hierarchical radiosity with the links `kept` ([`run_keeping`]).
+/// [`solve_radiosity`], hierarchical radiosity and the matrix solver with the links `kept`
+/// ([`run_keeping`]).
 fn solve_radiosity_keeping(
     world: &Arc<World>,
     settings: &RadiositySettings,
@@ -218,9 +222,14 @@ fn solve_radiosity_keeping(
             cancel,
         )?,
         SolverKind::Matrix => {
-            let system = RadiositySystem::with_progress(world, options, progress, cancel)?;
+            let system = match kept {
+                Some(_) => {
+                    RadiositySystem::with_progress_by_geometry(world, options, progress, cancel)?
+                }
+                None => RadiositySystem::with_progress(world, options, progress, cancel)?,
+            };
             progress.phase("form factors");
-            let solution = solve_matrix(&system, &settings.matrix, progress, cancel)?;
+            let solution = solve_matrix_keeping(&system, &settings.matrix, progress, cancel, kept)?;
             (system, solution)
         }
         SolverKind::Progressive => {

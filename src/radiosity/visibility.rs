@@ -361,8 +361,8 @@ impl Visibility {
         })
     }
 
-    /// This estimator with the rays of [`Visibility::from_points`] and
-    /// [`Visibility::look`] seeded by what the two patches are ([`PatchMesh::patch_key`])
+    /// This estimator with the rays of [`Visibility::estimate`], [`Visibility::from_points`]
+    /// and [`Visibility::look`] seeded by what the two patches are ([`PatchMesh::patch_key`])
     /// rather than by their indices: a pair casts the same rays in every mesh of the scene,
     /// whatever indices its patches have there (a mesh made again after an object moved
     /// numbers its patches anew), which keeping links between solves rests on
@@ -399,7 +399,7 @@ impl Visibility {
     }
 
     /// The generator seed of the rays from patch `a` to patch `b` of `mesh` in
-    /// [`Visibility::from_points`] and [`Visibility::look`]: from the patches' indices, or
+    /// [`Visibility::estimate`], [`Visibility::from_points`] and [`Visibility::look`]: from the patches' indices, or
     /// from what they are ([`Visibility::seeded_by_geometry`]).
     fn pair_seed(&self, mesh: &PatchMesh, a: PatchId, b: PatchId) -> u64 {
         if self.seeds_by_geometry {
@@ -464,7 +464,7 @@ impl Visibility {
         if matches!(occluders, Occluders::None) {
             return VisibilityEstimate::UNOCCLUDED;
         }
-        let mut rng = Pcg64Mcg::seed_from_u64(pair_key(self.options.seed, lo, hi));
+        let mut rng = Pcg64Mcg::seed_from_u64(self.pair_seed(mesh, lo, hi));
         let mut rays = 0;
         loop {
             let grid = self.grid_rays(p, q, m, None, &occluders, &mut rng);

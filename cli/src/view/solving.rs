@@ -56,8 +56,9 @@ pub struct Status {
     pub preview_seconds: Option<f64>,
     pub solved_seconds: Option<f64>,
     pub final_seconds: Option<f64>,
-    /// Patch links the latest solve took from the solve before (where nothing moved between
-    /// their ends) and computed.
+    /// Links the latest solve took from the solve before (where nothing moved between their
+    /// ends) and computed: patch links (hierarchical) or couplings between two elements
+    /// (matrix).
     pub links_kept: u64,
     pub links_computed: u64,
 }
@@ -331,8 +332,9 @@ impl Solving {
                 scene: &world.scene,
                 moves,
             };
-            // Links kept from the solve before wherever the moves did not reach them: the
-            // same solution as without, in less time (`method::run_keeping`).
+            // Links kept from the solve before wherever the moves did not reach them (and the
+            // matrix solver's solution to start from): the same solution as without, within
+            // the matrix solver's tolerance, in less time (`method::run_keeping`).
             let mut kept =
                 std::mem::take(&mut *self.kept.lock().unwrap_or_else(|e| e.into_inner()));
             let outcome = self.pool.install(|| {

@@ -4,8 +4,11 @@
 //! until the change of one sweep, as a fraction of the source power ([`power_fraction`]),
 //! falls to the tolerance. Starting from `B = S`, a Jacobi sweep's change is exactly the
 //! light not yet reflected, so the measure matches the progressive solver's unshot power.
+//! Solved again after objects moved ([`solve_matrix_keeping`]), it takes the couplings no
+//! move reached and starts from the solution before (`kept_couplings.rs`).
 
 use super::SolveError;
+use super::kept::KeptLinks;
 use super::solution::{Solution, power_fraction};
 use super::solver_kind::SolverKind;
 use super::steady_state::{Bounce, BounceWatch};
@@ -66,6 +69,21 @@ pub fn solve_matrix(
     progress: &dyn ProgressListener,
     cancel: &Cancel,
 ) -> Result<Solution, SolveError> {
+    solve_matrix_keeping(system, settings, progress, cancel, None)
+}
+
+/// [`solve_matrix`], taking the couplings `kept` from the solve before where no move
+/// reached them and starting the iteration from its solution; keeps this solve's for the
+/// next (`kept_couplings.rs`). `system` is to be built with its rays seeded by geometry
+/// ([`RadiositySystem::with_progress_by_geometry`]), or the couplings kept differ from
+/// those computed in the last bits.
+pub fn solve_matrix_keeping(
+    system: &RadiositySystem,
+    settings: &MatrixSettings,
+    progress: &dyn ProgressListener,
+    cancel: &Cancel,
+    kept: Option<&mut KeptLinks>,
+) -> Result<Solution, SolveError> {
     let n = system.len();
     let patches = system.leaves.len();
     if (patches as u64) * (patches as u64) > MAX_MATRIX_ENTRIES {
@@ -76,25 +94,50 @@ pub fn solve_matrix(
     }
     let mut solution =
         Solution::start(system, SolverKind::Matrix, settings.iteration.solver_name());
+    let kept = kept.map(|kept| {
+        kept.last_matrix = true;
+        let view = kept.couplings.begin(system);
+        (kept, view)
+    });
     let start = Instant::now();
     progress.start(n as u64);
-    let rows: Vec<Option<Couplings>> = (0..n)
-        .into_par_iter()
-        .map(|i| {
-            if cancel.is_requested() {
-                return None;
-            }
-            let row = system.row(i);
-            progress.advance(1);
-            Some(row)
-        })
-        .collect();
+    let rows: Vec<Option<Couplings>> = match &kept {
+        Some((_, view)) => (0..n)
+            .into_par_iter()
+            .map_init(
+                || view.scratch(),
+                |scratch, i| {
+                    (!cancel.is_requested()).then(|| {
+                        let row = view.row(system, i, scratch);
+                        progress.advance(1);
+                        row
+                    })
+                },
+            )
+            .collect(),
+        None => (0..n)
+            .into_par_iter()
+            .map(|i| {
+                (!cancel.is_requested()).then(|| {
+                    let row = system.row(i);
+                    progress.advance(1);
+                    row
+                })
+            })
+            .collect(),
+    };
     progress.finish();
     solution.seconds.form_factors = start.elapsed().as_secs_f64();
     let Some(rows) = rows.into_iter().collect::<Option<Vec<Couplings>>>() else {
         solution.interrupted = true;
+        if let Some((kept, view)) = kept {
+            kept.couplings.end(view, None);
+        }
         return Ok(solution);
     };
+    if let Some((_, view)) = &kept {
+        solution.radiosity = view.start(system);
+    }
     let start = Instant::now();
     progress.start(settings.max_iterations as u64);
     let source: Vec<Rgb64> = (0..n).map(|k| system.source(k)).collect();
@@ -132,6 +175,10 @@ pub fn solve_matrix(
             .collect(),
     );
     solution.seconds.iterations = start.elapsed().as_secs_f64();
+    if let Some((kept, view)) = kept {
+        kept.couplings
+            .end(view, Some((rows, solution.radiosity.clone())));
+    }
     Ok(solution)
 }
 

@@ -9,9 +9,12 @@ mod display;
 mod far_field;
 pub mod hierarchical;
 mod interpolate;
+mod kept;
+mod kept_couplings;
 mod lightmap;
 mod lookup;
 mod matrix;
+mod moves;
 mod patch_triangles;
 mod progressive;
 mod rounds;
@@ -25,8 +28,11 @@ mod unshot_progress;
 pub use counted_twice::CountedTwice;
 pub use display::{DisplaySettings, LinkDisplay, Probe, ProbeHit, render_solution, value_image};
 pub use interpolate::{CornerValues, SmoothCorners, VertexWelding, vertex_radiosity};
+pub use kept::KeptLinks;
 pub use lookup::{LeafHit, RadiosityLookup, Shading};
-pub use matrix::{Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix};
+pub use matrix::{
+    Iteration, MAX_MATRIX_ENTRIES, MatrixSettings, solve_matrix, solve_matrix_keeping,
+};
 pub use progressive::{COLUMN_CACHE_BYTES, ShootingSettings, solve_progressive};
 pub use rounds::RoundStats;
 pub use solution::{

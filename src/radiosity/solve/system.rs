@@ -92,6 +92,18 @@ pub struct Couplings {
 }
 
 impl Couplings {
+    /// The non-zero entries of `(index, value)` pairs, in ascending index order.
+    pub(super) fn of_entries(entries: impl Iterator<Item = (usize, f64)>) -> Couplings {
+        let mut out = Couplings::default();
+        for (k, v) in entries {
+            if v > 0.0 {
+                out.leaves.push(k as u32);
+                out.values.push(v);
+            }
+        }
+        out
+    }
+
     /// Bytes held (for memory budgets).
     pub fn bytes(&self) -> usize {
         self.leaves.len() * 4 + self.values.len() * 8
@@ -156,9 +168,38 @@ impl RadiositySystem {
         progress: &dyn ProgressListener,
         cancel: &Cancel,
     ) -> Result<Self, SolveError> {
+        Self::built(world, options, false, progress, cancel)
+    }
+
+    /// [`Self::with_progress`] with the visibility rays between patches seeded by what the
+    /// patches are rather than by their indices ([`Visibility::seeded_by_geometry`]), as
+    /// couplings kept between solves need (`kept_couplings.rs`): as accurate, not the same
+    /// bit for bit.
+    pub fn with_progress_by_geometry(
+        world: &Arc<World>,
+        options: SystemOptions,
+        progress: &dyn ProgressListener,
+        cancel: &Cancel,
+    ) -> Result<Self, SolveError> {
+        Self::built(world, options, true, progress, cancel)
+    }
+
+    fn built(
+        world: &Arc<World>,
+        options: SystemOptions,
+        by_geometry: bool,
+        progress: &dyn ProgressListener,
+        cancel: &Cancel,
+    ) -> Result<Self, SolveError> {
         let start = Instant::now();
         let mesh = PatchMesh::from_scene(&world.scene, &options.mesh)?;
-        let mut system = Self::from_mesh(world, mesh, options, None, None)?;
+        let visibility = by_geometry
+            .then(|| {
+                let visibility = Visibility::new(world, options.visibility, options.mesh.segments);
+                visibility.map(|v| Arc::new(v.seeded_by_geometry()))
+            })
+            .transpose()?;
+        let mut system = Self::from_mesh(world, mesh, options, None, visibility)?;
         let element = |k: usize, side: Side| Self::element(k, side) as u32;
         let (mesh, leaves) = (&system.mesh, &system.leaves);
         if let Some((far, rays)) = FarField::cast(world, mesh, leaves, element, progress, cancel) {
@@ -270,6 +311,12 @@ impl RadiositySystem {
     /// The world the system was built from.
     pub fn world(&self) -> &World {
         &self.world
+    }
+
+    /// Whether every coupling holds what the endless field of a periodic plot sends
+    /// (`far_field.rs`).
+    pub(super) fn has_far_field(&self) -> bool {
+        self.far.is_some()
     }
 
     /// The options it was built with.
@@ -405,7 +452,7 @@ impl RadiositySystem {
 
     /// Row `i` of the coupling matrix: what receiver `i` gathers from every element.
     pub fn row(&self, i: usize) -> Couplings {
-        collect((0..self.len()).map(|j| (j, self.coupling(i, j))))
+        Couplings::of_entries((0..self.len()).map(|j| (j, self.coupling(i, j))))
     }
 
     /// Column `j` of the coupling matrix: what every receiver gets from emitter `j`
@@ -415,7 +462,7 @@ impl RadiositySystem {
             .into_par_iter()
             .map(|i| self.coupling(i, j))
             .collect();
-        collect(values.into_iter().enumerate())
+        Couplings::of_entries(values.into_iter().enumerate())
     }
 
     /// Adds work a solver did on its own (a hierarchical solver's links): `form_factors` form
@@ -434,16 +481,4 @@ impl RadiositySystem {
     pub fn visibility_ray_count(&self) -> u64 {
         self.visibility_rays.load(Ordering::Relaxed)
     }
-}
-
-/// The non-zero entries of `(index, value)` pairs.
-fn collect(entries: impl Iterator<Item = (usize, f64)>) -> Couplings {
-    let mut out = Couplings::default();
-    for (k, v) in entries {
-        if v > 0.0 {
-            out.leaves.push(k as u32);
-            out.values.push(v);
-        }
-    }
-    out
 }

@@ -31,19 +31,15 @@ use super::nodes::split_node;
 use crate::radiosity::mesh::PatchMesh;
 use crate::radiosity::shaft::{Bounds, Shaft};
 use crate::radiosity::solve::SystemOptions;
+use crate::radiosity::solve::moves::Basis;
 use crate::radiosity::visibility::{Blockers, Visibility};
-use crate::scene::{Material, Object, Scene};
-use glam::DVec3;
+use crate::scene::Scene;
 // The links' and primitives' keys are hashes of geometry already (`PatchMesh::patch_key`,
 // `Visibility::primitive_key`): a fast hasher does (the standard SipHash took the Cornell
 // box's final solve after a move 8 % longer, its lookups and the merge).
 use rustc_hash::FxHashMap;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
-
-/// How far a moved object's bounding box is widened on every side, a share of the scene's
-/// diagonal: rays leave their surfaces a little off them, and the shaft test takes boxes.
-const MOVED_MARGIN: f64 = 1e-3;
 
 /// Blockers named by what the primitives are ([`Visibility::primitive_key`]), in the order
 /// of those keys; `None` where they are not known.
@@ -125,99 +121,30 @@ impl Primitives {
     }
 }
 
-/// What the kept links were made for.
-#[derive(Clone, Debug)]
-struct Basis {
-    objects: Vec<Object>,
-    materials: Vec<Material>,
-    textures: usize,
-    options: SystemOptions,
-    /// Per object, the bounding box of its root patches (`None`: it has none).
-    bounds: Vec<Option<Bounds>>,
-}
-
-impl Basis {
-    fn of(scene: &Scene, options: &SystemOptions, mesh: &PatchMesh) -> Basis {
-        let mut bounds: Vec<Option<Bounds>> = vec![None; scene.objects.len()];
-        for &root in &mesh.roots {
-            let patch = mesh.patch(root);
-            let corners = Bounds::from_points(patch.corners().iter().copied());
-            let slot = &mut bounds[patch.object as usize];
-            *slot = Some(slot.map_or(corners, |b| b.union(corners)));
-        }
-        Basis {
-            objects: scene.objects.clone(),
-            materials: scene.materials.clone(),
-            textures: scene.textures.len(),
-            options: *options,
-            bounds,
-        }
-    }
-
-    /// Where objects moved from `self` to `now`, widened by [`MOVED_MARGIN`] (each moved
-    /// object's box before and after); `None` when `now` differs by anything but moves.
-    fn moved_to(&self, now: &Basis) -> Option<Vec<Bounds>> {
-        if self.options != now.options
-            || self.materials != now.materials
-            || self.textures != now.textures
-            || self.objects.len() != now.objects.len()
-        {
-            return None;
-        }
-        let all = now.bounds.iter().flatten().copied().reduce(Bounds::union)?;
-        let margin = DVec3::splat(MOVED_MARGIN * (all.max - all.min).length());
-        let mut moved = Vec::new();
-        for (k, (before, after)) in self.objects.iter().zip(&now.objects).enumerate() {
-            if before == after {
-                continue;
-            }
-            let only_moved = Object {
-                transform: after.transform,
-                ..before.clone()
-            } == *after;
-            let (Some(from), Some(to)) = (self.bounds[k], now.bounds[k]) else {
-                return None;
-            };
-            if !only_moved {
-                return None;
-            }
-            for b in [from, to] {
-                moved.push(Bounds {
-                    min: b.min - margin,
-                    max: b.max + margin,
-                });
-            }
-        }
-        Some(moved)
-    }
-}
-
 /// The patch links of the last hierarchical solve of a scene, kept for its next solve
-/// after objects moved (`method::run_keeping`). Empty until a solve has used it.
+/// after objects moved (the hierarchical part of [`KeptLinks`]). Empty until a solve has
+/// used it.
+///
+/// [`KeptLinks`]: crate::radiosity::solve::KeptLinks
 #[derive(Debug, Default)]
-pub struct KeptLinks {
+pub(in crate::radiosity::solve) struct PatchLinks {
     basis: Option<Basis>,
     links: FxHashMap<LinkKey, KeptLink>,
     /// What the last solve made and took, not yet merged into `links`
-    /// ([`KeptLinks::settle`]).
+    /// ([`PatchLinks::settle`]).
     unsettled: Option<Unsettled>,
     reused: u64,
     computed: u64,
 }
 
-impl KeptLinks {
-    /// No links kept yet.
-    pub fn new() -> KeptLinks {
-        KeptLinks::default()
-    }
-
+impl PatchLinks {
     /// Patch links the last solve took from the one before.
-    pub fn reused(&self) -> u64 {
+    pub(in crate::radiosity::solve) fn reused(&self) -> u64 {
         self.reused
     }
 
     /// Patch links the last solve computed.
-    pub fn computed(&self) -> u64 {
+    pub(in crate::radiosity::solve) fn computed(&self) -> u64 {
         self.computed
     }
 
@@ -252,7 +179,7 @@ impl KeptLinks {
     }
 
     /// Takes back what the solve that read `view` made and took, and the links it was given,
-    /// to be merged by [`KeptLinks::settle`] (by the next solve's start at the latest): the
+    /// to be merged by [`PatchLinks::settle`] (by the next solve's start at the latest): the
     /// merge costs a solve of the Cornell box 6 ms (preview) to 50 ms (final), which a
     /// caller in a hurry spends after showing the solution.
     pub(super) fn end(&mut self, view: KeptView) {
@@ -270,7 +197,7 @@ impl KeptLinks {
     /// given that no move since they were made can have reached (the box around their ends
     /// meets no moved object's): a coarse preview takes few of the links, and the solve
     /// after it finds the others still kept. Nothing to do when merged already.
-    pub fn settle(&mut self) {
+    pub(in crate::radiosity::solve) fn settle(&mut self) {
         let Some(Unsettled { made, moved }) = self.unsettled.take() else {
             return;
         };

@@ -46,7 +46,7 @@ mod oracle;
 mod shooting;
 mod solver;
 
-pub use kept::KeptLinks;
+pub(super) use kept::PatchLinks;
 pub use near_rays::NEAR_RAYS_FROM;
 pub use oracle::Oracle;
 pub use shooting::solve_hierarchical_shooting;

@@ -4,7 +4,7 @@
 use super::clusters::{ClusterLink, ClusterTree, End, Split};
 use super::fine_gather::FineGather;
 use super::importance::Importance;
-use super::kept::{KeptLinks, KeptView};
+use super::kept::KeptView;
 use super::links::{LightLink, Link, Linker, Prior};
 use super::near_rays::{NearRays, REFERENCE_SHARE};
 use super::nodes::{Nodes, node, split_node};
@@ -17,6 +17,7 @@ use crate::progress::{Cancel, ProgressListener};
 use crate::radiosity::element::Side;
 use crate::radiosity::light_links::exact_shadows;
 use crate::radiosity::mesh::{PatchId, PatchMesh};
+use crate::radiosity::solve::KeptLinks;
 use crate::radiosity::solve::UNEVEN_RUN;
 use crate::radiosity::solve::far_field::FarField;
 use crate::radiosity::solve::steady_state::{Bounce, BounceWatch};
@@ -164,7 +165,9 @@ pub fn solve_hierarchical_keeping(
     let (mesh, visibility) = prepare(world, &options, kept.is_some())?;
     let mut solver = Solver::new(world, mesh, &visibility, &options, settings);
     if let Some(kept) = kept.as_deref_mut() {
-        solver.kept = Some(kept.begin(&world.scene, &options, &solver.mesh, &visibility));
+        kept.last_matrix = false;
+        let view = (kept.patch_links).begin(&world.scene, &options, &solver.mesh, &visibility);
+        solver.kept = Some(view);
     }
     progress.finish();
     let setup = start.elapsed().as_secs_f64();
@@ -242,7 +245,7 @@ pub fn solve_hierarchical_keeping(
     let convergence = rounds.iter().map(|r| r.residual).collect();
     let kind = SolverKind::Hierarchical;
     if let (Some(kept), Some(view)) = (kept, solver.kept.take()) {
-        kept.end(view);
+        kept.patch_links.end(view);
     }
     solver.into_solution(
         Arc::clone(&visibility),
