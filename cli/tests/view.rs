@@ -356,7 +356,7 @@ fn floor_lux(address: &str, x: f64, z: f64) -> f64 {
 }
 
 #[test]
-fn a_move_in_the_furnace_keeps_what_it_cannot_reach_and_the_closed_form() {
+fn a_move_to_a_position_in_the_furnace_keeps_what_it_cannot_reach_and_the_closed_form() {
     // A small cube of the furnace's own glowing material inside it: B = 4π W·m⁻² on every
     // surface wherever the cube is, so the matrix solved after the cube moved — from the
     // couplings the move did not reach and the solution before — must give it again.
@@ -364,10 +364,41 @@ fn a_move_in_the_furnace_keeps_what_it_cannot_reach_and_the_closed_form() {
                 min = [0.2, 0.2, 0.2]\nmax = [0.3, 0.3, 0.3]\n";
     let (viewer, _) = furnace("furnace-move", cube);
     let address = viewer.address.as_str();
-    let (status, _, body) = request(address, "POST", "/api/move?name=cube&by=0.4,0.1,0.2");
+    // Typed as a position: the cube's centre from (0.25, 0.25, 0.25) to (0.65, 0.35, 0.45).
+    let (_, _, scene) = get(address, "/api/scene");
+    let scene = json(&scene);
+    let at = |scene: &serde_json::Value| {
+        let k = scene["movable"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .position(|n| n == "cube");
+        let position = scene["positions"][k.unwrap()].as_array().unwrap().clone();
+        position
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect::<Vec<_>>()
+    };
+    assert!(
+        at(&scene).iter().all(|v| (v - 0.25).abs() < 1e-6),
+        "{:?}",
+        at(&scene)
+    );
+    for refused in ["by=0,0,0.1&to=0.5,0.5,0.5", "to=0.5,0.5", "x=1"] {
+        let (status, _, _) = request(address, "POST", &format!("/api/move?name=cube&{refused}"));
+        assert_eq!(status, 400, "{refused}");
+    }
+    let (status, _, body) = request(address, "POST", "/api/move?name=cube&to=0.65,0.35,0.45");
     assert_eq!(status, 202, "{}", String::from_utf8_lossy(&body));
     let after = solved(address);
     assert_eq!(after["moves"], 1);
+    let (_, _, scene) = get(address, "/api/scene");
+    let moved = at(&json(&scene));
+    let to = [0.65, 0.35, 0.45];
+    assert!(
+        moved.iter().zip(to).all(|(v, t)| (v - t).abs() < 1e-6),
+        "{moved:?}"
+    );
     let (kept, computed) = (
         after["links_kept"].as_u64().unwrap(),
         after["links_computed"].as_u64().unwrap(),

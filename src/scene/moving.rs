@@ -23,10 +23,18 @@ pub enum MoveError {
     /// A directional light or the sky: they have no position.
     #[error("light '{0}' is directional or a sky: it has no position to move")]
     NotPlaced(String),
-    /// The offset is not three finite numbers.
-    #[error("the offset must be three finite numbers")]
+    /// The offset or position is not three finite numbers.
+    #[error("the offset or position must be three finite numbers")]
     NotFinite,
+    /// An object without bounds (an infinite plane) or without surfaces: it has no centre
+    /// to move to.
+    #[error("object '{0}' has no centre (it is unbounded or empty): move it by an offset")]
+    NoCentre(String),
 }
+
+/// Segments around the axis of a curved shape when its centre is found (the centre of a
+/// symmetric facet mesh is the shape's whatever the count).
+const CENTRE_SEGMENTS: u32 = 16;
 
 impl Scene {
     /// The name of light `index`: its own, or `light-<index>`.
@@ -45,6 +53,47 @@ impl Scene {
             .filter(|&k| placed(&self.lights[k].kind))
             .map(|k| self.light_name(k));
         objects.chain(lights).collect()
+    }
+
+    /// Where [`Scene::move_named`] finds `name`: the first object of that name at the centre
+    /// of the box around its surfaces (scene units; curved shapes' by their facets), or else
+    /// the first light of that name at its position.
+    pub fn position_of(&self, name: &str) -> Result<Vec3, MoveError> {
+        if let Some(k) = (0..self.objects.len()).find(|&k| self.object_name(k) == name) {
+            let object = &self.objects[k];
+            let no_centre = || MoveError::NoCentre(name.to_string());
+            let mesh = object
+                .shape
+                .to_mesh(CENTRE_SEGMENTS)
+                .map_err(|_| no_centre())?;
+            let corners = mesh.positions.iter().map(|&p| object.transform.point(p));
+            let (min, max) = corners.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p), hi.max(p))
+            });
+            let centre = 0.5 * (min + max);
+            return centre.is_finite().then_some(centre).ok_or_else(no_centre);
+        }
+        let k = (0..self.lights.len())
+            .find(|&k| self.light_name(k) == name)
+            .ok_or_else(|| MoveError::NoSuchName(name.to_string()))?;
+        match &self.lights[k].kind {
+            LightKind::Point { position, .. }
+            | LightKind::Lambertian { position, .. }
+            | LightKind::Spot { position, .. } => Ok(*position),
+            LightKind::Directional { .. } | LightKind::Sky { .. } | LightKind::CieSky { .. } => {
+                Err(MoveError::NotPlaced(name.to_string()))
+            }
+        }
+    }
+
+    /// Moves `name` as [`Scene::move_named`] does so that its position
+    /// ([`Scene::position_of`]) becomes `to` (scene units).
+    pub fn move_named_to(&mut self, name: &str, to: Vec3) -> Result<Moved, MoveError> {
+        if !to.is_finite() {
+            return Err(MoveError::NotFinite);
+        }
+        let by = to - self.position_of(name)?;
+        self.move_named(name, by)
     }
 
     /// Moves the first object named `name` (after its own transform), or else the first
@@ -84,7 +133,7 @@ fn placed(kind: &LightKind) -> bool {
 mod tests {
     use super::*;
     use crate::color::Rgb;
-    use crate::scene::{Light, open};
+    use crate::scene::{Light, Shape, open};
 
     #[test]
     fn a_moved_object_keeps_its_shape_and_moves_by_the_offset() {
@@ -155,5 +204,53 @@ mod tests {
             LightKind::Point { position, .. } if position == Vec3::new(1.0, 3.0, 1.0)
         ));
         assert!(scene.movable_names().contains(&"bulb".to_string()));
+    }
+
+    #[test]
+    fn an_object_or_a_light_moves_to_a_position_typed() {
+        let mut scene = open("cornell", &Default::default()).unwrap();
+        // The measured box's lamp, 13 × 10.5 cm in the ceiling, centred over (0.278, 0.2795).
+        let lamp = scene.position_of("light").unwrap();
+        assert!(
+            (lamp.x - 0.278).abs() < 2e-3 && (lamp.z - 0.28).abs() < 2e-3,
+            "{lamp}"
+        );
+        let to = Vec3::new(0.2, lamp.y, 0.35);
+        assert_eq!(
+            scene.move_named_to("light", to),
+            scene.clone().move_named("light", to - lamp)
+        );
+        assert!((scene.position_of("light").unwrap() - to).length() < 1e-5);
+        // A sphere's centre whatever its facets.
+        let mut spheres = open("spheres:6", &Default::default()).unwrap();
+        let Shape::Sphere { center, .. } = spheres.objects[2].shape else {
+            panic!("spheres");
+        };
+        let name = spheres.object_name(2);
+        let at = spheres.objects[2].transform.point(center);
+        assert!((spheres.position_of(&name).unwrap() - at).length() < 1e-5);
+        spheres.move_named_to(&name, Vec3::ZERO).unwrap();
+        assert!(spheres.position_of(&name).unwrap().length() < 1e-5);
+        // Refused: nothing of that name, a position not finite, a light with no place.
+        assert_eq!(
+            scene.move_named_to("nothing", Vec3::ZERO),
+            Err(MoveError::NoSuchName("nothing".into()))
+        );
+        assert_eq!(
+            scene.move_named_to("light", Vec3::splat(f32::INFINITY)),
+            Err(MoveError::NotFinite)
+        );
+        let mut ground = scene.objects[0].clone();
+        ground.name = Some("ground".into());
+        ground.shape = Shape::Plane {
+            point: Vec3::ZERO,
+            normal: Vec3::Y,
+        };
+        scene.objects.push(ground);
+        assert_eq!(
+            scene.move_named_to("ground", Vec3::ONE),
+            Err(MoveError::NoCentre("ground".into()))
+        );
+        assert!(scene.move_named("ground", Vec3::ONE).is_ok());
     }
 }

@@ -5,7 +5,7 @@
 use super::Viewer;
 use super::rendering::{Refused, Source};
 use super::snapshot::Snapshot;
-use super::solving::Status;
+use super::solving::{Move, Status};
 use std::io::Cursor;
 use std::net::{IpAddr, SocketAddr, TcpListener};
 use std::time::Duration;
@@ -144,18 +144,29 @@ fn get(viewer: &Viewer, path: &str, params: &[(String, String)]) -> Answer {
     }
 }
 
-/// `POST /api/move?name=NAME&by=X,Y,Z`: moves the object or light `NAME` by the offset
-/// (scene units) and starts solving anew.
+/// `POST /api/move?name=NAME&by=X,Y,Z` or `…&to=X,Y,Z`: moves the object or light `NAME` by
+/// the offset, or so that its position (an object's centre, a light's place; `/api/scene`'s
+/// `positions`) is the point (scene units), and starts solving anew.
 fn move_named(viewer: &Viewer, params: &[(String, String)]) -> Answer {
-    let asked = known(params, &["name", "by"]).and_then(|()| {
+    let asked = known(params, &["name", "by", "to"]).and_then(|()| {
         let name = value(params, "name").ok_or("a move needs name=NAME (an object or light)")?;
-        let by = value(params, "by").ok_or("a move needs by=X,Y,Z (scene units)")?;
-        let by = vector(by).ok_or_else(|| format!("by: '{by}' is not X,Y,Z"))?;
-        Ok((name, by))
+        let point =
+            |key: &str, v: &str| vector(v).ok_or_else(|| format!("{key}: '{v}' is not X,Y,Z"));
+        let how = match (value(params, "by"), value(params, "to")) {
+            (Some(by), None) => Move::By(point("by", by)?),
+            (None, Some(to)) => Move::To(point("to", to)?),
+            _ => {
+                return Err(
+                    "a move needs by=X,Y,Z (an offset) or to=X,Y,Z (a position), scene units"
+                        .into(),
+                );
+            }
+        };
+        Ok((name, how))
     });
     match asked {
         Err(problem) => text(400, &format!("{problem}\n")),
-        Ok((name, by)) => match viewer.solving.move_named(name, by) {
+        Ok((name, how)) => match viewer.solving.move_named(name, how) {
             Ok(moves) => {
                 // The view rendered before the move is no longer the scene.
                 viewer.rendering.stop(moves);

@@ -63,6 +63,16 @@ pub struct Status {
     pub links_computed: u64,
 }
 
+/// How a move places what it moves (scene units).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Move {
+    /// By this offset.
+    By(Vec3),
+    /// So that its position (`Scene::position_of`: an object's centre, a light's place) is
+    /// this point.
+    To(Vec3),
+}
+
 /// The solver's state, shared with the requests.
 struct State {
     /// The scene with every move so far.
@@ -234,11 +244,14 @@ impl Solving {
         (status, state.snapshot.clone())
     }
 
-    /// Moves the object or light `name` by `by` and starts solving the moved scene (stopping
-    /// a solve under way). Returns the moves asked for so far.
-    pub fn move_named(&self, name: &str, by: Vec3) -> Result<u64, MoveError> {
+    /// Moves the object or light `name` as `how` says and starts solving the moved scene
+    /// (stopping a solve under way). Returns the moves asked for so far.
+    pub fn move_named(&self, name: &str, how: Move) -> Result<u64, MoveError> {
         let mut state = self.lock();
-        state.scene.move_named(name, by)?;
+        match how {
+            Move::By(by) => state.scene.move_named(name, by)?,
+            Move::To(to) => state.scene.move_named_to(name, to)?,
+        };
         state.status.moves += 1;
         state.moved_at = Some(Instant::now());
         state.status.preview_seconds = None;

@@ -676,13 +676,27 @@ function fillMovable(names) {
   select.replaceChildren(...names.map((n) => new Option(n, n)));
 }
 
-// Sends a move; resolves when the server took it.
+// With "to" chosen, the fields show where the chosen object or light is now (its centre or
+// place, as the latest scene gives it), to be edited into where it goes.
+function fillPosition() {
+  if (control("move-how").value !== "to" || !shown.scene) return;
+  const k = shown.scene.movable.indexOf(control("move-what").value);
+  const at = k >= 0 ? shown.scene.positions[k] : null;
+  if (!at) {
+    timing.textContent = "this has no centre to move to: move it by an offset";
+    control("move-how").value = "by";
+    return;
+  }
+  ["move-x", "move-y", "move-z"].forEach((id, i) => { control(id).value = Number(at[i].toFixed(4)); });
+}
+
+// Sends a move (`how`: "by" an offset or "to" a position); resolves when the server took it.
 let movedAt = null;
-async function moveBy(name, by) {
+async function sendMove(name, how, values) {
   movedAt = performance.now();
   for (const key of ["first", "round", "preview", "solved", "final"]) delete timing.dataset[key];
   timing.textContent = `moving ${name}…`;
-  await fetchOk(`/api/move?name=${encodeURIComponent(name)}&by=${by.join(",")}`, { method: "POST" });
+  await fetchOk(`/api/move?name=${encodeURIComponent(name)}&${how}=${values.join(",")}`, { method: "POST" });
 }
 
 // A pick at canvas pixel (x, y) in CSS pixels, shown in the reading.
@@ -808,8 +822,16 @@ async function main() {
   control("render-close").addEventListener("click", closeRender);
   control("move").addEventListener("click", () => {
     closeRender();
-    const by = ["move-x", "move-y", "move-z"].map((id) => Number(control(id).value) || 0);
-    moveBy(control("move-what").value, by).catch((e) => { timing.textContent = `error: ${e.message}`; });
+    const values = ["move-x", "move-y", "move-z"].map((id) => Number(control(id).value) || 0);
+    sendMove(control("move-what").value, control("move-how").value, values)
+      .catch((e) => { timing.textContent = `error: ${e.message}`; });
+  });
+  control("move-what").addEventListener("change", fillPosition);
+  control("move-how").addEventListener("change", () => {
+    if (control("move-how").value === "by") {
+      for (const id of ["move-x", "move-y", "move-z"]) control(id).value = 0;
+    }
+    fillPosition();
   });
 
   let drag = null;
@@ -889,7 +911,7 @@ async function main() {
     if (asked && movesWanted === null) {
       const [name, by] = asked.split(":");
       movesWanted = scene.moves + 1;
-      await moveBy(name, (by || "").split(",").map(Number));
+      await sendMove(name, "by", (by || "").split(",").map(Number));
       return false;
     }
     if (movesWanted !== null && scene.moves < movesWanted) return false;
