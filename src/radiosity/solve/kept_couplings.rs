@@ -27,7 +27,7 @@ use super::moves::Basis;
 use super::system::{Couplings, RadiositySystem};
 use crate::color::Rgb64;
 use crate::radiosity::shaft::{Bounds, Shaft};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// What an element is, whatever its index: its patch's geometry key and its side.
@@ -222,8 +222,8 @@ fn matching(before: &[ElementKey], now: &[ElementKey]) -> Option<Vec<Option<u32>
         .enumerate()
         .map(|(i, &k)| (k, i as u32))
         .collect();
-    let mut seen: FxHashMap<ElementKey, ()> = FxHashMap::default();
-    if index.len() != before.len() || now.iter().any(|&k| seen.insert(k, ()).is_some()) {
+    let mut seen = FxHashSet::default();
+    if index.len() != before.len() || now.iter().any(|&k| !seen.insert(k)) {
         return None;
     }
     Some(now.iter().map(|k| index.get(k).copied()).collect())
