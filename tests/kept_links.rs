@@ -174,3 +174,34 @@ fn a_moved_light_is_solved_by_the_matrix_from_the_couplings_and_solution_before(
         "the move changed nothing"
     );
 }
+
+#[test]
+fn a_matrix_solve_stopped_by_a_move_leaves_the_couplings_kept_for_the_next() {
+    let mut scene = open("cornell", &Default::default()).unwrap();
+    let settings = matrix(RadiositySettings::new(SolverKind::Matrix).matrix.tolerance);
+    let mut kept = KeptLinks::new();
+    solved_by(&scene, settings, &mut kept);
+    // Moved, and the solve stopped before its matrix was assembled (as the viewer stops it
+    // when the next move comes): nothing assembled, what was kept stays.
+    scene
+        .move_named("light", Vec3::new(0.0, 0.0, 0.05))
+        .unwrap();
+    let world = Arc::new(World::new(scene.clone(), AccelKind::Bvh).unwrap());
+    let stopped = Cancel::new();
+    stopped.request();
+    let method = Method::Radiosity(settings);
+    let outcome = run_keeping(&world, &method, &NoProgress, &stopped, &mut kept).unwrap();
+    assert!(!outcome.complete);
+    assert_eq!(kept.reused(), 0);
+    // Moved again: the solve takes the couplings of the solve before the stopped one where
+    // neither move reached them.
+    scene
+        .move_named("light", Vec3::new(0.05, 0.0, 0.0))
+        .unwrap();
+    let (again, _) = solved_by(&scene, settings, &mut kept);
+    let share = kept.reused() as f64 / (kept.reused() + kept.computed()) as f64;
+    assert!(share > 0.5, "{share}");
+    let (from_scratch, _) = solved_by(&scene, settings, &mut KeptLinks::new());
+    let difference = largest_difference(&again, &from_scratch);
+    assert!(difference < 1e-3, "{difference}");
+}
