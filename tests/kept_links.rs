@@ -205,3 +205,27 @@ fn a_matrix_solve_stopped_by_a_move_leaves_the_couplings_kept_for_the_next() {
     let difference = largest_difference(&again, &from_scratch);
     assert!(difference < 1e-3, "{difference}");
 }
+
+#[test]
+fn links_kept_over_several_moves_give_each_solve_as_from_scratch() {
+    // The links kept carry over from move to move: those a move reached are computed again,
+    // the others taken from whichever solve made them.
+    let mut scene = open("cornell", &Default::default()).unwrap();
+    let mut kept = KeptLinks::new();
+    solved(&scene, &mut kept);
+    for by in [
+        Vec3::new(0.0, 0.0, 0.05),
+        Vec3::new(0.04, 0.0, 0.0),
+        Vec3::new(-0.04, 0.0, -0.05),
+    ] {
+        scene.move_named("light", by).unwrap();
+        kept.settle();
+        let again = solved(&scene, &mut kept);
+        let share = kept.reused() as f64 / (kept.reused() + kept.computed()) as f64;
+        assert!(share > 0.5, "{share}");
+        assert!(
+            again == solved(&scene, &mut KeptLinks::new()),
+            "moved by {by}"
+        );
+    }
+}

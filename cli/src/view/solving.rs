@@ -386,8 +386,8 @@ impl Solving {
             } else {
                 self.publish(snapshot, version, stage, moves);
             }
-            // The links kept merged once the solution is out (on the Cornell box 6 ms after
-            // the preview, up to 50 ms after the final solve).
+            // The links kept merged once the solution is out (on the Cornell box about 10 ms
+            // after the final solve).
             self.kept.lock().unwrap_or_else(|e| e.into_inner()).settle();
         }
         Ok(())

@@ -175,17 +175,19 @@ impl PatchLinks {
             moved: moved.unwrap_or_default(),
             made: Mutex::new(Vec::new()),
             reused: AtomicU64::new(0),
+            computed: AtomicU64::new(0),
         }
     }
 
-    /// Takes back what the solve that read `view` made and took, and the links it was given,
+    /// Takes back what the solve that read `view` made (and took, where the merge would drop
+    /// it), and the links it was given,
     /// to be merged by [`PatchLinks::settle`] (by the next solve's start at the latest): the
-    /// merge costs a solve of the Cornell box 6 ms (preview) to 50 ms (final), which a
+    /// merge costs a final solve of the Cornell box about 10 ms, which a
     /// caller in a hurry spends after showing the solution.
     pub(super) fn end(&mut self, view: KeptView) {
         let made = view.made.into_inner().unwrap_or_else(|e| e.into_inner());
         self.reused = view.reused.into_inner();
-        self.computed = made.len() as u64 - self.reused;
+        self.computed = view.computed.into_inner();
         self.links = view.links;
         self.unsettled = Some(Unsettled {
             made,
@@ -193,7 +195,8 @@ impl PatchLinks {
         });
     }
 
-    /// Merges what the last solve made and took into the links kept, with the links it was
+    /// Merges what the last solve made (and took, where this would drop it) into the links
+    /// kept, with the links it was
     /// given that no move since they were made can have reached (the box around their ends
     /// meets no moved object's): a coarse preview takes few of the links, and the solve
     /// after it finds the others still kept. Nothing to do when merged already.
@@ -207,8 +210,8 @@ impl PatchLinks {
     }
 }
 
-/// What a solve made and took ([`KeptView::keep`]), in the order it asked for them, and
-/// where objects had moved before it.
+/// What a solve made, and took where the merge would drop it ([`KeptView::keep`]), in the
+/// order it asked for them, and where objects had moved before it.
 #[derive(Debug)]
 struct Unsettled {
     made: Vec<(LinkKey, KeptLink)>,
@@ -221,21 +224,24 @@ pub(super) struct KeptView {
     primitives: Primitives,
     /// Where objects moved since the links were made.
     moved: Vec<Bounds>,
-    /// Every link the solve made or took, in the order it asked for them.
+    /// The links the solve made, and those it took that the merge would drop, in the order
+    /// it asked for them.
     made: Mutex<Vec<(LinkKey, KeptLink)>>,
     reused: AtomicU64,
+    computed: AtomicU64,
 }
 
 impl KeptView {
     /// The link from node `emitter` to node `receiver` of `mesh` under `prior`: the kept
     /// one where there is one and nothing moved between its ends, else `make()`'s; with
-    /// what to keep of it.
+    /// what to keep of it where the links kept do not hold it already (a link made, or one
+    /// taken whose box meets a moved object's, which the merge drops: [`PatchLinks::settle`]).
     pub(super) fn link(
         &self,
         mesh: &PatchMesh,
         (receiver, emitter, prior): (usize, usize, Prior),
         make: impl FnOnce() -> Option<Link>,
-    ) -> (Option<Link>, (LinkKey, KeptLink)) {
+    ) -> (Option<Link>, Option<(LinkKey, KeptLink)>) {
         let end = |n: usize| {
             let (patch, side) = split_node(n);
             (mesh.patch_key(patch), side.index() as u8)
@@ -249,13 +255,14 @@ impl KeptView {
         };
         let (r, e) = (mesh.patch(r).corners(), mesh.patch(e).corners());
         let around = Bounds::from_points(r.iter().chain(e).copied());
+        // The box around both ends first: the shaft lies inside it.
+        let mut near = self.moved.iter().filter(|b| b.overlaps(&around)).peekable();
+        let reached = near.peek().is_some();
         let kept = self
             .links
             .get(&key)
             .filter(|_| {
-                // The box around both ends first: the shaft lies inside it.
-                let mut near = self.moved.iter().filter(|b| b.overlaps(&around)).peekable();
-                near.peek().is_none() || {
+                !reached || {
                     let shaft = Shaft::between_polygons(r, e);
                     !near.any(|b| shaft.may_intersect(b))
                 }
@@ -271,22 +278,30 @@ impl KeptView {
                     })
                 }),
             });
-        let link = match kept {
+        let (link, taken) = match kept {
             Some(link) => {
                 self.reused.fetch_add(1, Ordering::Relaxed);
-                link
+                (link, true)
             }
-            None => make(),
+            None => {
+                self.computed.fetch_add(1, Ordering::Relaxed);
+                (make(), false)
+            }
         };
-        let keep = KeptLink {
-            link,
-            blockers: link.and_then(|l| self.primitives.stable(l.blockers)),
-            around,
-        };
-        (link, (key, keep))
+        let keep = (!taken || reached).then(|| {
+            let blockers = link.and_then(|l| self.primitives.stable(l.blockers));
+            let kept = KeptLink {
+                link,
+                blockers,
+                around,
+            };
+            (key, kept)
+        });
+        (link, keep)
     }
 
-    /// Keeps `made` (links made or taken, in order) for the next solve.
+    /// Keeps `made` (links made, or taken and about to be dropped by the merge, in order)
+    /// for the next solve.
     pub(super) fn keep(&self, made: Vec<(LinkKey, KeptLink)>) {
         self.made
             .lock()

@@ -574,7 +574,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             .map(|&(r, e, prior)| kept.link(mesh, (r, e, prior), || linker.link(mesh, r, e, prior)))
             .collect();
         let (links, made): (Vec<Option<Link>>, Vec<_>) = made.into_iter().unzip();
-        kept.keep(made);
+        kept.keep(made.into_iter().flatten().collect());
         links.into_iter().flatten().collect()
     }
 
