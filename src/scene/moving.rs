@@ -55,34 +55,27 @@ impl Scene {
         objects.chain(lights).collect()
     }
 
+    /// Where each of [`Scene::movable_names`] is, in that order ([`Scene::position_of`]
+    /// each, found by index: `None` for an object without a centre).
+    pub fn movable_positions(&self) -> Vec<Option<Vec3>> {
+        let objects = (0..self.objects.len()).map(|k| self.object_centre(k));
+        let lights = (0..self.lights.len())
+            .filter(|&k| placed(&self.lights[k].kind))
+            .map(|k| self.light_place(k));
+        objects.chain(lights).collect()
+    }
+
     /// Where [`Scene::move_named`] finds `name`: the first object of that name at the centre
     /// of the box around its surfaces (scene units; curved shapes' by their facets), or else
     /// the first light of that name at its position.
     pub fn position_of(&self, name: &str) -> Result<Vec3, MoveError> {
-        if let Some(k) = (0..self.objects.len()).find(|&k| self.object_name(k) == name) {
-            let object = &self.objects[k];
-            let no_centre = || MoveError::NoCentre(name.to_string());
-            let mesh = object
-                .shape
-                .to_mesh(CENTRE_SEGMENTS)
-                .map_err(|_| no_centre())?;
-            let corners = mesh.positions.iter().map(|&p| object.transform.point(p));
-            let (min, max) = corners.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(p), hi.max(p))
-            });
-            let centre = 0.5 * (min + max);
-            return centre.is_finite().then_some(centre).ok_or_else(no_centre);
-        }
-        let k = (0..self.lights.len())
-            .find(|&k| self.light_name(k) == name)
-            .ok_or_else(|| MoveError::NoSuchName(name.to_string()))?;
-        match &self.lights[k].kind {
-            LightKind::Point { position, .. }
-            | LightKind::Lambertian { position, .. }
-            | LightKind::Spot { position, .. } => Ok(*position),
-            LightKind::Directional { .. } | LightKind::Sky { .. } | LightKind::CieSky { .. } => {
-                Err(MoveError::NotPlaced(name.to_string()))
-            }
+        match self.named(name)? {
+            Moved::Object(k) => self
+                .object_centre(k)
+                .ok_or_else(|| MoveError::NoCentre(name.to_string())),
+            Moved::Light(k) => self
+                .light_place(k)
+                .ok_or_else(|| MoveError::NotPlaced(name.to_string())),
         }
     }
 
@@ -102,23 +95,58 @@ impl Scene {
         if !by.is_finite() {
             return Err(MoveError::NotFinite);
         }
+        let moved = self.named(name)?;
+        match moved {
+            Moved::Object(k) => {
+                let object = &mut self.objects[k];
+                object.transform = object.transform.then(&Transform::translate(by));
+            }
+            Moved::Light(k) => match &mut self.lights[k].kind {
+                LightKind::Point { position, .. }
+                | LightKind::Lambertian { position, .. }
+                | LightKind::Spot { position, .. } => *position += by,
+                LightKind::Directional { .. }
+                | LightKind::Sky { .. }
+                | LightKind::CieSky { .. } => {
+                    return Err(MoveError::NotPlaced(name.to_string()));
+                }
+            },
+        }
+        Ok(moved)
+    }
+
+    /// The first object named `name`, or else the first light of that name.
+    fn named(&self, name: &str) -> Result<Moved, MoveError> {
         if let Some(k) = (0..self.objects.len()).find(|&k| self.object_name(k) == name) {
-            let object = &mut self.objects[k];
-            object.transform = object.transform.then(&Transform::translate(by));
             return Ok(Moved::Object(k));
         }
-        let k = (0..self.lights.len())
+        (0..self.lights.len())
             .find(|&k| self.light_name(k) == name)
-            .ok_or_else(|| MoveError::NoSuchName(name.to_string()))?;
-        match &mut self.lights[k].kind {
+            .map(Moved::Light)
+            .ok_or_else(|| MoveError::NoSuchName(name.to_string()))
+    }
+
+    /// The centre of the box around object `k`'s surfaces in the scene; `None` for an
+    /// unbounded or empty one.
+    fn object_centre(&self, k: usize) -> Option<Vec3> {
+        let object = &self.objects[k];
+        let mesh = object.shape.to_mesh(CENTRE_SEGMENTS).ok()?;
+        let corners = mesh.positions.iter().map(|&p| object.transform.point(p));
+        let (min, max) = corners.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p), hi.max(p))
+        });
+        let centre = 0.5 * (min + max);
+        centre.is_finite().then_some(centre)
+    }
+
+    /// Where light `k` is; `None` for a directional light or a sky.
+    fn light_place(&self, k: usize) -> Option<Vec3> {
+        match &self.lights[k].kind {
             LightKind::Point { position, .. }
             | LightKind::Lambertian { position, .. }
-            | LightKind::Spot { position, .. } => {
-                *position += by;
-                Ok(Moved::Light(k))
-            }
+            | LightKind::Spot { position, .. } => Some(*position),
             LightKind::Directional { .. } | LightKind::Sky { .. } | LightKind::CieSky { .. } => {
-                Err(MoveError::NotPlaced(name.to_string()))
+                None
             }
         }
     }
@@ -252,5 +280,11 @@ mod tests {
             Err(MoveError::NoCentre("ground".into()))
         );
         assert!(scene.move_named("ground", Vec3::ONE).is_ok());
+        // The positions of everything movable, by index, are those found by name.
+        let by_name: Vec<Option<Vec3>> = (scene.movable_names().iter())
+            .map(|n| scene.position_of(n).ok())
+            .collect();
+        assert_eq!(scene.movable_positions(), by_name);
+        assert_eq!(by_name.iter().filter(|p| p.is_none()).count(), 1);
     }
 }

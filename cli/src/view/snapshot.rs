@@ -107,7 +107,7 @@ struct SceneInfo<'a> {
     false_color: FalseColorInfo,
     /// What `/api/move` can move: objects, then placed lights.
     movable: Vec<String>,
-    /// Where each of `movable` is (`Scene::position_of`, scene units), for a move to a
+    /// Where each of `movable` is (`Scene::movable_positions`, scene units), for a move to a
     /// position; `None` where it has none (an unbounded object).
     positions: Vec<Option<[f32; 3]>>,
     /// Object names by index (the links' ends name objects by index).
@@ -314,7 +314,6 @@ fn described(scene: &Scene, brightest: f32, about: About) -> Result<(Vec<u8>, Ve
         .map(|k| scene.object_name(k))
         .collect();
     let c = &scene.camera;
-    let movable = scene.movable_names();
     let info = SceneInfo {
         name: &scene.name,
         version: about.version,
@@ -333,11 +332,10 @@ fn described(scene: &Scene, brightest: f32, about: About) -> Result<(Vec<u8>, Ve
             stops: strahl::image::STOPS.to_vec(),
             range: (0.0, strahl::image::nice_ceiling(brightest)),
         },
-        positions: movable
-            .iter()
-            .map(|name| scene.position_of(name).ok().map(|p| p.to_array()))
+        movable: scene.movable_names(),
+        positions: (scene.movable_positions().iter())
+            .map(|p| p.map(|p| p.to_array()))
             .collect(),
-        movable,
         objects: &objects,
         links: about.links,
     };
