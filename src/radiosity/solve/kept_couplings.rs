@@ -23,10 +23,10 @@
 //! [`Visibility::seeded_by_geometry`]: crate::radiosity::visibility::Visibility::seeded_by_geometry
 //! [`PatchMesh::patch_key`]: crate::radiosity::mesh::PatchMesh::patch_key
 
-use super::moves::Basis;
+use super::moves::{Basis, reaches};
 use super::system::{Couplings, RadiositySystem};
 use crate::color::Rgb64;
-use crate::radiosity::shaft::{Bounds, Shaft};
+use crate::radiosity::shaft::Bounds;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -75,9 +75,7 @@ impl KeptCouplings {
             std::mem::take(&mut self.radiosity),
         );
         let before = match moved {
-            Some(_) if !system.has_far_field() && rows.len() == old_keys.len() => {
-                matching(&old_keys, &keys)
-            }
+            Some(_) if !system.has_far_field() => matching(&old_keys, &keys),
             _ => None,
         };
         let around = (0..system.len())
@@ -184,12 +182,8 @@ impl KeptRows {
     /// both patches meets a moved object's box and so does the shaft between them.
     fn reached(&self, system: &RadiositySystem, i: usize, j: usize) -> bool {
         let around = self.around[i].union(self.around[j]);
-        let mut near = self.moved.iter().filter(|b| b.overlaps(&around)).peekable();
-        near.peek().is_some() && {
-            let (r, e) = (system.patch(i).corners(), system.patch(j).corners());
-            let shaft = Shaft::between_polygons(r, e);
-            near.any(|b| shaft.may_intersect(b))
-        }
+        let (r, e) = (system.patch(i).corners(), system.patch(j).corners());
+        reaches(&self.moved, &around, r, e)
     }
 
     /// The radiosity the iteration starts from: each element's in the solve before, the

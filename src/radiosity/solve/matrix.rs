@@ -101,31 +101,23 @@ pub fn solve_matrix_keeping(
     });
     let start = Instant::now();
     progress.start(n as u64);
-    let rows: Vec<Option<Couplings>> = match &kept {
-        Some((_, view)) => (0..n)
-            .into_par_iter()
-            .map_init(
-                || view.scratch(),
-                |scratch, i| {
-                    (!cancel.is_requested()).then(|| {
-                        let row = view.row(system, i, scratch);
-                        progress.advance(1);
-                        row
-                    })
-                },
-            )
-            .collect(),
-        None => (0..n)
-            .into_par_iter()
-            .map(|i| {
+    let view = kept.as_ref().map(|(_, view)| view);
+    let rows: Vec<Option<Couplings>> = (0..n)
+        .into_par_iter()
+        .map_init(
+            || view.map_or_else(Vec::new, |view| view.scratch()),
+            |scratch, i| {
                 (!cancel.is_requested()).then(|| {
-                    let row = system.row(i);
+                    let row = match view {
+                        Some(view) => view.row(system, i, scratch),
+                        None => system.row(i),
+                    };
                     progress.advance(1);
                     row
                 })
-            })
-            .collect(),
-    };
+            },
+        )
+        .collect();
     progress.finish();
     solution.seconds.form_factors = start.elapsed().as_secs_f64();
     let Some(rows) = rows.into_iter().collect::<Option<Vec<Couplings>>>() else {
@@ -135,7 +127,7 @@ pub fn solve_matrix_keeping(
         }
         return Ok(solution);
     };
-    if let Some((_, view)) = &kept {
+    if let Some(view) = view {
         solution.radiosity = view.start(system);
     }
     let start = Instant::now();

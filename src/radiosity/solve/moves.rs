@@ -3,7 +3,7 @@
 //! solves (`hierarchical/kept.rs`, `kept_couplings.rs`) read to tell what they may keep.
 
 use crate::radiosity::mesh::PatchMesh;
-use crate::radiosity::shaft::Bounds;
+use crate::radiosity::shaft::{Bounds, Shaft};
 use crate::radiosity::solve::SystemOptions;
 use crate::scene::{Material, Object, Scene};
 use glam::DVec3;
@@ -81,5 +81,22 @@ impl Basis {
             }
         }
         Some(moved)
+    }
+}
+
+/// Whether a move whose boxes are `moved` ([`Basis::moved_to`]) may have changed what passes
+/// between the polygons with corners `r` and `e`, the box around both `around`: a moved box
+/// meets that box and the shaft between them (which lies inside it, so the box is tried
+/// first).
+pub(in crate::radiosity::solve) fn reaches(
+    moved: &[Bounds],
+    around: &Bounds,
+    r: &[DVec3],
+    e: &[DVec3],
+) -> bool {
+    let mut near = moved.iter().filter(|b| b.overlaps(around)).peekable();
+    near.peek().is_some() && {
+        let shaft = Shaft::between_polygons(r, e);
+        near.any(|b| shaft.may_intersect(b))
     }
 }

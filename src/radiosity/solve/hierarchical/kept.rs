@@ -29,9 +29,9 @@
 use super::links::{Link, Prior};
 use super::nodes::split_node;
 use crate::radiosity::mesh::PatchMesh;
-use crate::radiosity::shaft::{Bounds, Shaft};
+use crate::radiosity::shaft::Bounds;
 use crate::radiosity::solve::SystemOptions;
-use crate::radiosity::solve::moves::Basis;
+use crate::radiosity::solve::moves::{Basis, reaches};
 use crate::radiosity::visibility::{Blockers, Visibility};
 use crate::scene::Scene;
 // The links' and primitives' keys are hashes of geometry already (`PatchMesh::patch_key`,
@@ -130,8 +130,8 @@ impl Primitives {
 pub(in crate::radiosity::solve) struct PatchLinks {
     basis: Option<Basis>,
     links: FxHashMap<LinkKey, KeptLink>,
-    /// What the last solve made and took, not yet merged into `links`
-    /// ([`PatchLinks::settle`]).
+    /// What the last solve made (and took, where the merge would drop it), not yet merged
+    /// into `links` ([`PatchLinks::settle`]).
     unsettled: Option<Unsettled>,
     reused: u64,
     computed: u64,
@@ -255,18 +255,12 @@ impl KeptView {
         };
         let (r, e) = (mesh.patch(r).corners(), mesh.patch(e).corners());
         let around = Bounds::from_points(r.iter().chain(e).copied());
-        // The box around both ends first: the shaft lies inside it.
-        let mut near = self.moved.iter().filter(|b| b.overlaps(&around)).peekable();
-        let reached = near.peek().is_some();
+        // Whether the merge would drop it (a moved box meets the box around its ends).
+        let reached = self.moved.iter().any(|b| b.overlaps(&around));
         let kept = self
             .links
             .get(&key)
-            .filter(|_| {
-                !reached || {
-                    let shaft = Shaft::between_polygons(r, e);
-                    !near.any(|b| shaft.may_intersect(b))
-                }
-            })
+            .filter(|_| !reached || !reaches(&self.moved, &around, r, e))
             .and_then(|kept| match kept.link {
                 None => Some(None),
                 Some(link) => self.primitives.current(kept.blockers).map(|blockers| {
