@@ -233,7 +233,7 @@ mod tests {
                 &mut e.reflected,
                 &mut e.incident_squares,
             ] {
-                *triple = [v, -v, v * 1_000_003];
+                *triple = [v, -v, v.wrapping_mul(1_000_003)];
                 v = v.wrapping_mul(1_000_000_007).wrapping_add(12_345);
             }
         }
