@@ -473,7 +473,7 @@ impl ClusterTree {
 
     /// The side of root patch `patch` that faces `direction` (unit) and the cosine; zero when
     /// that side cannot see `other` (see [`Self::open_side`]).
-    fn side_towards(&self, patch: &Patch, direction: DVec3, other: DVec3) -> (Side, f64) {
+    pub fn side_towards(&self, patch: &Patch, direction: DVec3, other: DVec3) -> (Side, f64) {
         let (side, cos) = facing_side(patch.normal, direction);
         match self.open_side(patch, other) {
             Some(open) if open != side => (side, 0.0),
@@ -488,57 +488,6 @@ impl ClusterTree {
         let (lo, hi) = self.enclosures[patch.object as usize]?;
         let inside = other.cmpge(lo).all() && other.cmple(hi).all();
         Some(if inside { Side::Back } else { Side::Front })
-    }
-
-    /// The irradiance `link`'s emitter sends to the receiver's centre on a plane facing it,
-    /// W·m⁻²: `Σ A·B·cos θ/(π·d²)` over the sides of its members that can face the receiver,
-    /// each with its own distance `d` and angle `θ` to that centre.
-    fn normal_irradiance(
-        &self,
-        mesh: &PatchMesh,
-        link: &ClusterLink,
-        radiosity: &[Rgb64],
-    ) -> Rgb64 {
-        self.members(&link.emitter)
-            .iter()
-            .fold(Rgb64::BLACK, |sum, &p| {
-                let patch = mesh.patch(p);
-                let to = link.receiver_centre - patch.centroid;
-                let d2 = to.length_squared();
-                let direction = to / d2.sqrt();
-                let (side, cos) = self.side_towards(patch, direction, link.receiver_centre);
-                sum + radiosity[node(p, side)] * (patch.area * cos / d2)
-            })
-            .map(|v| v / PI)
-    }
-
-    /// Adds to `gathered` the irradiance `link` brings, given the current radiosity.
-    pub fn gather(
-        &self,
-        mesh: &PatchMesh,
-        link: &ClusterLink,
-        radiosity: &[Rgb64],
-        gathered: &mut [Rgb64],
-    ) {
-        if !link.separated() || link.visible.iter().all(|&v| v == 0) {
-            return;
-        }
-        // Each member at its own distance `d` and angle from the emitter's centre: the
-        // irradiance at the receiver's centre times `r²/d²`, which with the emitter members'
-        // own distances to that centre gets the kernel `1/d²` right to first order in the
-        // ends' sizes (the centres' distance alone underestimates it, by Jensen's inequality).
-        let at_centre =
-            self.normal_irradiance(mesh, link, radiosity) * (link.distance * link.distance / 255.0);
-        for (&p, &v) in self.members(&link.receiver).iter().zip(&link.visible) {
-            if v > 0 {
-                let patch = mesh.patch(p);
-                let from = patch.centroid - link.emitter_centre;
-                let d2 = from.length_squared();
-                let direction = -from / d2.sqrt();
-                let (side, cos) = self.side_towards(patch, direction, link.emitter_centre);
-                gathered[node(p, side)] += at_centre * (cos * f64::from(v) / d2);
-            }
-        }
     }
 
     /// The largest power `link` can bring, W (luminance): over the shortest distance
@@ -742,6 +691,7 @@ pub enum Split {
 
 #[cfg(test)]
 mod tests {
+    use super::super::cluster_gather::GatherPlan;
     use super::*;
     use crate::accel::AccelKind;
     use crate::radiosity::form_factor::point_to_polygon;
@@ -859,7 +809,8 @@ mod tests {
         tree.see(&mesh, &visibility, &mut link, &radiosity, &mut rays);
         assert!(link.separated() && rays > 0);
         let mut gathered = vec![Rgb64::BLACK; radiosity.len()];
-        tree.gather(&mesh, &link, &radiosity, &mut gathered);
+        let plan = GatherPlan::new(&tree, &mesh, std::slice::from_ref(&link));
+        plan.gather(&radiosity, &mut gathered);
         let power: f64 = low
             .iter()
             .map(|&p| gathered[node(p, Side::Front)].g * mesh.patch(p).area)

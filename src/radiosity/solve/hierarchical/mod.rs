@@ -14,6 +14,8 @@
 //! 2. **Gather and push-pull** (§6.7, §6.8) until the radiosity changes by less than the
 //!    tolerance: every node gathers `Σ F·V·B` over its links, irradiance is pushed down to
 //!    the leaves, where it becomes `B = E + ρ·H`, and radiosity is pulled up area-weighted.
+//!    The cluster links' geometry is worked out once for the gathers of a round
+//!    (`cluster_gather.rs`).
 //! 3. **Refinement** (§6.4) by the [`Oracle`]: a link that transports its light with too
 //!    large an error is replaced by links to the four children of its receiver or its
 //!    emitter. `--refine-pass original` judges the links that existed when the pass began and
@@ -35,6 +37,7 @@
 //! goes from one root side to all others, its links refined at either end as the oracle
 //! asks, and what a receiver takes is pushed to the leaves.
 
+mod cluster_gather;
 mod clusters;
 mod fine_gather;
 mod importance;

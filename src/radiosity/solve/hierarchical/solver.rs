@@ -1,6 +1,7 @@
 //! The hierarchical solve: initial linking, then rounds of gathering, push-pull and
 //! refinement until no link is refined (the steps of the module documentation).
 
+use super::cluster_gather::GatherPlan;
 use super::clusters::{ClusterLink, ClusterTree, End, Split};
 use super::fine_gather::FineGather;
 use super::importance::Importance;
@@ -31,6 +32,7 @@ use crate::scene::LightKind;
 use crate::world::World;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::ops::Range;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
@@ -43,8 +45,12 @@ const MAX_GATHERS: u32 = 1000;
 /// (fewer links are one chunk, in link order).
 const GATHER_CHUNK: usize = 1 << 15;
 
-/// Bytes the chunks' sums of one gather may hold together.
+/// Bytes the chunks' sums of one gather may hold together; and the cluster links' gathers
+/// worked out for a round ([`GatherPlan`]).
 const GATHER_BYTES: usize = 256 << 20;
+
+/// Bytes a side of a [`GatherPlan`] takes: its node and its weight.
+const PLANNED_SIDE_BYTES: usize = 12;
 
 /// More chunks than this in a gather are rounded down to a multiple of it, so that threads
 /// that divide it share them evenly (`canopy:3000`'s 9 chunks kept one of two threads
@@ -97,6 +103,9 @@ pub(super) struct Solver<'w, 'v> {
     pub(super) limits: Limits,
     /// The chunks' sums of the last gather, kept for the next one.
     gather_sums: std::sync::Mutex<Vec<Vec<Rgb64>>>,
+    /// Per chunk of a gather, its cluster links' gathers worked out, while the links stay
+    /// as they are (the gathers of one round; [`Solver::gather_to_convergence`]).
+    gather_plans: Option<Vec<GatherPlan>>,
     /// How much the light each node receives matters to the reported surfaces.
     pub(super) importance: Importance,
     /// The emitters' pieces of the final gather, once refinement is done.
@@ -315,6 +324,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                 min_area: 0.0,
             },
             gather_sums: std::sync::Mutex::new(Vec::new()),
+            gather_plans: None,
             importance: Importance::new(world, settings.surface_error),
             fine: None,
             settings: *settings,
@@ -631,6 +641,21 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         cancel: &Cancel,
     ) -> Result<(), SolveError> {
         let mut bounces = BounceWatch::new(self.nodes.largest_albedo());
+        let t = Instant::now();
+        self.gather_plans = self.plan_gathers();
+        round.seconds_gather += t.elapsed().as_secs_f64();
+        let gathered = self.gather_repeatedly(round, cancel, &mut bounces);
+        self.gather_plans = None;
+        gathered
+    }
+
+    /// The gathers and push-pulls of [`Self::gather_to_convergence`].
+    fn gather_repeatedly(
+        &mut self,
+        round: &mut RoundStats,
+        cancel: &Cancel,
+        bounces: &mut BounceWatch,
+    ) -> Result<(), SolveError> {
         for _ in 0..MAX_GATHERS {
             let t = Instant::now();
             self.gather();
@@ -666,6 +691,49 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         self.gather_to_convergence(round, cancel)
     }
 
+    /// The gathers of the cluster links worked out per chunk of a gather (`cluster_gather.rs`),
+    /// in parallel; `None` without clusters, or when they would hold more than
+    /// [`GATHER_BYTES`] (each gather then works them out as it goes).
+    fn plan_gathers(&self) -> Option<Vec<GatherPlan>> {
+        let tree = self.clusters.as_ref()?;
+        let sides = GatherPlan::sides_at_most(tree, &self.cluster_links);
+        if sides * PLANNED_SIDE_BYTES > GATHER_BYTES {
+            return None;
+        }
+        let (chunks, _) = self.gather_chunking(self.nodes.radiosity.len());
+        let plans = (0..chunks)
+            .into_par_iter()
+            .with_max_len(1)
+            .map(|k| GatherPlan::new(tree, &self.mesh, &self.cluster_links[self.cluster_range(k)]))
+            .collect();
+        Some(plans)
+    }
+
+    /// How many chunks a gather into `nodes` nodes is cut into, and the links per chunk.
+    fn gather_chunking(&self, nodes: usize) -> (usize, usize) {
+        let links = self.links.len() + self.cluster_links.len();
+        let chunks = gather_chunks(links, nodes);
+        (chunks, links.div_ceil(chunks).max(1))
+    }
+
+    /// The links of chunk `k` of a gather: its patch links and its cluster links (each as a
+    /// range of its own list).
+    fn chunk_ranges(&self, k: usize) -> (Range<usize>, Range<usize>) {
+        let patch_links = self.links.len();
+        let total = patch_links + self.cluster_links.len();
+        let (_, chunk) = self.gather_chunking(self.nodes.radiosity.len());
+        let (start, end) = (k * chunk, ((k + 1) * chunk).min(total));
+        (
+            start.min(patch_links)..end.min(patch_links),
+            start.max(patch_links) - patch_links..end.max(patch_links) - patch_links,
+        )
+    }
+
+    /// The cluster links of chunk `k` of a gather.
+    fn cluster_range(&self, k: usize) -> Range<usize> {
+        self.chunk_ranges(k).1
+    }
+
     /// Every node gathers `Σ F·V·B` over its links (seed §6.7).
     fn gather(&mut self) {
         let mut gathered = std::mem::take(&mut self.nodes.gathered);
@@ -680,19 +748,13 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// for any number of threads.
     fn gather_from(&self, b: &[Rgb64], gathered: &mut Vec<Rgb64>) {
         let nodes = b.len();
-        let (patch_links, cluster_links) = (self.links.len(), self.cluster_links.len());
-        let chunks = gather_chunks(patch_links + cluster_links, nodes);
-        let chunk = (patch_links + cluster_links).div_ceil(chunks).max(1);
+        let (chunks, _) = self.gather_chunking(nodes);
         let mut sums = self.gather_sums.lock().unwrap_or_else(|e| e.into_inner());
         sums.resize_with(chunks, Vec::new);
         sums.par_iter_mut().enumerate().for_each(|(k, sum)| {
             sum.clear();
             sum.resize(nodes, Rgb64::BLACK);
-            let (start, end) = (
-                k * chunk,
-                ((k + 1) * chunk).min(patch_links + cluster_links),
-            );
-            let patch_range = start.min(patch_links)..end.min(patch_links);
+            let (patch_range, cluster_range) = self.chunk_ranges(k);
             for (k, link) in self.links[patch_range.clone()]
                 .iter()
                 .enumerate()
@@ -708,12 +770,13 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     sum[n] += h;
                 }
             }
-            if let Some(tree) = &self.clusters {
-                let cluster_range =
-                    start.max(patch_links) - patch_links..end.max(patch_links) - patch_links;
-                for link in &self.cluster_links[cluster_range] {
-                    tree.gather(&self.mesh, link, b, sum);
+            match (&self.gather_plans, &self.clusters) {
+                (Some(plans), _) => plans[k].gather(b, sum),
+                (None, Some(tree)) => {
+                    GatherPlan::new(tree, &self.mesh, &self.cluster_links[cluster_range])
+                        .gather(b, sum);
                 }
+                (None, None) => {}
             }
         });
         let sums = &sums[..chunks];
