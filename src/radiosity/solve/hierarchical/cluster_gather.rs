@@ -46,7 +46,12 @@ impl GatherPlan {
     /// out; a link whose ends are not separated, or that no receiver member sees, brings
     /// nothing and is left out.
     pub fn new(tree: &ClusterTree, mesh: &PatchMesh, links: &[ClusterLink]) -> Self {
-        let mut plan = GatherPlan::default();
+        let sides = Self::sides_at_most(tree, links);
+        let mut plan = GatherPlan {
+            links: Vec::with_capacity(links.len()),
+            nodes: Vec::with_capacity(sides),
+            weights: Vec::with_capacity(sides),
+        };
         for link in links {
             plan.add(tree, mesh, link);
         }

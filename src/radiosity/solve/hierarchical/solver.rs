@@ -52,6 +52,18 @@ const GATHER_BYTES: usize = 256 << 20;
 /// Bytes a side of a [`GatherPlan`] takes: its node and its weight.
 const PLANNED_SIDE_BYTES: usize = 12;
 
+/// Cluster links a [`GatherPlan`] holds at most: a chunk's links are worked out in pieces of
+/// this many, in parallel (links between large clusters cost more and come in runs).
+const PLAN_PIECE: usize = 4096;
+
+/// The cluster links' gathers worked out, per chunk of a gather its pieces in link order;
+/// they hold while the cluster links stay as they are and the gather's chunks are `shape`.
+struct GatherPlans {
+    /// The gather's chunks (number, links per chunk) the plans follow.
+    shape: (usize, usize),
+    chunks: Vec<Vec<GatherPlan>>,
+}
+
 /// More chunks than this in a gather are rounded down to a multiple of it, so that threads
 /// that divide it share them evenly (`canopy:3000`'s 9 chunks kept one of two threads
 /// waiting for the ninth).
@@ -103,9 +115,9 @@ pub(super) struct Solver<'w, 'v> {
     pub(super) limits: Limits,
     /// The chunks' sums of the last gather, kept for the next one.
     gather_sums: std::sync::Mutex<Vec<Vec<Rgb64>>>,
-    /// Per chunk of a gather, its cluster links' gathers worked out, while the links stay
-    /// as they are (the gathers of one round; [`Solver::gather_to_convergence`]).
-    gather_plans: Option<Vec<GatherPlan>>,
+    /// The cluster links' gathers worked out ([`GatherPlans`]); dropped whenever the cluster
+    /// links change.
+    gather_plans: Option<GatherPlans>,
     /// How much the light each node receives matters to the reported surfaces.
     pub(super) importance: Importance,
     /// The emitters' pieces of the final gather, once refinement is done.
@@ -418,6 +430,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         if let Some(tree) = &self.clusters {
             let root = tree.root();
             self.cluster_links = vec![tree.link(&self.mesh, root, root)];
+            self.gather_plans = None;
             self.refine_clusters(cancel);
             return;
         }
@@ -491,6 +504,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             if count == 0 {
                 break;
             }
+            // The cluster links change: their gathers worked out before no longer hold.
+            self.gather_plans = None;
             // What replaces the links refined, gathered in parallel in link order.
             let replaced: Vec<Replacements> = splits
                 .par_iter()
@@ -642,20 +657,8 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     ) -> Result<(), SolveError> {
         let mut bounces = BounceWatch::new(self.nodes.largest_albedo());
         let t = Instant::now();
-        self.gather_plans = self.plan_gathers();
+        self.plan_gathers();
         round.seconds_gather += t.elapsed().as_secs_f64();
-        let gathered = self.gather_repeatedly(round, cancel, &mut bounces);
-        self.gather_plans = None;
-        gathered
-    }
-
-    /// The gathers and push-pulls of [`Self::gather_to_convergence`].
-    fn gather_repeatedly(
-        &mut self,
-        round: &mut RoundStats,
-        cancel: &Cancel,
-        bounces: &mut BounceWatch,
-    ) -> Result<(), SolveError> {
         for _ in 0..MAX_GATHERS {
             let t = Instant::now();
             self.gather();
@@ -691,22 +694,50 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         self.gather_to_convergence(round, cancel)
     }
 
-    /// The gathers of the cluster links worked out per chunk of a gather (`cluster_gather.rs`),
-    /// in parallel; `None` without clusters, or when they would hold more than
+    /// Works out the cluster links' gathers ([`GatherPlans`]) unless those worked out before
+    /// still hold; none without clusters, or when they would hold more than
     /// [`GATHER_BYTES`] (each gather then works them out as it goes).
-    fn plan_gathers(&self) -> Option<Vec<GatherPlan>> {
-        let tree = self.clusters.as_ref()?;
+    fn plan_gathers(&mut self) {
+        let shape = self.gather_shape();
+        if self.gather_plans.as_ref().is_some_and(|p| p.shape == shape) {
+            return;
+        }
+        self.gather_plans = None;
+        let Some(tree) = &self.clusters else {
+            return;
+        };
         let sides = GatherPlan::sides_at_most(tree, &self.cluster_links);
         if sides * PLANNED_SIDE_BYTES > GATHER_BYTES {
-            return None;
+            return;
         }
-        let (chunks, _) = self.gather_chunking(self.nodes.radiosity.len());
-        let plans = (0..chunks)
-            .into_par_iter()
-            .with_max_len(1)
-            .map(|k| GatherPlan::new(tree, &self.mesh, &self.cluster_links[self.cluster_range(k)]))
+        // Each chunk's cluster links in pieces, worked out in parallel, in order.
+        let (chunks, _) = shape;
+        let pieces: Vec<(usize, Range<usize>)> = (0..chunks)
+            .flat_map(|k| {
+                let range = self.chunk_ranges(k).1;
+                (range.start..range.end)
+                    .step_by(PLAN_PIECE)
+                    .map(move |start| (k, start..(start + PLAN_PIECE).min(range.end)))
+            })
             .collect();
-        Some(plans)
+        let planned: Vec<GatherPlan> = pieces
+            .par_iter()
+            .with_max_len(1)
+            .map(|(_, range)| GatherPlan::new(tree, &self.mesh, &self.cluster_links[range.clone()]))
+            .collect();
+        let mut plans = GatherPlans {
+            shape,
+            chunks: vec![Vec::new(); chunks],
+        };
+        for ((k, _), plan) in pieces.into_iter().zip(planned) {
+            plans.chunks[k].push(plan);
+        }
+        self.gather_plans = Some(plans);
+    }
+
+    /// What the chunks of a gather depend on: their number and the links in each.
+    fn gather_shape(&self) -> (usize, usize) {
+        self.gather_chunking(self.nodes.radiosity.len())
     }
 
     /// How many chunks a gather into `nodes` nodes is cut into, and the links per chunk.
@@ -729,11 +760,6 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         )
     }
 
-    /// The cluster links of chunk `k` of a gather.
-    fn cluster_range(&self, k: usize) -> Range<usize> {
-        self.chunk_ranges(k).1
-    }
-
     /// Every node gathers `Σ F·V·B` over its links (seed §6.7).
     fn gather(&mut self) {
         let mut gathered = std::mem::take(&mut self.nodes.gathered);
@@ -748,7 +774,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// for any number of threads.
     fn gather_from(&self, b: &[Rgb64], gathered: &mut Vec<Rgb64>) {
         let nodes = b.len();
-        let (chunks, _) = self.gather_chunking(nodes);
+        let (chunks, chunk) = self.gather_chunking(nodes);
         let mut sums = self.gather_sums.lock().unwrap_or_else(|e| e.into_inner());
         sums.resize_with(chunks, Vec::new);
         sums.par_iter_mut().enumerate().for_each(|(k, sum)| {
@@ -770,8 +796,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     sum[n] += h;
                 }
             }
-            match (&self.gather_plans, &self.clusters) {
-                (Some(plans), _) => plans[k].gather(b, sum),
+            let plans = (self.gather_plans.as_ref()).filter(|p| p.shape == (chunks, chunk));
+            match (plans, &self.clusters) {
+                (Some(plans), _) => plans.chunks[k].iter().for_each(|p| p.gather(b, sum)),
                 (None, Some(tree)) => {
                     GatherPlan::new(tree, &self.mesh, &self.cluster_links[cluster_range])
                         .gather(b, sum);
