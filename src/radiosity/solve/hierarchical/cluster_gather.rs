@@ -43,10 +43,9 @@ struct PlannedLink {
 
 impl GatherPlan {
     /// The gathers of `links` (clusters of `tree` over the root patches of `mesh`) worked
-    /// out; a link whose ends are not separated, or that no receiver member sees, brings
-    /// nothing and is left out.
-    pub fn new(tree: &ClusterTree, mesh: &PatchMesh, links: &[ClusterLink]) -> Self {
-        let sides = Self::sides_at_most(tree, links);
+    /// out, room made for `sides` sides ([`Self::sides_at_most`]); a link whose ends are not
+    /// separated, or that no receiver member sees, brings nothing and is left out.
+    pub fn new(tree: &ClusterTree, mesh: &PatchMesh, links: &[ClusterLink], sides: usize) -> Self {
         let mut plan = GatherPlan {
             links: Vec::with_capacity(links.len()),
             nodes: Vec::with_capacity(sides),

@@ -809,7 +809,8 @@ mod tests {
         tree.see(&mesh, &visibility, &mut link, &radiosity, &mut rays);
         assert!(link.separated() && rays > 0);
         let mut gathered = vec![Rgb64::BLACK; radiosity.len()];
-        let plan = GatherPlan::new(&tree, &mesh, std::slice::from_ref(&link));
+        let links = std::slice::from_ref(&link);
+        let plan = GatherPlan::new(&tree, &mesh, links, GatherPlan::sides_at_most(&tree, links));
         plan.gather(&radiosity, &mut gathered);
         let power: f64 = low
             .iter()

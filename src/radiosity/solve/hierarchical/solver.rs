@@ -706,10 +706,6 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         let Some(tree) = &self.clusters else {
             return;
         };
-        let sides = GatherPlan::sides_at_most(tree, &self.cluster_links);
-        if sides * PLANNED_SIDE_BYTES > GATHER_BYTES {
-            return;
-        }
         // Each chunk's cluster links in pieces, worked out in parallel, in order.
         let (chunks, _) = shape;
         let pieces: Vec<(usize, Range<usize>)> = (0..chunks)
@@ -720,10 +716,17 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
                     .map(move |start| (k, start..(start + PLAN_PIECE).min(range.end)))
             })
             .collect();
-        let planned: Vec<GatherPlan> = pieces
-            .par_iter()
+        let sides: Vec<usize> = (pieces.par_iter())
+            .map(|(_, range)| GatherPlan::sides_at_most(tree, &self.cluster_links[range.clone()]))
+            .collect();
+        if sides.iter().sum::<usize>() * PLANNED_SIDE_BYTES > GATHER_BYTES {
+            return;
+        }
+        let planned: Vec<GatherPlan> = (pieces.par_iter().zip(&sides))
             .with_max_len(1)
-            .map(|(_, range)| GatherPlan::new(tree, &self.mesh, &self.cluster_links[range.clone()]))
+            .map(|((_, range), &sides)| {
+                GatherPlan::new(tree, &self.mesh, &self.cluster_links[range.clone()], sides)
+            })
             .collect();
         let mut plans = GatherPlans {
             shape,
@@ -800,8 +803,9 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             match (plans, &self.clusters) {
                 (Some(plans), _) => plans.chunks[k].iter().for_each(|p| p.gather(b, sum)),
                 (None, Some(tree)) => {
-                    GatherPlan::new(tree, &self.mesh, &self.cluster_links[cluster_range])
-                        .gather(b, sum);
+                    let links = &self.cluster_links[cluster_range];
+                    let sides = GatherPlan::sides_at_most(tree, links);
+                    GatherPlan::new(tree, &self.mesh, links, sides).gather(b, sum);
                 }
                 (None, None) => {}
             }
