@@ -1237,6 +1237,45 @@ mod tests {
     }
 
     #[test]
+    fn planned_gathers_equal_gathers_that_work_the_links_out_as_they_go() {
+        // A canopy of 300 leaves: about 2·10⁴ cluster links, so a chunk holds several pieces.
+        let scene = crate::scene::builtin::canopy::scene(300);
+        let world = Arc::new(World::new(scene, crate::accel::AccelKind::default()).unwrap());
+        let (options, settings) = (SystemOptions::default(), HierarchicalSettings::default());
+        let (mesh, visibility) = prepare(&world, &options, false).unwrap();
+        let mut solver = Solver::new(&world, mesh, &visibility, &options, &settings);
+        let (progress, cancel) = (crate::progress::NoProgress, Cancel::new());
+        solver.link_root_lights(&progress, &cancel);
+        solver.nodes.push_pull(&solver.mesh);
+        solver.link_root_pairs(&progress, &cancel);
+        assert!(solver.cluster_links.len() > 2 * PLAN_PIECE);
+        fn same_either_way<'w: 'v, 'v>(solver: &mut Solver<'w, 'v>) {
+            let b = solver.nodes.radiosity.clone();
+            let (mut as_they_go, mut planned) = (Vec::new(), Vec::new());
+            let kept = solver.gather_plans.take();
+            solver.gather_from(&b, &mut as_they_go);
+            solver.gather_plans = kept;
+            solver.plan_gathers();
+            let plans = solver.gather_plans.as_ref().unwrap();
+            assert!(plans.chunks.iter().map(Vec::len).sum::<usize>() > 2);
+            solver.gather_from(&b, &mut planned);
+            assert_eq!(as_they_go, planned);
+            assert!(planned.iter().filter(|h| h.max_channel() > 0.0).count() > 100);
+        }
+        same_either_way(&mut solver);
+        // Links refined after a gather: the plans made before are dropped, not used.
+        solver
+            .gather_to_convergence(&mut RoundStats::default(), &cancel)
+            .unwrap();
+        let links = solver.cluster_links.len();
+        solver.limits.error *= 0.5;
+        solver.refine_clusters(&cancel);
+        assert_ne!(solver.cluster_links.len(), links);
+        assert!(solver.gather_plans.is_none());
+        same_either_way(&mut solver);
+    }
+
+    #[test]
     fn closing_up_keeps_every_link_kept_once_and_moves_only_into_gaps() {
         // Ten thousand links judged after five kept before; every third one refined, so the
         // gaps spread over several of the parallel runs.
