@@ -1,5 +1,5 @@
 //! What the cluster links bring in a gather, their geometry worked out once for all the
-//! gathers of a round.
+//! gathers while the links stay as they are.
 //!
 //! A cluster link brings its receiver's members, side by side, `c·s·Σₑ wₑ·Bₑ`: the emitter's
 //! member sides that face the receiver's centre, each weighed by `wₑ = A·cos θ/d²` (its own

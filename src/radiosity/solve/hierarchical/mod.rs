@@ -14,7 +14,7 @@
 //! 2. **Gather and push-pull** (§6.7, §6.8) until the radiosity changes by less than the
 //!    tolerance: every node gathers `Σ F·V·B` over its links, irradiance is pushed down to
 //!    the leaves, where it becomes `B = E + ρ·H`, and radiosity is pulled up area-weighted.
-//!    The cluster links' geometry is worked out once for the gathers of a round
+//!    The cluster links' geometry is worked out once and kept while they stay
 //!    (`cluster_gather.rs`).
 //! 3. **Refinement** (§6.4) by the [`Oracle`]: a link that transports its light with too
 //!    large an error is replaced by links to the four children of its receiver or its

@@ -698,7 +698,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
     /// still hold; none without clusters, or when they would hold more than
     /// [`GATHER_BYTES`] (each gather then works them out as it goes).
     fn plan_gathers(&mut self) {
-        let shape = self.gather_shape();
+        let shape = self.gather_chunking(self.nodes.radiosity.len());
         if self.gather_plans.as_ref().is_some_and(|p| p.shape == shape) {
             return;
         }
@@ -707,10 +707,10 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
             return;
         };
         // Each chunk's cluster links in pieces, worked out in parallel, in order.
-        let (chunks, _) = shape;
+        let (chunks, chunk) = shape;
         let pieces: Vec<(usize, Range<usize>)> = (0..chunks)
             .flat_map(|k| {
-                let range = self.chunk_ranges(k).1;
+                let range = self.chunk_ranges(k, chunk).1;
                 (range.start..range.end)
                     .step_by(PLAN_PIECE)
                     .map(move |start| (k, start..(start + PLAN_PIECE).min(range.end)))
@@ -738,11 +738,6 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         self.gather_plans = Some(plans);
     }
 
-    /// What the chunks of a gather depend on: their number and the links in each.
-    fn gather_shape(&self) -> (usize, usize) {
-        self.gather_chunking(self.nodes.radiosity.len())
-    }
-
     /// How many chunks a gather into `nodes` nodes is cut into, and the links per chunk.
     fn gather_chunking(&self, nodes: usize) -> (usize, usize) {
         let links = self.links.len() + self.cluster_links.len();
@@ -750,12 +745,12 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         (chunks, links.div_ceil(chunks).max(1))
     }
 
-    /// The links of chunk `k` of a gather: its patch links and its cluster links (each as a
-    /// range of its own list).
-    fn chunk_ranges(&self, k: usize) -> (Range<usize>, Range<usize>) {
+    /// The links of chunk `k` of a gather cut into chunks of `chunk` links
+    /// ([`Self::gather_chunking`]): its patch links and its cluster links (each as a range of
+    /// its own list).
+    fn chunk_ranges(&self, k: usize, chunk: usize) -> (Range<usize>, Range<usize>) {
         let patch_links = self.links.len();
         let total = patch_links + self.cluster_links.len();
-        let (_, chunk) = self.gather_chunking(self.nodes.radiosity.len());
         let (start, end) = (k * chunk, ((k + 1) * chunk).min(total));
         (
             start.min(patch_links)..end.min(patch_links),
@@ -783,7 +778,7 @@ impl<'w: 'v, 'v> Solver<'w, 'v> {
         sums.par_iter_mut().enumerate().for_each(|(k, sum)| {
             sum.clear();
             sum.resize(nodes, Rgb64::BLACK);
-            let (patch_range, cluster_range) = self.chunk_ranges(k);
+            let (patch_range, cluster_range) = self.chunk_ranges(k, chunk);
             for (k, link) in self.links[patch_range.clone()]
                 .iter()
                 .enumerate()
